@@ -1,0 +1,67 @@
+// The one-scanline z-buffer: the same depth test with a depth buffer one row high.
+// Rows are processed top to bottom; an active-triangle list holds the triangles that
+// span the current row, so each row touches only those (Watkins-style row coherence).
+#include <algorithm>
+
+#include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/parallel.hpp"
+
+namespace hsr::zbuffer {
+
+void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats) {
+  PhaseTimer timer(stats, "rasterization");
+  const auto& triangles = geometry.triangles;
+
+  // Step 1: a bucket per row of the triangles whose first row it is, in submission order.
+  std::vector<std::vector<std::uint32_t>> startingAt(static_cast<std::size_t>(frame.height));
+  for (std::uint32_t i = 0; i < triangles.size(); ++i) startingAt[std::size_t(triangles[i].minY)].push_back(i);
+
+  // Rows are split into bands, one per worker; each band keeps its own row buffer and
+  // active list, and writes only its own rows.
+  const int workers = std::min(resolveThreadCount(threads), frame.height);
+  const DepthEncoding encoding = depthEncoding(format, geometry.camera);
+  withDepthFormat(format, [&]<typename Format>() {
+    std::vector<DepthTest<Format>> tests(static_cast<std::size_t>(workers), DepthTest<Format>{encoding});
+    parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t band, int) {
+      const auto [first, last] = partRange(static_cast<std::size_t>(frame.height), static_cast<std::size_t>(workers), band);
+      std::vector<typename Format::Stored> depthRow(static_cast<std::size_t>(frame.width));
+      DepthTest<Format>& test = tests[band];
+      // Step 2: the active list starts with the triangles that began above the band and reach into it.
+      std::vector<std::uint32_t> active, entering, merged;
+      for (std::uint32_t i = 0; i < triangles.size(); ++i)
+        if (std::size_t(triangles[i].minY) < first && std::size_t(triangles[i].maxY) >= first) active.push_back(i);
+      for (std::size_t y = first; y < last; ++y) {
+        // Step 3: retire the triangles that ended above this row, admit those starting on it,
+        // keeping submission order so ties resolve exactly as in the full-frame buffer.
+        std::erase_if(active, [&](std::uint32_t i) { return std::size_t(triangles[i].maxY) < y; });
+        const auto& starting = startingAt[y];
+        merged.clear();
+        std::merge(active.begin(), active.end(), starting.begin(), starting.end(), std::back_inserter(merged));
+        active.swap(merged);
+        // Step 4: clear the row, then depth-test every active triangle's span on it.
+        std::fill(depthRow.begin(), depthRow.end(), Format::kFar);
+        const std::size_t row = y * std::size_t(frame.width);
+        test.activeTriangles += static_cast<std::int64_t>(active.size());
+        for (const std::uint32_t i : active) {
+          const ScreenTriangle& tri = triangles[i];
+          rasterizeSpan(tri, int(y), tri.minX, tri.maxX + 1, [&](int x) {
+            if (test.nearer(tri, x, int(y), depthRow[std::size_t(x)])) frame.ids[row + std::size_t(x)] = tri.triangle + 1;
+          });
+        }
+        // Step 5: the row is final: decode its depth into the frame before the buffer is reused.
+        for (int x = 0; x < frame.width; ++x)
+          if (frame.ids[row + std::size_t(x)] != conventions::kBackgroundId)
+            frame.depth[row + std::size_t(x)] = test.distance(depthRow[std::size_t(x)], geometry.camera);
+      }
+    });
+    for (const auto& test : tests) {
+      stats.add("fragments tested", test.tested);
+      stats.add("fragments written", test.written);
+      stats.add("active triangles summed over rows", test.activeTriangles);
+    }
+    stats.add("depth buffer bytes",
+              static_cast<std::int64_t>(std::size_t(workers) * std::size_t(frame.width) * sizeof(typename Format::Stored)));
+  });
+}
+
+}  // namespace hsr::zbuffer

@@ -1,0 +1,56 @@
+// The z-buffer (Catmull 1974; Straßer 1974): keep, for every pixel, the depth of the
+// nearest surface drawn so far, and draw a new fragment only if it is nearer.
+//
+// Inputs: a PreparedScene (world-space triangles with ids, image size), the knobs.
+// Output: a Frame with, per pixel, the visible triangle's id + 1 (0 = background), its
+// depth as the chosen format stored it (decoded to view distance), and the shaded color.
+#pragma once
+
+#include "renderer/depth.hpp"
+#include "renderer/frame.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/screen_triangles.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr::zbuffer {
+
+enum class Variant {
+  full,      // a depth buffer of the whole image, tile-parallel: memory O(width x height)
+  scanline,  // a depth buffer one row high, rows in order with an active-triangle list: O(width)
+};
+
+struct Knobs {
+  Variant variant = Variant::full;
+  DepthFormat depthFormat = DepthFormat::float32;
+};
+
+// threads: 0 = all cores. The image bits are the same for every thread count.
+Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
+
+// The variants' visibility passes: they fill frame.ids and frame.depth only.
+void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats);
+void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats);
+
+// The depth test shared by both variants: encodes the fragment's depth in the format
+// and keeps it if nearer. Ties keep the earlier triangle ("less", not "less or equal").
+template <typename Format>
+struct DepthTest {
+  DepthEncoding encoding;
+  std::int64_t tested = 0, written = 0, activeTriangles = 0;
+
+  bool nearer(const ScreenTriangle& tri, int x, int y, typename Format::Stored& stored) {
+    ++tested;
+    const auto z = Format::store(encoding.z(tri.depthAt(x + 0.5, y + 0.5)));
+    if (!Format::nearer(z, stored)) return false;
+    stored = z;
+    ++written;
+    return true;
+  }
+
+  // What the buffer stored, decoded back to a distance along the view axis.
+  float distance(typename Format::Stored stored, const CameraTransform& camera) const {
+    return static_cast<float>(camera.distanceFromScreenAffine(encoding.t(Format::load(stored))));
+  }
+};
+
+}  // namespace hsr::zbuffer

@@ -1,0 +1,51 @@
+// Camera transforms: world -> view -> clip -> pixel, in double precision.
+// Names say what they map (viewFromWorld: a world point into view space).
+#pragma once
+
+#include "renderer/scene.hpp"
+
+namespace hsr {
+
+// A vertex in clip space, kept with its distance along the view axis:
+// x, y as a projection matrix would give them, w the homogeneous divisor
+// (= d under perspective, 1 under orthographic), d = -z_view. All four are linear
+// in the 3D position, so clipping interpolates them linearly.
+struct ClipVertex {
+  double x, y, d, w;
+};
+
+struct Ray {
+  dvec3 origin, direction;  // world space; direction not normalized
+};
+
+class CameraTransform {
+ public:
+  CameraTransform(const Camera& camera, int width, int height);
+
+  // Rotation of (p - eye): subtracting the eye first keeps precision far from the origin.
+  dvec3 viewFromWorld(const dvec3& p) const;
+  ClipVertex clipFromWorld(const dvec3& p) const;
+  // Pixel coordinates (x right, y down, conventions.hpp) of a clip vertex with w > 0.
+  dvec2 pixelFromClip(const ClipVertex& v) const;
+  // The world-space ray through a point in pixel coordinates: from the eye under
+  // perspective, parallel to the view axis from the near-plane rectangle under orthographic.
+  Ray rayThroughPixel(double px, double py) const;
+
+  // "t" is the quantity that is affine in screen space: 1/d under perspective, d under
+  // orthographic. Depth formats store a + b t; see depth.hpp.
+  double screenAffineDepth(double d) const { return perspective() ? 1.0 / d : d; }
+  double distanceFromScreenAffine(double t) const { return perspective() ? 1.0 / t : t; }
+
+  bool perspective() const { return camera_.projection == Projection::perspective; }
+  const Camera& camera() const { return camera_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  Camera camera_;
+  int width_, height_;
+  dvec3 right_, up_, forward_;  // world-space view basis
+  double scaleX_, scaleY_;      // clip x = scaleX * view x (divided by d under perspective)
+};
+
+}  // namespace hsr

@@ -1,0 +1,32 @@
+#include "renderer/depth.hpp"
+
+namespace hsr {
+
+const std::vector<std::string>& depthFormatNames() {
+  static const std::vector<std::string> names = {"float32", "reversed-float32", "reversed-float32-inf", "unorm24",
+                                                 "unorm16"};
+  return names;
+}
+
+const char* depthFormatName(DepthFormat format) { return depthFormatNames()[static_cast<int>(format)].c_str(); }
+
+bool clipsFarPlane(DepthFormat format, const CameraTransform& camera) {
+  return !(format == DepthFormat::reversedFloat32Infinite && camera.perspective());
+}
+
+DepthEncoding depthEncoding(DepthFormat format, const CameraTransform& camera) {
+  const double n = camera.camera().near, f = camera.camera().far;
+  const bool reversed = format == DepthFormat::reversedFloat32 || format == DepthFormat::reversedFloat32Infinite;
+  if (camera.perspective()) {
+    // t = 1/d. Standard: z = f (d - n) / (d (f - n)); reversed: z = n (f - d) / (d (f - n));
+    // reversed with f -> infinity: z = n / d.
+    if (format == DepthFormat::reversedFloat32Infinite) return {0.0, n};
+    if (reversed) return {-n / (f - n), n * f / (f - n)};
+    return {f / (f - n), -n * f / (f - n)};
+  }
+  // t = d: depth is linear in distance under orthographic projection.
+  if (reversed) return {f / (f - n), -1.0 / (f - n)};
+  return {-n / (f - n), 1.0 / (f - n)};
+}
+
+}  // namespace hsr

@@ -1,0 +1,89 @@
+#include "renderer/frame.hpp"
+
+#include <limits>
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include "renderer/error.hpp"
+
+namespace hsr {
+namespace {
+
+void writeImage(const std::filesystem::path& path, const OIIO::ImageSpec& spec, const void* pixels) {
+  auto output = OIIO::ImageOutput::create(path.string());
+  if (!output || !output->open(path.string(), spec) || !output->write_image(spec.format, pixels) || !output->close())
+    throw InputError(path.string() + ": cannot write the image" +
+                     (output ? ": " + output->geterror() : std::string(": no writer for this extension")));
+}
+
+}  // namespace
+
+Frame::Frame(int w, int h)
+    : width(w),
+      height(h),
+      color(std::size_t(w) * std::size_t(h) * 4, 0),
+      depth(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::infinity()),
+      ids(std::size_t(w) * std::size_t(h), 0) {}
+
+OutputFiles::~OutputFiles() {
+  for (const auto& [temporary, final] : staged_) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+  }
+}
+
+std::filesystem::path OutputFiles::stage(const std::filesystem::path& path, const std::string& extension) {
+  if (path.extension() != extension)
+    throw InputError(path.string() + ": expected a file name ending in " + extension);
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  if (!std::filesystem::is_directory(folder))
+    throw InputError(path.string() + ": the folder " + folder.string() + " does not exist");
+  // Same folder, same extension (OpenImageIO picks the format by it), a name no one else uses.
+  std::filesystem::path temporary = path;
+  temporary.replace_filename("." + path.stem().string() + ".partial-" + std::to_string(::getpid()) + extension);
+  staged_.emplace_back(temporary, path);
+  return temporary;
+}
+
+void OutputFiles::addColorPng(const std::filesystem::path& path, const Frame& frame) {
+  const auto temporary = stage(path, ".png");
+  writeImage(temporary, OIIO::ImageSpec(frame.width, frame.height, 4, OIIO::TypeDesc::UINT8), frame.color.data());
+}
+
+void OutputFiles::addIdsPng(const std::filesystem::path& path, const Frame& frame) {
+  const auto temporary = stage(path, ".png");
+  std::vector<std::uint8_t> rgb(frame.pixelCount() * 3);
+  for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
+    rgb[3 * i + 0] = static_cast<std::uint8_t>(frame.ids[i] >> 16);
+    rgb[3 * i + 1] = static_cast<std::uint8_t>(frame.ids[i] >> 8);
+    rgb[3 * i + 2] = static_cast<std::uint8_t>(frame.ids[i]);
+  }
+  writeImage(temporary, OIIO::ImageSpec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8), rgb.data());
+}
+
+void OutputFiles::addDepthExr(const std::filesystem::path& path, const Frame& frame) {
+  const auto temporary = stage(path, ".exr");
+  OIIO::ImageSpec spec(frame.width, frame.height, 1, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"Z"};
+  spec.z_channel = 0;
+  writeImage(temporary, spec, frame.depth.data());
+}
+
+void OutputFiles::commit() {
+  for (const auto& [temporary, final] : staged_) std::filesystem::rename(temporary, final);
+  staged_.clear();
+}
+
+Image readImage(const std::filesystem::path& path) {
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) throw InputError(path.string() + ": cannot read the image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  Image image{spec.width, spec.height, spec.nchannels, {}};
+  image.pixels.resize(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, image.pixels.data()))
+    throw InputError(path.string() + ": cannot read the image: " + input->geterror());
+  return image;
+}
+
+}  // namespace hsr

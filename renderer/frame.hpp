@@ -1,0 +1,55 @@
+// Frame: what a surface algorithm produces, and how it is written. Writers go through
+// OutputFiles, which writes every file under a temporary name and renames them into
+// place only when all were written, so a failed run leaves no partial output behind.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace hsr {
+
+struct Frame {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> color;  // RGBA8, row 0 at the top
+  std::vector<float> depth;         // distance along the view axis; +infinity = background
+  std::vector<std::uint32_t> ids;   // global triangle index + 1; 0 = background
+
+  Frame() = default;
+  Frame(int w, int h);
+  std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+};
+
+// Decodes an --ids image pixel: (R << 16 | G << 8 | B) = global triangle index + 1.
+inline std::uint32_t idFromRgb(const std::uint8_t* rgb) {
+  return std::uint32_t(rgb[0]) << 16 | std::uint32_t(rgb[1]) << 8 | rgb[2];
+}
+
+class OutputFiles {
+ public:
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles();  // removes the temporary files of an uncommitted set
+
+  // Each throws InputError naming the path when it cannot be written (missing folder,
+  // wrong extension, no permission).
+  void addColorPng(const std::filesystem::path& path, const Frame& frame);
+  void addIdsPng(const std::filesystem::path& path, const Frame& frame);
+  void addDepthExr(const std::filesystem::path& path, const Frame& frame);
+  void commit();  // renames every file into place
+
+ private:
+  std::filesystem::path stage(const std::filesystem::path& path, const std::string& extension);
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // temporary, final
+};
+
+// Reads an 8-bit RGB(A) image for tests and comparisons; throws InputError.
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<std::uint8_t> pixels;
+};
+Image readImage(const std::filesystem::path& path);
+
+}  // namespace hsr

@@ -1,0 +1,31 @@
+// GLM aliases and the few exact helpers the rasterizer and its tests share.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace hsr {
+
+using glm::dmat3;
+using glm::dmat4;
+using glm::dvec2;
+using glm::dvec3;
+using glm::dvec4;
+using glm::vec3;
+
+using Triangle = std::array<std::uint32_t, 3>;  // vertex indices, counter-clockwise = front
+
+// Twice the signed area of (a, b, c) in a y-down image: positive when the three points
+// run clockwise on screen. Exact for the fixed-point coordinates the rasterizer uses.
+inline std::int64_t orient2d(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by,
+                             std::int64_t cx, std::int64_t cy) {
+  return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+
+inline bool isFinite(const dvec3& v) {
+  return glm::all(glm::lessThan(glm::abs(v), dvec3(1e300)));  // false for NaN and Inf
+}
+
+}  // namespace hsr

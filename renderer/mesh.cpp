@@ -1,0 +1,165 @@
+#include "renderer/mesh.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "renderer/error.hpp"
+
+namespace hsr {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::uint32_t addVertex(Mesh& mesh, const dvec3& position) {
+  mesh.positions.push_back(position);
+  return static_cast<std::uint32_t>(mesh.positions.size() - 1);
+}
+
+// Quad a-b-c-d counter-clockwise from the front, split along a-c.
+void addQuad(Mesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+  mesh.triangles.push_back({a, b, c});
+  mesh.triangles.push_back({a, c, d});
+}
+
+// A ring of `segments` vertices around the y axis at height y. Angle 0 is +z and the
+// angle grows toward +x, so consecutive ring vertices run counter-clockwise seen from +y.
+std::uint32_t addRing(Mesh& mesh, double radius, double y, int segments) {
+  const auto first = static_cast<std::uint32_t>(mesh.positions.size());
+  for (int s = 0; s < segments; ++s) {
+    const double angle = 2 * kPi * s / segments;
+    addVertex(mesh, {radius * std::sin(angle), y, radius * std::cos(angle)});
+  }
+  return first;
+}
+
+// A fan from `center` to a ring. Seen from +y the ring runs counter-clockwise, so
+// a cap facing +y uses the ring's order and a cap facing -y reverses it.
+void addCap(Mesh& mesh, std::uint32_t center, std::uint32_t ring, int segments, bool facesUp) {
+  for (int s = 0; s < segments; ++s) {
+    const std::uint32_t a = ring + s;
+    const std::uint32_t b = ring + (s + 1) % segments;
+    if (facesUp)
+      mesh.triangles.push_back({center, a, b});
+    else
+      mesh.triangles.push_back({center, b, a});
+  }
+}
+
+// The side wall between two rings (lower first), facing outward.
+void addWall(Mesh& mesh, std::uint32_t lower, std::uint32_t upper, int segments) {
+  for (int s = 0; s < segments; ++s) {
+    const std::uint32_t next = (s + 1) % segments;
+    addQuad(mesh, lower + s, lower + next, upper + next, upper + s);
+  }
+}
+
+// Vertices of a (segmentsX+1) x (segmentsZ+1) lattice over the xz plane; the quads
+// face +y: seen from above, (x, z) -> (x, z+1) -> (x+1, z+1) runs counter-clockwise.
+template <typename Height>
+Mesh makeLattice(const dvec2& size, int segmentsX, int segmentsZ, Height height) {
+  Mesh mesh;
+  for (int k = 0; k <= segmentsZ; ++k)
+    for (int i = 0; i <= segmentsX; ++i) {
+      const double u = size.x * (double(i) / segmentsX - 0.5);
+      const double v = size.y * (double(k) / segmentsZ - 0.5);
+      addVertex(mesh, {u, height(u, v), v});
+    }
+  const auto at = [&](int i, int k) { return static_cast<std::uint32_t>(k * (segmentsX + 1) + i); };
+  for (int k = 0; k < segmentsZ; ++k)
+    for (int i = 0; i < segmentsX; ++i) addQuad(mesh, at(i, k), at(i, k + 1), at(i + 1, k + 1), at(i + 1, k));
+  return mesh;
+}
+
+}  // namespace
+
+Mesh makeBox(const dvec3& size) {
+  Mesh mesh;
+  const dvec3 h = size * 0.5;
+  for (int corner = 0; corner < 8; ++corner)
+    addVertex(mesh, {corner & 1 ? h.x : -h.x, corner & 2 ? h.y : -h.y, corner & 4 ? h.z : -h.z});
+  // Corner index bits: 1 = +x, 2 = +y, 4 = +z. Each face counter-clockwise from outside.
+  addQuad(mesh, 0, 4, 6, 2);  // -x
+  addQuad(mesh, 1, 3, 7, 5);  // +x
+  addQuad(mesh, 0, 1, 5, 4);  // -y
+  addQuad(mesh, 2, 6, 7, 3);  // +y
+  addQuad(mesh, 0, 2, 3, 1);  // -z
+  addQuad(mesh, 4, 5, 7, 6);  // +z
+  return mesh;
+}
+
+Mesh makeSphere(double radius, int segments, int rings) {
+  HSR_CHECK(segments >= 3 && rings >= 2);
+  Mesh mesh;
+  const std::uint32_t south = addVertex(mesh, {0, -radius, 0});
+  std::uint32_t previous = 0;
+  for (int r = 1; r < rings; ++r) {
+    const double polar = kPi * (1.0 - double(r) / rings);  // from the south pole up
+    const std::uint32_t ring = addRing(mesh, radius * std::sin(polar), radius * std::cos(polar), segments);
+    if (r == 1)
+      addCap(mesh, south, ring, segments, false);
+    else
+      addWall(mesh, previous, ring, segments);
+    previous = ring;
+  }
+  const std::uint32_t north = addVertex(mesh, {0, radius, 0});
+  addCap(mesh, north, previous, segments, true);
+  return mesh;
+}
+
+Mesh makeCylinder(double radius, double height, int segments) {
+  HSR_CHECK(segments >= 3);
+  Mesh mesh;
+  const std::uint32_t bottomCenter = addVertex(mesh, {0, -height / 2, 0});
+  const std::uint32_t topCenter = addVertex(mesh, {0, height / 2, 0});
+  const std::uint32_t bottom = addRing(mesh, radius, -height / 2, segments);
+  const std::uint32_t top = addRing(mesh, radius, height / 2, segments);
+  addCap(mesh, bottomCenter, bottom, segments, false);
+  addWall(mesh, bottom, top, segments);
+  addCap(mesh, topCenter, top, segments, true);
+  return mesh;
+}
+
+Mesh makeCone(double radius, double height, int segments) {
+  HSR_CHECK(segments >= 3);
+  Mesh mesh;
+  const std::uint32_t bottomCenter = addVertex(mesh, {0, -height / 2, 0});
+  const std::uint32_t apex = addVertex(mesh, {0, height / 2, 0});
+  const std::uint32_t bottom = addRing(mesh, radius, -height / 2, segments);
+  addCap(mesh, bottomCenter, bottom, segments, false);
+  addCap(mesh, apex, bottom, segments, true);
+  return mesh;
+}
+
+Mesh makeGrid(const dvec2& size, int segmentsX, int segmentsZ) {
+  return makeLattice(size, segmentsX, segmentsZ, [](double, double) { return 0.0; });
+}
+
+const std::vector<std::string>& heightFunctionNames() {
+  static const std::vector<std::string> names = {"ripple", "saddle", "gauss", "waves", "spike", "step"};
+  return names;
+}
+
+double HeightFunction::evaluate(double u, double v) const {
+  const double r = std::hypot(u, v) * frequency;
+  if (name == "ripple") return amplitude * (r < 1e-9 ? 1.0 : std::sin(r) / r);  // sinc
+  if (name == "saddle") return amplitude * (u * u - v * v) * frequency * frequency;
+  if (name == "gauss") return amplitude * std::exp(-r * r);
+  if (name == "waves") return amplitude * std::sin(u * frequency) * std::cos(v * frequency);
+  if (name == "spike") return amplitude / (1.0 + 100.0 * r * r);
+  if (name == "step") return u * frequency >= 0 ? amplitude : 0.0;
+  HSR_CHECK(!"height function names are validated when the scene is loaded");
+  return 0.0;
+}
+
+Mesh makeHeightField(const dvec2& size, int segmentsX, int segmentsZ, const HeightFunction& function) {
+  return makeLattice(size, segmentsX, segmentsZ, [&](double u, double v) { return function.evaluate(u, v); });
+}
+
+double signedVolume(const Mesh& mesh) {
+  double volume = 0;
+  for (const Triangle& t : mesh.triangles)
+    volume += glm::dot(mesh.positions[t[0]], glm::cross(mesh.positions[t[1]], mesh.positions[t[2]]));
+  return volume / 6.0;
+}
+
+}  // namespace hsr

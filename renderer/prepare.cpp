@@ -1,0 +1,100 @@
+#include "renderer/prepare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "renderer/error.hpp"
+
+namespace hsr {
+
+PreparedScene::PreparedScene(const Scene& scene) : scene_(&scene), width_(scene.width), height_(scene.height) {
+  // Flatten every copy of every object into world space, in id order. Transforms are
+  // composed in double so a model far from the origin keeps its float precision.
+  for (std::uint32_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex) {
+    const SceneObject& object = scene.objects[objectIndex];
+    const dmat4 objectToWorld = object.transform.worldFromObject();
+    const std::vector<dmat4> copies = object.instancing.copies();
+    for (std::uint32_t copy = 0; copy < copies.size(); ++copy) {
+      const dmat4 worldFromObject = copies[copy] * objectToWorld;
+      const auto firstVertex = static_cast<std::uint32_t>(positions_.size());
+      for (const dvec3& p : object.mesh->positions) positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
+      Instance instance;
+      instance.object = objectIndex;
+      instance.copy = copy;
+      instance.firstTriangle = static_cast<std::uint32_t>(triangles_.size());
+      instance.triangleCount = static_cast<std::uint32_t>(object.mesh->triangles.size());
+      instance.color = object.color;
+      instances_.push_back(instance);
+      for (const Triangle& t : object.mesh->triangles)
+        triangles_.push_back({t[0] + firstVertex, t[1] + firstVertex, t[2] + firstVertex});
+    }
+  }
+}
+
+void PreparedScene::setSize(int width, int height) {
+  checkImageSize(width, height, "--size");
+  width_ = width;
+  height_ = height;
+}
+
+const Instance& PreparedScene::instanceOf(std::uint32_t triangle) const {
+  HSR_CHECK(triangle < triangles_.size());
+  const auto after = std::upper_bound(instances_.begin(), instances_.end(), triangle,
+                                      [](std::uint32_t t, const Instance& i) { return t < i.firstTriangle; });
+  return *(after - 1);
+}
+
+dvec3 PreparedScene::faceNormal(std::uint32_t triangle) const {
+  const Triangle& t = triangles_[triangle];
+  const dvec3 n = glm::cross(positions_[t[1]] - positions_[t[0]], positions_[t[2]] - positions_[t[0]]);
+  const double length = glm::length(n);
+  return length > 0 ? n / length : dvec3(0);
+}
+
+const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& stats) const {
+  std::call_once(normalsBuilt_, [&] {
+    PhaseTimer timer(stats, "normals");
+    // Each face's contribution at a vertex: its unit normal weighted by its angle there,
+    // so the result does not depend on how the surface around the vertex was triangulated.
+    const std::size_t faces = triangles_.size();
+    std::vector<dvec3> unitNormal(faces);
+    std::vector<std::array<double, 3>> cornerAngle(faces);
+    for (std::size_t f = 0; f < faces; ++f) {
+      unitNormal[f] = faceNormal(static_cast<std::uint32_t>(f));
+      const Triangle& t = triangles_[f];
+      for (int k = 0; k < 3; ++k) {
+        const dvec3 e1 = positions_[t[(k + 1) % 3]] - positions_[t[k]], e2 = positions_[t[(k + 2) % 3]] - positions_[t[k]];
+        cornerAngle[f][k] = std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
+      }
+    }
+    // The faces around each vertex (compressed rows: facesAt[first[v] .. first[v+1])).
+    std::vector<std::uint32_t> first(positions_.size() + 1, 0), facesAt(3 * faces);
+    for (const Triangle& t : triangles_)
+      for (std::uint32_t v : t) ++first[v + 1];
+    for (std::size_t v = 0; v < positions_.size(); ++v) first[v + 1] += first[v];
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::uint32_t f = 0; f < faces; ++f)
+      for (std::uint32_t v : triangles_[f]) facesAt[fill[v]++] = f;
+
+    const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180);
+    cornerNormals_.resize(faces);
+    for (std::size_t f = 0; f < faces; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = triangles_[f][k];
+        dvec3 sum(0);
+        for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
+          const std::uint32_t other = facesAt[i];
+          if (glm::dot(unitNormal[other], unitNormal[f]) < creaseCosine) continue;
+          const int corner = triangles_[other][0] == v ? 0 : triangles_[other][1] == v ? 1 : 2;
+          sum += unitNormal[other] * cornerAngle[other][corner];
+        }
+        const double length = glm::length(sum);
+        cornerNormals_[f][k] = length > 0 ? sum / length : unitNormal[f];
+      }
+    stats.add("normals computed", static_cast<std::int64_t>(3 * faces));
+  });
+  return cornerNormals_;
+}
+
+}  // namespace hsr

@@ -1,0 +1,63 @@
+// PreparedScene: the scene flattened into world-space triangles with stable ids, plus
+// the derived data some algorithms and effects need, built only on first use (and
+// counted in Stats, so a scene that does not need them provably does not pay).
+#pragma once
+
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+#include "renderer/scene.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr {
+
+// One copy of one scene object.
+struct Instance {
+  std::uint32_t object = 0;         // index into Scene::objects
+  std::uint32_t copy = 0;           // index among the object's copies
+  std::uint32_t firstTriangle = 0;  // global index of its first triangle
+  std::uint32_t triangleCount = 0;
+  vec3 color{0.8f};
+};
+
+class PreparedScene {
+ public:
+  explicit PreparedScene(const Scene& scene);
+
+  const Scene& scene() const { return *scene_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Render at another resolution than the scene file asks for (--size).
+  void setSize(int width, int height);
+
+  // #V world-space positions in double precision and #T triangles indexing them,
+  // in global id order (conventions.hpp).
+  const std::vector<dvec3>& positions() const { return positions_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<Instance>& instances() const { return instances_; }
+  std::size_t triangleCount() const { return triangles_.size(); }
+
+  // The instance that owns a triangle (binary search over firstTriangle).
+  const Instance& instanceOf(std::uint32_t triangle) const;
+
+  // Unit face normal (b - a) x (c - a); zero for a degenerate triangle.
+  dvec3 faceNormal(std::uint32_t triangle) const;
+  // #T x 3 unit normals, one per triangle corner, built on first use (counted as
+  // "normals computed"): the angle-weighted average of the face normals around the
+  // corner's vertex that lie within kCreaseDegrees of this face's, so smooth surfaces
+  // shade smoothly and a cube keeps its edges.
+  static constexpr double kCreaseDegrees = 40;
+  const std::vector<std::array<dvec3, 3>>& cornerNormals(Stats& stats) const;
+
+ private:
+  const Scene* scene_;
+  int width_, height_;
+  std::vector<dvec3> positions_;
+  std::vector<Triangle> triangles_;
+  std::vector<Instance> instances_;
+  mutable std::once_flag normalsBuilt_;
+  mutable std::vector<std::array<dvec3, 3>> cornerNormals_;
+};
+
+}  // namespace hsr

@@ -1,0 +1,71 @@
+#include "renderer/raster.hpp"
+
+#include <algorithm>
+#include <tuple>
+
+namespace hsr {
+namespace {
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
+std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
+
+// Pixel indices whose centers (i + 0.5) lie in [low, high] (sub-pixel units), clamped to [0, size).
+std::pair<int, int> centersWithin(std::int64_t low, std::int64_t high, int size) {
+  using conventions::kSubpixelScale;
+  const std::int64_t first = ceilDiv(low - kSubpixelScale / 2, kSubpixelScale);
+  const std::int64_t last = floorDiv(high - kSubpixelScale / 2, kSubpixelScale);
+  return {static_cast<int>(std::clamp<std::int64_t>(first, 0, size)),
+          static_cast<int>(std::clamp<std::int64_t>(last, -1, size - 1))};
+}
+
+}  // namespace
+
+bool setupScreenTriangle(const std::int64_t xIn[3], const std::int64_t yIn[3], const double tIn[3], int width,
+                         int height, std::uint32_t triangle, ScreenTriangle& out) {
+  std::int64_t area = orient2d(xIn[0], yIn[0], xIn[1], yIn[1], xIn[2], yIn[2]);
+  if (area == 0) return false;
+  // Counter-clockwise in the y-up view is clockwise in the y-down image: positive area.
+  out.frontFacing = area > 0;
+  // Orient every triangle the same way, so "inside" is "all edge functions >= 0".
+  const int order[3] = {0, area > 0 ? 1 : 2, area > 0 ? 2 : 1};
+  std::int64_t x[3], y[3];
+  double t[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = xIn[order[k]];
+    y[k] = yIn[order[k]];
+    t[k] = tIn[order[k]];
+  }
+  area = area > 0 ? area : -area;
+
+  std::tie(out.minX, out.maxX) = centersWithin(std::min({x[0], x[1], x[2]}), std::max({x[0], x[1], x[2]}), width);
+  std::tie(out.minY, out.maxY) = centersWithin(std::min({y[0], y[1], y[2]}), std::max({y[0], y[1], y[2]}), height);
+  if (out.minX > out.maxX || out.minY > out.maxY) return false;
+
+  for (int k = 0; k < 3; ++k) {
+    // Edge k runs from vertex k+1 to vertex k+2, opposite vertex k:
+    // E(P) = (bx - ax)(Py - ay) - (by - ay)(Px - ax), positive on the triangle's side.
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    const std::int64_t dx = x[b] - x[a], dy = y[b] - y[a];
+    // Top edge: horizontal with the triangle below (+y); left edge: triangle to its right.
+    // Their centers count as inside; on every other edge a center exactly on it is outside.
+    const bool topLeft = (dy == 0 && dx > 0) || dy < 0;
+    out.edgeA[k] = -dy;
+    out.edgeB[k] = dx;
+    out.edgeC[k] = dy * x[a] - dx * y[a] - (topLeft ? 0 : 1);
+  }
+
+  // The plane of t through the three snapped vertices (Cramer's rule in pixel units).
+  const double scale = 1.0 / double(conventions::kSubpixelScale);
+  const double x1 = double(x[1] - x[0]) * scale, y1 = double(y[1] - y[0]) * scale;
+  const double x2 = double(x[2] - x[0]) * scale, y2 = double(y[2] - y[0]) * scale;
+  const double det = x1 * y2 - x2 * y1;
+  out.x0 = double(x[0]) * scale;
+  out.y0 = double(y[0]) * scale;
+  out.t0 = t[0];
+  out.tdx = ((t[1] - t[0]) * y2 - (t[2] - t[0]) * y1) / det;
+  out.tdy = ((t[2] - t[0]) * x1 - (t[1] - t[0]) * x2) / det;
+  out.triangle = triangle;
+  return true;
+}
+
+}  // namespace hsr

@@ -1,0 +1,490 @@
+#include "renderer/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <toml++/toml.h>
+
+#include "renderer/error.hpp"
+#include "renderer/obj.hpp"
+
+namespace hsr {
+namespace {
+
+// Reads one TOML table, remembering which keys were used, so that finish() can
+// reject the keys nobody asked for. Every error names file:line:column, the key path
+// and what was expected.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, const std::filesystem::path& file)
+      : table_(table), path_(std::move(path)), file_(file) {}
+
+  [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
+    const toml::source_region& where = node ? node->source() : table_.source();
+    throw InputError(file_.string() + ":" + std::to_string(where.begin.line) + ":" +
+                     std::to_string(where.begin.column) + ": " + keyPath(key) + ": " + what);
+  }
+
+  std::string keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const std::filesystem::path& file() const { return file_; }
+
+  const toml::node* find(const std::string& key) {
+    used_.insert(key);
+    return table_.get(key);
+  }
+  bool has(const std::string& key) const { return table_.contains(key); }
+
+  double number(const std::string& key, std::optional<double> fallback, double min, double max) {
+    const toml::node* node = find(key);
+    if (!node) {
+      if (!fallback) fail(nullptr, key, "missing; expected a number in " + range(min, max));
+      return *fallback;
+    }
+    return checkedNumber(node, key, min, max);
+  }
+
+  int integer(const std::string& key, std::optional<int> fallback, int min, int max) {
+    const toml::node* node = find(key);
+    if (!node) {
+      if (!fallback) fail(nullptr, key, "missing; expected an integer in " + range(min, max));
+      return *fallback;
+    }
+    const auto value = node->value<std::int64_t>();
+    if (!node->is_integer() || !value || *value < min || *value > max)
+      fail(node, key, "expected an integer in " + range(min, max) + ", got " + describe(*node));
+    return static_cast<int>(*value);
+  }
+
+  bool boolean(const std::string& key, bool fallback) {
+    const toml::node* node = find(key);
+    if (!node) return fallback;
+    if (!node->is_boolean()) fail(node, key, "expected true or false, got " + describe(*node));
+    return *node->value<bool>();
+  }
+
+  std::string choice(const std::string& key, std::optional<std::string> fallback,
+                     const std::vector<std::string>& allowed) {
+    const toml::node* node = find(key);
+    if (!node) {
+      if (!fallback) fail(nullptr, key, "missing; expected one of " + join(allowed));
+      return *fallback;
+    }
+    const auto value = node->value<std::string>();
+    if (!value || std::find(allowed.begin(), allowed.end(), *value) == allowed.end())
+      fail(node, key, "expected one of " + join(allowed) + ", got " + describe(*node));
+    return *value;
+  }
+
+  std::string string(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) fail(nullptr, key, "missing; expected a string");
+    if (!node->is_string()) fail(node, key, "expected a string, got " + describe(*node));
+    return *node->value<std::string>();
+  }
+
+  // Three numbers; with `allowScalar`, one number means the same on every axis.
+  dvec3 vector3(const std::string& key, std::optional<dvec3> fallback, double min, double max,
+                bool allowScalar = false) {
+    const toml::node* node = find(key);
+    const std::string expected = std::string(allowScalar ? "a number or " : "") + "an array of 3 numbers in " + range(min, max);
+    if (!node) {
+      if (!fallback) fail(nullptr, key, "missing; expected " + expected);
+      return *fallback;
+    }
+    if (allowScalar && node->is_number()) return dvec3(checkedNumber(node, key, min, max));
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 3) fail(node, key, "expected " + expected + ", got " + describe(*node));
+    dvec3 result;
+    for (int axis = 0; axis < 3; ++axis) result[axis] = checkedNumber(array->get(axis), key, min, max);
+    return result;
+  }
+
+  vec3 color(const std::string& key, vec3 fallback) { return vec3(vector3(key, dvec3(fallback), 0.0, 1.0)); }
+
+  const toml::table* table(const std::string& key) {
+    const toml::node* node = find(key);
+    if (node && !node->is_table()) fail(node, key, "expected a table, got " + describe(*node));
+    return node ? node->as_table() : nullptr;
+  }
+
+  const toml::array* array(const std::string& key) {
+    const toml::node* node = find(key);
+    if (node && !node->is_array()) fail(node, key, "expected an array, got " + describe(*node));
+    return node ? node->as_array() : nullptr;
+  }
+
+  void finish(const std::vector<std::string>& allowed) const {
+    for (const auto& [key, node] : table_) {
+      const std::string name(key.str());
+      if (!used_.count(name)) fail(&node, name, "unknown key; expected one of " + join(allowed));
+    }
+  }
+
+  static std::string join(const std::vector<std::string>& words) {
+    std::string text;
+    for (const std::string& word : words) text += (text.empty() ? "" : ", ") + word;
+    return text;
+  }
+
+  static std::string describe(const toml::node& node) {
+    std::ostringstream text;
+    if (node.is_table()) return "a table";
+    if (node.is_array()) {
+      text << "an array of " << node.as_array()->size();
+      return text.str();
+    }
+    node.visit([&](const auto& value) { text << value; });
+    return text.str();
+  }
+
+ private:
+  static std::string range(double min, double max) {
+    std::ostringstream text;
+    text << "[" << min << ", " << max << "]";
+    return text.str();
+  }
+
+  double checkedNumber(const toml::node* node, const std::string& key, double min, double max) const {
+    const auto value = node ? node->value<double>() : std::nullopt;
+    if (!node || !node->is_number() || !value || !std::isfinite(*value) || *value < min || *value > max)
+      fail(node, key, "expected a finite number in " + range(min, max) + (node ? ", got " + describe(*node) : ""));
+    return *value;
+  }
+
+  const toml::table& table_;
+  std::string path_;
+  const std::filesystem::path& file_;
+  std::set<std::string> used_;
+};
+
+constexpr double kHuge = 1e12;  // coordinates beyond this are refused: no scene needs them
+
+void readImage(TableReader& image, Scene& scene) {
+  scene.width = image.integer("width", 640, 1, kMaxImageSide);
+  scene.height = image.integer("height", 480, 1, kMaxImageSide);
+  scene.background = image.color("background", vec3(0));
+  image.finish({"width", "height", "background"});
+  checkImageSize(scene.width, scene.height, image.file().string() + ": image");
+}
+
+void readCamera(TableReader& camera, Scene& scene) {
+  Camera& c = scene.camera;
+  const std::string type = camera.choice("type", "perspective", {"perspective", "orthographic"});
+  c.projection = type == "perspective" ? Projection::perspective : Projection::orthographic;
+  c.eye = camera.vector3("eye", std::nullopt, -kHuge, kHuge);
+  c.target = camera.vector3("target", std::nullopt, -kHuge, kHuge);
+  c.up = camera.vector3("up", dvec3(0, 1, 0), -kHuge, kHuge);
+  c.near = camera.number("near", 0.1, 1e-9, kHuge);
+  c.far = camera.number("far", 1000.0, 1e-9, kHuge);
+  if (c.projection == Projection::perspective)
+    c.fovYDegrees = camera.number("fov_y", 45.0, 0.01, 179.0);
+  else
+    c.orthoHeight = camera.number("height", std::nullopt, 1e-9, kHuge);
+  camera.finish({"type", "eye", "target", "up", "near", "far",
+                 c.projection == Projection::perspective ? "fov_y" : "height"});
+  if (!(c.far > c.near)) camera.fail(nullptr, "far", "must be greater than near");
+  const dvec3 forward = c.target - c.eye;
+  if (glm::length(forward) == 0) camera.fail(nullptr, "target", "must differ from eye");
+  if (glm::length(glm::cross(forward, c.up)) <= 1e-9 * glm::length(forward) * glm::length(c.up))
+    camera.fail(nullptr, "up", "must not be parallel to the view direction (target - eye)");
+}
+
+void readLight(TableReader& light, Scene& scene) {
+  Light result;
+  const std::string type = light.choice("type", "directional", {"directional", "point"});
+  if (type == "directional") {
+    result.kind = Light::Kind::directional;
+    result.direction = light.vector3("direction", std::nullopt, -kHuge, kHuge);
+    if (glm::length(result.direction) == 0) light.fail(nullptr, "direction", "must not be zero");
+    result.direction = glm::normalize(result.direction);
+  } else {
+    result.kind = Light::Kind::point;
+    result.position = light.vector3("position", std::nullopt, -kHuge, kHuge);
+  }
+  result.intensity = light.number("intensity", 1.0, 0.0, 1e6);
+  light.finish({"type", type == "directional" ? "direction" : "position", "intensity"});
+  scene.lights.push_back(result);
+}
+
+Instancing readInstancing(TableReader& copies) {
+  Instancing result;
+  const std::string kind = copies.choice("kind", std::nullopt, {"grid", "ring", "scatter"});
+  if (kind == "grid") {
+    result.kind = Instancing::Kind::grid;
+    result.gridCount = glm::ivec3(copies.vector3("count", std::nullopt, 1, 1000));
+    result.gridSpacing = copies.vector3("spacing", std::nullopt, -kHuge, kHuge);
+    copies.finish({"kind", "count", "spacing"});
+    return result;
+  }
+  result.count = copies.integer("count", std::nullopt, 1, 1000000);
+  result.center = copies.vector3("center", dvec3(0), -kHuge, kHuge);
+  if (kind == "ring") {
+    result.kind = Instancing::Kind::ring;
+    result.radius = copies.number("radius", std::nullopt, 0, kHuge);
+    copies.finish({"kind", "count", "center", "radius"});
+    return result;
+  }
+  result.kind = Instancing::Kind::scatter;
+  result.innerRadius = copies.number("inner_radius", 0.0, 0, kHuge);
+  result.radius = copies.number("radius", std::nullopt, 0, kHuge);
+  result.seed = static_cast<std::uint64_t>(copies.integer("seed", 1, 0, 2147483647));
+  result.minScale = copies.number("min_scale", 1.0, 1e-6, 1e6);
+  result.maxScale = copies.number("max_scale", result.minScale, result.minScale, 1e6);
+  copies.finish({"kind", "count", "center", "radius", "inner_radius", "seed", "min_scale", "max_scale"});
+  if (result.innerRadius > result.radius) copies.fail(nullptr, "inner_radius", "must not exceed radius");
+  return result;
+}
+
+std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::string>& keys,
+                                      std::map<std::filesystem::path, std::shared_ptr<const Mesh>>& meshCache) {
+  const std::string shape =
+      object.choice("shape", std::nullopt, {"mesh", "box", "sphere", "cylinder", "cone", "grid", "heightfield"});
+  const auto segments = [&](const std::string& key, int fallback, int min) {
+    keys.push_back(key);
+    return object.integer(key, fallback, min, 4096);
+  };
+  const auto positive = [&](const std::string& key, double fallback) {
+    keys.push_back(key);
+    return object.number(key, fallback, 1e-9, kHuge);
+  };
+  const auto size2 = [&]() {
+    keys.push_back("size");
+    const toml::node* node = object.find("size");
+    if (!node) return dvec2(2, 2);
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 2 || !array->get(0)->is_number() || !array->get(1)->is_number() ||
+        !(*array->get(0)->value<double>() > 0) || !(*array->get(1)->value<double>() > 0))
+      object.fail(node, "size", "expected an array of 2 positive numbers [x, z], got " + TableReader::describe(*node));
+    return dvec2(*array->get(0)->value<double>(), *array->get(1)->value<double>());
+  };
+  const auto segments2 = [&](int fallback) {
+    keys.push_back("segments");
+    const toml::node* node = object.find("segments");
+    if (!node) return glm::ivec2(fallback);
+    const toml::array* array = node->as_array();
+    const auto valid = [&](std::size_t i) {
+      const auto value = array->get(i)->value<std::int64_t>();
+      return array->get(i)->is_integer() && value && *value >= 1 && *value <= 4096;
+    };
+    if (!array || array->size() != 2 || !valid(0) || !valid(1))
+      object.fail(node, "segments", "expected an array of 2 integers in [1, 4096], got " + TableReader::describe(*node));
+    return glm::ivec2(*array->get(0)->value<int>(), *array->get(1)->value<int>());
+  };
+
+  if (shape == "mesh") {
+    keys.push_back("file");
+    const std::filesystem::path path = object.file().parent_path() / object.string("file");
+    auto& cached = meshCache[path.lexically_normal()];
+    if (!cached) {
+      try {
+        cached = std::make_shared<const Mesh>(loadObj(path));
+      } catch (const InputError& error) {
+        object.fail(object.find("file"), "file", error.what());
+      }
+    }
+    return cached;
+  }
+  if (shape == "box") {
+    keys.push_back("size");
+    return std::make_shared<const Mesh>(makeBox(object.vector3("size", dvec3(1), 1e-9, kHuge, true)));
+  }
+  if (shape == "sphere") {
+    const double radius = positive("radius", 1.0);
+    const int around = segments("segments", 32, 3);
+    return std::make_shared<const Mesh>(makeSphere(radius, around, segments("rings", 16, 2)));
+  }
+  if (shape == "cylinder" || shape == "cone") {
+    const double radius = positive("radius", 0.5);
+    const double height = positive("height", 1.0);
+    const int around = segments("segments", 32, 3);
+    return std::make_shared<const Mesh>(shape == "cylinder" ? makeCylinder(radius, height, around)
+                                                            : makeCone(radius, height, around));
+  }
+  const dvec2 size = size2();
+  const glm::ivec2 cells = segments2(shape == "grid" ? 1 : 64);
+  if (shape == "grid") return std::make_shared<const Mesh>(makeGrid(size, cells.x, cells.y));
+  keys.insert(keys.end(), {"function", "amplitude", "frequency"});
+  HeightFunction function;
+  function.name = object.choice("function", std::nullopt, heightFunctionNames());
+  function.amplitude = object.number("amplitude", 1.0, -kHuge, kHuge);
+  function.frequency = object.number("frequency", 1.0, -kHuge, kHuge);
+  return std::make_shared<const Mesh>(makeHeightField(size, cells.x, cells.y, function));
+}
+
+void readObject(TableReader& object, Scene& scene,
+                std::map<std::filesystem::path, std::shared_ptr<const Mesh>>& meshCache) {
+  SceneObject result;
+  std::vector<std::string> keys = {"name", "shape", "color", "translate", "rotate", "scale", "copies"};
+  result.name = object.has("name") ? object.string("name") : "object" + std::to_string(scene.objects.size());
+  result.mesh = readShape(object, keys, meshCache);
+  result.color = object.color("color", vec3(0.8f));
+  result.transform.translate = object.vector3("translate", dvec3(0), -kHuge, kHuge);
+  result.transform.rotateDegrees = object.vector3("rotate", dvec3(0), -36000, 36000);
+  result.transform.scale = object.vector3("scale", dvec3(1), 1e-9, kHuge, true);
+  if (const toml::table* copies = object.table("copies")) {
+    TableReader reader(*copies, object.keyPath("copies"), object.file());
+    result.instancing = readInstancing(reader);
+  }
+  object.finish(keys);
+  scene.objects.push_back(std::move(result));
+}
+
+}  // namespace
+
+const char* shadingName(Shading shading) {
+  switch (shading) {
+    case Shading::none: return "none";
+    case Shading::flat: return "flat";
+    case Shading::lambert: return "lambert";
+  }
+  return "?";
+}
+
+void checkImageSize(std::int64_t width, std::int64_t height, const std::string& where) {
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxImagePixels)
+    throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is out of range; expected 1 to " + std::to_string(kMaxImageSide) +
+                     " pixels per side and at most 256 Mpixel");
+}
+
+dmat4 Transform::worldFromObject() const {
+  dmat4 m = glm::translate(dmat4(1), translate);
+  m = glm::rotate(m, glm::radians(rotateDegrees.z), dvec3(0, 0, 1));
+  m = glm::rotate(m, glm::radians(rotateDegrees.y), dvec3(0, 1, 0));
+  m = glm::rotate(m, glm::radians(rotateDegrees.x), dvec3(1, 0, 0));
+  return glm::scale(m, scale);
+}
+
+std::size_t Instancing::copyCount() const {
+  switch (kind) {
+    case Kind::single: return 1;
+    case Kind::grid: return std::size_t(gridCount.x) * std::size_t(gridCount.y) * std::size_t(gridCount.z);
+    case Kind::ring:
+    case Kind::scatter: return std::size_t(count);
+  }
+  return 1;
+}
+
+std::vector<dmat4> Instancing::copies() const {
+  std::vector<dmat4> result;
+  switch (kind) {
+    case Kind::single: result.push_back(dmat4(1)); break;
+    case Kind::grid: {
+      const dvec3 first = -0.5 * dvec3(gridCount - 1) * gridSpacing;
+      for (int z = 0; z < gridCount.z; ++z)
+        for (int y = 0; y < gridCount.y; ++y)
+          for (int x = 0; x < gridCount.x; ++x)
+            result.push_back(glm::translate(dmat4(1), first + dvec3(x, y, z) * gridSpacing));
+      break;
+    }
+    case Kind::ring:
+      // Copy k sits at angle 2πk/count about the y axis, starting straight ahead of
+      // `center` along -z, rotated with its position so it keeps facing the center.
+      for (int k = 0; k < count; ++k) {
+        const double angle = 2 * std::numbers::pi * k / count;
+        dmat4 m = glm::translate(dmat4(1), center);
+        m = glm::rotate(m, angle, dvec3(0, 1, 0));
+        result.push_back(glm::translate(m, dvec3(0, 0, -radius)));
+      }
+      break;
+    case Kind::scatter: {
+      // splitmix64: the same copies on every platform (std distributions are not portable).
+      std::uint64_t state = seed;
+      const auto uniform = [&state]() {
+        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+      };
+      for (int k = 0; k < count; ++k) {
+        // Uniform over the annulus' area: radius from the square root of a uniform area fraction.
+        const double r2 = innerRadius * innerRadius + uniform() * (radius * radius - innerRadius * innerRadius);
+        const double angle = 2 * std::numbers::pi * uniform();
+        const double yaw = 2 * std::numbers::pi * uniform();
+        const double scale = minScale + uniform() * (maxScale - minScale);
+        const double r = std::sqrt(r2);
+        dmat4 m = glm::translate(dmat4(1), center + dvec3(r * std::sin(angle), 0, -r * std::cos(angle)));
+        m = glm::rotate(m, yaw, dvec3(0, 1, 0));
+        result.push_back(glm::scale(m, dvec3(scale)));
+      }
+      break;
+    }
+  }
+  return result;
+}
+
+Scene loadScene(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(file.string() + ": cannot open the scene file (missing or not a file)");
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& error) {
+    throw InputError(file.string() + ":" + std::to_string(error.source().begin.line) + ":" +
+                     std::to_string(error.source().begin.column) + ": not valid TOML: " +
+                     std::string(error.description()));
+  }
+
+  Scene scene;
+  scene.file = file;
+  TableReader reader(root, "", file);
+  static const toml::table kNoTable;
+  const toml::table* imageTable = reader.table("image");
+  TableReader image(imageTable ? *imageTable : kNoTable, "image", file);
+  readImage(image, scene);
+  const toml::table* camera = reader.table("camera");
+  if (!camera) reader.fail(nullptr, "camera", "missing; expected a [camera] table");
+  TableReader cameraReader(*camera, "camera", file);
+  readCamera(cameraReader, scene);
+
+  if (const toml::array* effects = reader.array("effects")) {
+    const std::vector<std::string> known = {"none", "flat", "lambert"};
+    int shadingEffects = 0;
+    for (std::size_t i = 0; i < effects->size(); ++i) {
+      const auto name = effects->get(i)->value<std::string>();
+      const std::string key = "effects[" + std::to_string(i) + "]";
+      if (!name || std::find(known.begin(), known.end(), *name) == known.end())
+        reader.fail(effects->get(i), key, "expected one of " + TableReader::join(known) + ", got " +
+                                              TableReader::describe(*effects->get(i)));
+      if (++shadingEffects > 1) reader.fail(effects->get(i), key, "only one shading effect (none, flat, lambert) may be listed");
+      scene.shading = *name == "flat" ? Shading::flat : *name == "lambert" ? Shading::lambert : Shading::none;
+    }
+  }
+  scene.ambient = reader.number("ambient", 0.15, 0.0, 1.0);
+
+  if (const toml::array* lights = reader.array("lights"))
+    for (std::size_t i = 0; i < lights->size(); ++i) {
+      const toml::table* light = lights->get(i)->as_table();
+      if (!light) reader.fail(lights->get(i), "lights", "expected [[lights]] tables");
+      TableReader lightReader(*light, "lights[" + std::to_string(i) + "]", file);
+      readLight(lightReader, scene);
+    }
+  if (scene.shading != Shading::none && scene.lights.empty())
+    reader.fail(nullptr, "effects", std::string(shadingName(scene.shading)) + " shading needs at least one [[lights]] table");
+
+  const toml::array* objects = reader.array("objects");
+  if (!objects || objects->empty()) reader.fail(nullptr, "objects", "missing; expected at least one [[objects]] table");
+  std::map<std::filesystem::path, std::shared_ptr<const Mesh>> meshCache;
+  std::int64_t triangles = 0;
+  for (std::size_t i = 0; i < objects->size(); ++i) {
+    const toml::table* object = objects->get(i)->as_table();
+    if (!object) reader.fail(objects->get(i), "objects", "expected [[objects]] tables");
+    TableReader objectReader(*object, "objects[" + std::to_string(i) + "]", file);
+    readObject(objectReader, scene, meshCache);
+    const SceneObject& added = scene.objects.back();
+    triangles += static_cast<std::int64_t>(added.mesh->triangles.size()) * static_cast<std::int64_t>(added.instancing.copyCount());
+    if (triangles >= kMaxTriangles)
+      objectReader.fail(nullptr, "copies", "the scene exceeds " + std::to_string(kMaxTriangles - 1) +
+                                                " triangles (the id image holds 24 bits)");
+  }
+  reader.finish({"image", "camera", "effects", "ambient", "lights", "objects"});
+  return scene;
+}
+
+}  // namespace hsr

@@ -1,0 +1,98 @@
+// Scene: plain data loaded from a TOML file (format in scenes/README.md). Loading
+// validates everything once; nothing downstream re-checks the user's input.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/mesh.hpp"
+
+namespace hsr {
+
+enum class Projection { perspective, orthographic };
+
+struct Camera {
+  Projection projection = Projection::perspective;
+  dvec3 eye{0, 0, 5};
+  dvec3 target{0, 0, 0};
+  dvec3 up{0, 1, 0};
+  double fovYDegrees = 45;   // perspective: vertical field of view
+  double orthoHeight = 2;    // orthographic: world units from the bottom to the top of the image
+  double near = 0.1;         // distances along the view axis
+  double far = 1000;
+};
+
+// Model transform: scale, then rotate about x, then y, then z (degrees), then translate.
+struct Transform {
+  dvec3 translate{0};
+  dvec3 rotateDegrees{0};
+  dvec3 scale{1};
+  dmat4 worldFromObject() const;
+};
+
+// How an object is copied. Each copy gets its own object id.
+struct Instancing {
+  enum class Kind { single, grid, ring, scatter } kind = Kind::single;
+  // grid: count per axis and spacing; copies centered on the object's own position.
+  glm::ivec3 gridCount{1};
+  dvec3 gridSpacing{0};
+  // ring and scatter: copies around `center` (about the y axis).
+  int count = 1;
+  dvec3 center{0};
+  double radius = 0;  // ring: every copy at this distance, facing the center
+  // scatter: seeded uniform positions in the annulus [innerRadius, radius] on the xz plane,
+  // random yaw, uniform scale in [minScale, maxScale].
+  double innerRadius = 0;
+  std::uint64_t seed = 1;
+  double minScale = 1, maxScale = 1;
+
+  std::size_t copyCount() const;
+  std::vector<dmat4> copies() const;  // worldFromObject of each copy, applied after the object's transform
+};
+
+struct SceneObject {
+  std::string name;
+  std::shared_ptr<const Mesh> mesh;
+  Transform transform;
+  vec3 color{0.8f};
+  Instancing instancing;
+};
+
+struct Light {
+  enum class Kind { directional, point } kind = Kind::directional;
+  dvec3 direction{0, -1, 0};  // directional: the way the light travels
+  dvec3 position{0};          // point
+  double intensity = 1.0;
+};
+
+// Effects a scene declares; the renderer runs the stages these need and no others.
+enum class Shading { none, flat, lambert };
+
+struct Scene {
+  std::filesystem::path file;
+  int width = 640, height = 480;
+  vec3 background{0};
+  Camera camera;
+  Shading shading = Shading::none;
+  double ambient = 0.15;
+  std::vector<Light> lights;
+  std::vector<SceneObject> objects;
+};
+
+// Limits checked on load (and by the CLI for --size).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{256} << 20;
+inline constexpr std::int64_t kMaxTriangles = std::int64_t{1} << 24;  // ids fit 24-bit RGB
+
+// Throws InputError("file:line:column: key.path: what, expected ...") on any bad input.
+Scene loadScene(const std::filesystem::path& file);
+
+// Throws InputError when width x height is outside the limits above; `where` names the source.
+void checkImageSize(std::int64_t width, std::int64_t height, const std::string& where);
+
+const char* shadingName(Shading shading);
+
+}  // namespace hsr

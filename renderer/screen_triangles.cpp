@@ -1,0 +1,109 @@
+#include "renderer/screen_triangles.hpp"
+
+#include <cmath>
+
+#include "renderer/clip.hpp"
+#include "renderer/conventions.hpp"
+#include "renderer/parallel.hpp"
+
+namespace hsr {
+namespace {
+
+struct Counts {
+  std::int64_t outside = 0, clipped = 0, empty = 0;
+};
+
+// Projects a convex clip-space polygon, snaps it to the sub-pixel grid and emits it as
+// a fan of screen triangles.
+void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std::uint32_t triangle,
+                 std::vector<ScreenTriangle>& out, Counts& counts) {
+  std::int64_t x[9], y[9];
+  double t[9];
+  for (int i = 0; i < polygon.count; ++i) {
+    const dvec2 pixel = camera.pixelFromClip(polygon.vertices[i]);
+    x[i] = std::llround(pixel.x * double(conventions::kSubpixelScale));
+    y[i] = std::llround(pixel.y * double(conventions::kSubpixelScale));
+    t[i] = camera.screenAffineDepth(polygon.vertices[i].d);
+  }
+  for (int i = 1; i + 1 < polygon.count; ++i) {
+    const std::int64_t fanX[3] = {x[0], x[i], x[i + 1]}, fanY[3] = {y[0], y[i], y[i + 1]};
+    const double fanT[3] = {t[0], t[i], t[i + 1]};
+    ScreenTriangle screen;
+    if (setupScreenTriangle(fanX, fanY, fanT, camera.width(), camera.height(), triangle, screen))
+      out.push_back(screen);
+    else
+      ++counts.empty;
+  }
+}
+
+}  // namespace
+
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats) {
+  PhaseTimer timer(stats, "geometry");
+  ScreenGeometry geometry{CameraTransform(scene.scene().camera, scene.width(), scene.height()), {}};
+  const CameraTransform& camera = geometry.camera;
+  const ClipVolume volume(camera, clipFar);
+
+  // Vertex stage: every vertex once, into clip space.
+  const std::vector<dvec3>& positions = scene.positions();
+  std::vector<ClipVertex> clip(positions.size());
+  std::vector<std::uint32_t> outcodes(positions.size());
+  const int workers = resolveThreadCount(threads);
+  parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
+    const auto [begin, end] = partRange(positions.size(), static_cast<std::size_t>(workers), part);
+    for (std::size_t v = begin; v < end; ++v) {
+      clip[v] = camera.clipFromWorld(positions[v]);
+      outcodes[v] = volume.outside(clip[v]);
+    }
+  });
+
+  // Triangle stage, in contiguous parts that are concatenated in order afterwards,
+  // so the output order (and so every tie) is the same for any thread count.
+  const std::vector<Triangle>& triangles = scene.triangles();
+  std::vector<std::vector<ScreenTriangle>> parts(static_cast<std::size_t>(workers));
+  std::vector<Counts> counts(static_cast<std::size_t>(workers));
+  parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
+    const auto [begin, end] = partRange(triangles.size(), static_cast<std::size_t>(workers), part);
+    std::vector<ScreenTriangle>& out = parts[part];
+    out.reserve((end - begin) / 2);
+    for (std::size_t i = begin; i < end; ++i) {
+      const Triangle& t = triangles[i];
+      const std::uint32_t codes[3] = {outcodes[t[0]], outcodes[t[1]], outcodes[t[2]]};
+      // All three vertices outside one plane: no point of the triangle is visible.
+      if (codes[0] & codes[1] & codes[2]) {
+        ++counts[part].outside;
+        continue;
+      }
+      const std::array<ClipVertex, 3> vertices = {clip[t[0]], clip[t[1]], clip[t[2]]};
+      ClipPolygon polygon;
+      const std::uint32_t crossed = (codes[0] | codes[1] | codes[2]) & kClippingPlanes;
+      if (crossed) {
+        polygon = clipTriangle(vertices, volume, crossed);
+        ++counts[part].clipped;
+      } else {
+        polygon.count = 3;
+        std::copy(vertices.begin(), vertices.end(), polygon.vertices.begin());
+      }
+      if (polygon.count >= 3) emitPolygon(polygon, camera, static_cast<std::uint32_t>(i), out, counts[part]);
+    }
+  });
+
+  std::size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  geometry.triangles.reserve(total);
+  Counts sum;
+  for (std::size_t part = 0; part < parts.size(); ++part) {
+    geometry.triangles.insert(geometry.triangles.end(), parts[part].begin(), parts[part].end());
+    sum.outside += counts[part].outside;
+    sum.clipped += counts[part].clipped;
+    sum.empty += counts[part].empty;
+  }
+  stats.add("triangles in", static_cast<std::int64_t>(triangles.size()));
+  stats.add("triangles outside view", sum.outside);
+  stats.add("triangles clipped", sum.clipped);
+  stats.add("triangles between pixel centers", sum.empty);
+  stats.add("screen triangles", static_cast<std::int64_t>(geometry.triangles.size()));
+  return geometry;
+}
+
+}  // namespace hsr

@@ -1,0 +1,28 @@
+// The geometry stage every rasterizing algorithm starts with: transform each vertex
+// to clip space, reject triangles wholly outside the view, clip the rest at the near
+// (and far) plane and the guard band, project and snap to fixed point.
+#pragma once
+
+#include <vector>
+
+#include "renderer/camera.hpp"
+#include "renderer/depth.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/raster.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr {
+
+struct ScreenGeometry {
+  CameraTransform camera;
+  // In submission order: by global triangle index, and a clipped triangle's pieces
+  // in fan order. Ties between equal depths go to the earlier entry.
+  std::vector<ScreenTriangle> triangles;
+};
+
+// Counts in stats: "triangles in", "triangles outside view" (rejected whole),
+// "triangles clipped", "triangles between pixel centers" (zero area or no center
+// inside), "screen triangles" (what the rasterizer receives).
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats);
+
+}  // namespace hsr

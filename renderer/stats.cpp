@@ -1,0 +1,31 @@
+#include "renderer/stats.hpp"
+
+#include <cstdio>
+
+namespace hsr {
+
+std::int64_t Stats::counter(const std::string& name) const {
+  auto found = counters_.find(name);
+  return found == counters_.end() ? 0 : found->second;
+}
+
+double Stats::seconds(const std::string& phase) const {
+  auto found = seconds_.find(phase);
+  return found == seconds_.end() ? 0.0 : found->second;
+}
+
+std::string Stats::report() const {
+  std::string text;
+  char line[256];
+  for (const auto& [name, value] : counters_) {
+    std::snprintf(line, sizeof line, "%-32s %lld\n", name.c_str(), static_cast<long long>(value));
+    text += line;
+  }
+  for (const auto& [name, value] : seconds_) {
+    std::snprintf(line, sizeof line, "%-32s %.3f ms\n", (name + " time").c_str(), value * 1e3);
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace hsr

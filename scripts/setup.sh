@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs hsr's build dependencies from Debian's repositories when any is missing.
+# Idempotent: a machine that already has every package runs no apt-get at all.
+# Runs as root (as on a fresh Debian 12 machine); otherwise through sudo when there is one.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libglm-dev                   # vectors and matrices
+  libopenimageio-dev           # image IO and ImageBufAlgo::compare for goldens
+  libtinyobjloader-dev         # OBJ meshes
+  libtomlplusplus-dev          # TOML scenes
+  libcli11-dev                 # the hsr command line
+  libgtest-dev libgmock-dev    # tests
+  libbenchmark-dev             # bench/
+  libosmesa6-dev               # the Mesa peer benchmark (bench/ only)
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
