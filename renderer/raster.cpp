@@ -1,6 +1,7 @@
 #include "renderer/raster.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 namespace hsr {
@@ -20,19 +21,27 @@ std::pair<int, int> centersWithin(std::int64_t low, std::int64_t high, int size)
 
 }  // namespace
 
-bool setupScreenTriangle(const std::int64_t xIn[3], const std::int64_t yIn[3], const double tIn[3], int width,
-                         int height, std::uint32_t triangle, ScreenTriangle& out) {
+bool setupScreenTriangle(const dvec2 pixelIn[3], const double tIn[3], int width, int height, std::uint32_t triangle,
+                         ScreenTriangle& out) {
+  std::int64_t xIn[3], yIn[3];
+  for (int k = 0; k < 3; ++k) {
+    xIn[k] = std::llround(pixelIn[k].x * double(conventions::kSubpixelScale));
+    yIn[k] = std::llround(pixelIn[k].y * double(conventions::kSubpixelScale));
+  }
   std::int64_t area = orient2d(xIn[0], yIn[0], xIn[1], yIn[1], xIn[2], yIn[2]);
   if (area == 0) return false;
-  // Counter-clockwise in the y-up view is clockwise in the y-down image: positive area.
-  out.frontFacing = area > 0;
+  // orient2d is positive for points that run clockwise as seen on screen (y points
+  // down), so a counter-clockwise, front-facing triangle has negative area here.
+  out.frontFacing = area < 0;
   // Orient every triangle the same way, so "inside" is "all edge functions >= 0".
   const int order[3] = {0, area > 0 ? 1 : 2, area > 0 ? 2 : 1};
   std::int64_t x[3], y[3];
+  dvec2 pixel[3];
   double t[3];
   for (int k = 0; k < 3; ++k) {
     x[k] = xIn[order[k]];
     y[k] = yIn[order[k]];
+    pixel[k] = pixelIn[order[k]];
     t[k] = tIn[order[k]];
   }
   area = area > 0 ? area : -area;
@@ -54,16 +63,22 @@ bool setupScreenTriangle(const std::int64_t xIn[3], const std::int64_t yIn[3], c
     out.edgeC[k] = dy * x[a] - dx * y[a] - (topLeft ? 0 : 1);
   }
 
-  // The plane of t through the three snapped vertices (Cramer's rule in pixel units).
-  const double scale = 1.0 / double(conventions::kSubpixelScale);
-  const double x1 = double(x[1] - x[0]) * scale, y1 = double(y[1] - y[0]) * scale;
-  const double x2 = double(x[2] - x[0]) * scale, y2 = double(y[2] - y[0]) * scale;
+  // The plane of t through the three unsnapped corners (Cramer's rule in pixel units).
+  // Snapping can make a sliver's unsnapped area vanish while its snapped area does not:
+  // then t is constant across it, the mean of its corners.
+  const double x1 = pixel[1].x - pixel[0].x, y1 = pixel[1].y - pixel[0].y;
+  const double x2 = pixel[2].x - pixel[0].x, y2 = pixel[2].y - pixel[0].y;
   const double det = x1 * y2 - x2 * y1;
-  out.x0 = double(x[0]) * scale;
-  out.y0 = double(y[0]) * scale;
-  out.t0 = t[0];
-  out.tdx = ((t[1] - t[0]) * y2 - (t[2] - t[0]) * y1) / det;
-  out.tdy = ((t[2] - t[0]) * x1 - (t[1] - t[0]) * x2) / det;
+  out.x0 = pixel[0].x;
+  out.y0 = pixel[0].y;
+  if (det == 0) {
+    out.t0 = (t[0] + t[1] + t[2]) / 3;
+    out.tdx = out.tdy = 0;
+  } else {
+    out.t0 = t[0];
+    out.tdx = ((t[1] - t[0]) * y2 - (t[2] - t[0]) * y1) / det;
+    out.tdy = ((t[2] - t[0]) * x1 - (t[1] - t[0]) * x2) / det;
+  }
   out.triangle = triangle;
   return true;
 }

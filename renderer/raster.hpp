@@ -13,23 +13,27 @@
 
 namespace hsr {
 
-// A triangle ready to rasterize: snapped, oriented clockwise on screen (positive
-// orient2d in the y-down image), with the plane of its screen-affine depth t.
+// A triangle ready to rasterize: snapped, reordered if needed so that its corners run
+// clockwise as seen on screen (positive orient2d in y-down image coordinates), with
+// the plane of its screen-affine depth t.
 struct ScreenTriangle {
   std::int64_t edgeA[3], edgeB[3], edgeC[3];  // E_k(X, Y) in sub-pixel units, top-left bias folded into C
   int minX, maxX, minY, maxY;                 // pixels whose centers may be covered, inside the image
   double x0, y0, t0, tdx, tdy;                // t(x, y) = t0 + tdx (x - x0) + tdy (y - y0), pixel units
   std::uint32_t triangle;                     // global triangle index (conventions.hpp)
-  bool frontFacing;                           // counter-clockwise as projected (before orientation)
+  bool frontFacing;                           // counter-clockwise as seen, before reordering
 
   double depthAt(double px, double py) const { return t0 + tdx * (px - x0) + tdy * (py - y0); }
 };
 
-// Sets up a triangle from snapped vertices (sub-pixel units) and their t. Returns
-// false for a zero-area triangle or one whose box contains no pixel center of the
-// width x height image.
-bool setupScreenTriangle(const std::int64_t x[3], const std::int64_t y[3], const double t[3], int width, int height,
-                         std::uint32_t triangle, ScreenTriangle& out);
+// Sets up a triangle from its corners in pixel coordinates and their t. Coverage uses
+// the corners snapped to the sub-pixel grid; the depth plane uses them unsnapped, so
+// coplanar triangles get the same depth wherever they overlap (exact ties, decided by
+// submission order) instead of planes tilted apart by snapping. Returns false for a
+// triangle with zero area after snapping, or whose box holds no pixel center of the
+// width x height image. Corners must lie within the guard band (conventions.hpp).
+bool setupScreenTriangle(const dvec2 pixel[3], const double t[3], int width, int height, std::uint32_t triangle,
+                         ScreenTriangle& out);
 
 // Calls covered(x) for every pixel x in [xBegin, xEnd) of `row` whose center the
 // triangle covers. The caller keeps [xBegin, xEnd) inside [minX, maxX]. Edge functions

@@ -26,7 +26,10 @@ class TableReader {
       : table_(table), path_(std::move(path)), file_(file) {}
 
   [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
-    const toml::source_region& where = node ? node->source() : table_.source();
+    failAt(node ? node->source() : table_.source(), key, what);
+  }
+
+  [[noreturn]] void failAt(const toml::source_region& where, const std::string& key, const std::string& what) const {
     throw InputError(file_.string() + ":" + std::to_string(where.begin.line) + ":" +
                      std::to_string(where.begin.column) + ": " + keyPath(key) + ": " + what);
   }
@@ -122,7 +125,7 @@ class TableReader {
   void finish(const std::vector<std::string>& allowed) const {
     for (const auto& [key, node] : table_) {
       const std::string name(key.str());
-      if (!used_.count(name)) fail(&node, name, "unknown key; expected one of " + join(allowed));
+      if (!used_.count(name)) failAt(key.source(), name, "unknown key; expected one of " + join(allowed));
     }
   }
 

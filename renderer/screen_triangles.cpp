@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "renderer/clip.hpp"
-#include "renderer/conventions.hpp"
 #include "renderer/parallel.hpp"
 
 namespace hsr {
@@ -13,23 +12,20 @@ struct Counts {
   std::int64_t outside = 0, clipped = 0, empty = 0;
 };
 
-// Projects a convex clip-space polygon, snaps it to the sub-pixel grid and emits it as
-// a fan of screen triangles.
+// Projects a convex clip-space polygon and emits it as a fan of screen triangles.
 void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std::uint32_t triangle,
                  std::vector<ScreenTriangle>& out, Counts& counts) {
-  std::int64_t x[9], y[9];
+  dvec2 pixel[9];
   double t[9];
   for (int i = 0; i < polygon.count; ++i) {
-    const dvec2 pixel = camera.pixelFromClip(polygon.vertices[i]);
-    x[i] = std::llround(pixel.x * double(conventions::kSubpixelScale));
-    y[i] = std::llround(pixel.y * double(conventions::kSubpixelScale));
+    pixel[i] = camera.pixelFromClip(polygon.vertices[i]);
     t[i] = camera.screenAffineDepth(polygon.vertices[i].d);
   }
   for (int i = 1; i + 1 < polygon.count; ++i) {
-    const std::int64_t fanX[3] = {x[0], x[i], x[i + 1]}, fanY[3] = {y[0], y[i], y[i + 1]};
+    const dvec2 fanPixel[3] = {pixel[0], pixel[i], pixel[i + 1]};
     const double fanT[3] = {t[0], t[i], t[i + 1]};
     ScreenTriangle screen;
-    if (setupScreenTriangle(fanX, fanY, fanT, camera.width(), camera.height(), triangle, screen))
+    if (setupScreenTriangle(fanPixel, fanT, camera.width(), camera.height(), triangle, screen))
       out.push_back(screen);
     else
       ++counts.empty;

@@ -1,0 +1,116 @@
+// Bad input through the hsr command: one line on stderr saying what, where and what
+// was expected; exit status 2; no output file, not even a partial one.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+struct Case {
+  std::string name;
+  std::string arguments;  // after "hsr render"; OUT stands for the output path
+  std::string message;    // must appear in the error line
+};
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
+
+std::string write(const std::string& name, const std::string& text) {
+  const auto path = test::outputPath(name);
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+const std::string kCamera = "[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n";
+
+std::string meshScene(const std::string& name, const std::string& obj) {
+  write(name + ".obj", obj);
+  return write(name + ".toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"" + name + ".obj\"\n");
+}
+
+class BadInput : public testing::TestWithParam<Case> {};
+
+TEST_P(BadInput, OneLineExitTwoNoFile) {
+  const Case& c = GetParam();
+  const auto output = test::outputPath("bad-" + c.name + ".png");
+  std::filesystem::remove(output);
+  std::string arguments = c.arguments;
+  if (const auto at = arguments.find("OUT"); at != std::string::npos) arguments.replace(at, 3, output.string());
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " render " + arguments);
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_EQ(result.output.rfind("hsr: error: ", 0), 0u) << result.output;
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+  EXPECT_NE(result.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << result.output;
+  EXPECT_FALSE(std::filesystem::exists(output));
+  for (const auto& entry : std::filesystem::directory_iterator(output.parent_path()))
+    EXPECT_EQ(entry.path().filename().string().find(".partial-"), std::string::npos) << entry.path();
+}
+
+const std::string kCube = std::string(HSR_SOURCE_DIR) + "/scenes/cube.toml";
+const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadInput,
+    testing::Values(
+        Case{"missing-scene", "/no/such/scene.toml -o OUT", "/no/such/scene.toml: cannot open the scene file"},
+        Case{"malformed-obj", meshScene("malformed", kTriangle + "f 1 2 3\nv 1 2 x\n") + " -o OUT",
+             "malformed.obj:5: vertex needs three numbers x y z"},
+        Case{"nan-coordinate", meshScene("nan", kTriangle + "v nan 0 0\nf 1 2 4\n") + " -o OUT",
+             "nan.obj:4: vertex coordinate is not finite (NaN or Inf)"},
+        Case{"inf-coordinate", meshScene("inf", "v 0 -inf 0\n" + kTriangle + "f 1 2 3\n") + " -o OUT",
+             "inf.obj:1: vertex coordinate is not finite"},
+        Case{"face-out-of-range", meshScene("range", kTriangle + "f 1 2 7\n") + " -o OUT",
+             "range.obj:4: face index 7 is out of range: 3 vertices are defined before this line"},
+        Case{"missing-obj", write("missing-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"gone.obj\"\n") + " -o OUT",
+             "objects[0].file: " + test::outputPath("gone.obj").string() + ": cannot open the OBJ file"},
+        Case{"size-zero", kCube + " --size 0x100 -o OUT", "--size 0x100: image size 0x100 is out of range"},
+        Case{"size-absurd", kCube + " --size 100000x100 -o OUT", "image size 100000x100 is out of range; expected 1 to 16384"},
+        Case{"size-too-many-pixels", kCube + " --size 16384x16385 -o OUT", "at most 256 Mpixel"},
+        Case{"size-malformed", kCube + " --size big -o OUT", "--size big: expected WIDTHxHEIGHT"},
+        Case{"unknown-algorithm", kCube + " --algo zbufer -o OUT", "--algo zbufer: unknown algorithm; expected one of zbuffer"},
+        Case{"unknown-knob", kCube + " --knob precision=high -o OUT", "zbuffer has no knob 'precision'; expected one of variant, depth-format"},
+        Case{"bad-knob-value", kCube + " --depth-format float16 -o OUT", "zbuffer depth-format must be one of float32, reversed-float32"},
+        Case{"knob-without-value", kCube + " --knob variant -o OUT", "--knob variant: expected NAME=VALUE"},
+        Case{"unknown-scene-key", write("key.toml", kCamera + "[[objects]]\nshape = \"box\"\nsise = 2\n") + " -o OUT",
+             "key.toml:6:1: objects[0].sise: unknown key"},
+        Case{"output-folder-missing", kCube + " -o /no/such/folder/out.png", "the folder /no/such/folder does not exist"},
+        Case{"output-not-png", kCube + " -o " + test::outputPath("bad-output-not-png.jpg").string(), "expected a file name ending in .png"},
+        Case{"depth-not-exr", kCube + " -o OUT --depth " + test::outputPath("depth.png").string(), "expected a file name ending in .exr"},
+        Case{"threads-negative", kCube + " --threads -3 -o OUT", "--threads"}),
+    [](const testing::TestParamInfo<Case>& param) {
+      std::string name = param.param.name;
+      std::replace(name.begin(), name.end(), '-', '_');
+      return name;
+    });
+
+// The other side of the contract: good input writes every file asked for.
+TEST(Cli, RenderWritesColorDepthAndIds) {
+  const auto color = test::outputPath("cli-cube.png"), depth = test::outputPath("cli-cube.exr"), ids = test::outputPath("cli-cube-ids.png");
+  for (const auto& path : {color, depth, ids}) std::filesystem::remove(path);
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " render " + kCube + " --size 64x48 -o " +
+                                                      color.string() + " --depth " + depth.string() + " --ids " + ids.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const Image idImage = readImage(ids);
+  ASSERT_EQ(idImage.width, 64);
+  ASSERT_EQ(idImage.channels, 3);
+  // The cube has 12 triangles: every decoded id is 0 (background) or 1..12.
+  std::set<std::uint32_t> seen;
+  for (std::size_t p = 0; p < 64 * 48; ++p) seen.insert(idFromRgb(&idImage.pixels[3 * p]));
+  EXPECT_TRUE(seen.count(0));
+  EXPECT_LE(*seen.rbegin(), 12u);
+  EXPECT_GE(seen.size(), 5u);  // background and at least two faces of two triangles each
+  EXPECT_EQ(readImage(color).width, 64);
+  EXPECT_TRUE(std::filesystem::exists(depth));
+}
+
+TEST(Cli, ListShowsAlgorithmsKnobsAndScenes) {
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " list");
+  ASSERT_EQ(result.exitCode, 0);
+  for (const char* expected : {"zbuffer", "--knob variant=full | scanline", "reversed-float32-inf", "dragons.toml", "hard/coplanar.toml"})
+    EXPECT_NE(result.output.find(expected), std::string::npos) << expected;
+}
+
+}  // namespace
+}  // namespace hsr

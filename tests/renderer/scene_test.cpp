@@ -1,0 +1,135 @@
+// Scene loading: the shipped scenes load as described, and every kind of bad input is
+// refused with file:line, the key path and what was expected.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "renderer/error.hpp"
+#include "renderer/obj.hpp"
+#include "renderer/prepare.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+TEST(Scene, ShippedScenesLoadWithTheirDescribedContents) {
+  const PreparedScene cube(loadScene(test::sourcePath("scenes/cube.toml")));
+  EXPECT_EQ(cube.triangleCount(), 12u);
+  const Scene counters = loadScene(test::sourcePath("scenes/counters.toml"));
+  EXPECT_EQ(counters.objects[1].instancing.copyCount(), 31u);
+  EXPECT_EQ(counters.objects[1].mesh->triangles.size(), 588u);
+  const Scene trees = loadScene(test::sourcePath("scenes/trees.toml"));
+  EXPECT_EQ(trees.objects[1].instancing.copyCount(), 135u);
+  EXPECT_EQ(trees.objects[1].mesh->triangles.size(), 424u);
+  const Scene dragons = loadScene(test::sourcePath("scenes/dragons.toml"));
+  EXPECT_EQ(dragons.objects[0].instancing.copyCount(), 4u);
+  EXPECT_EQ(PreparedScene(dragons).triangleCount(), 4u * 99784u);
+}
+
+TEST(Scene, RingCopiesSurroundTheCenterFacingIt) {
+  Instancing ring;
+  ring.kind = Instancing::Kind::ring;
+  ring.count = 4;
+  ring.radius = 25;
+  const std::vector<dmat4> copies = ring.copies();
+  ASSERT_EQ(copies.size(), 4u);
+  const dvec3 expected[4] = {{0, 0, -25}, {-25, 0, 0}, {0, 0, 25}, {25, 0, 0}};
+  for (int k = 0; k < 4; ++k) {
+    const dvec3 position(copies[std::size_t(k)] * dvec4(0, 0, 0, 1));
+    EXPECT_NEAR(glm::distance(position, expected[k]), 0.0, 1e-9) << k;
+    const dvec3 front(copies[std::size_t(k)] * dvec4(0, 0, 1, 0));  // the copy's +z side
+    EXPECT_NEAR(glm::dot(front, -glm::normalize(position)), 1.0, 1e-12) << "copy " << k << " faces the center";
+  }
+}
+
+TEST(Scene, ScatterIsDeterministicAndStaysInItsAnnulus) {
+  Instancing scatter;
+  scatter.kind = Instancing::Kind::scatter;
+  scatter.count = 500;
+  scatter.innerRadius = 4;
+  scatter.radius = 45;
+  scatter.seed = 7;
+  const auto first = scatter.copies(), second = scatter.copies();
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    EXPECT_EQ(first[k], second[k]);
+    const double r = glm::length(dvec3(first[k][3]));
+    EXPECT_GE(r, 4.0);
+    EXPECT_LE(r, 45.0);
+  }
+}
+
+std::string errorOf(const std::string& toml) {
+  const auto file = test::outputPath("scene_test.toml");
+  std::ofstream(file) << toml;
+  try {
+    loadScene(file);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(loaded without error)";
+}
+
+const std::string kCamera = "[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n";
+const std::string kBox = "[[objects]]\nshape = \"box\"\n";
+
+TEST(Scene, BadInputNamesFileLineKeyAndExpectation) {
+  const struct {
+    std::string toml, expected;
+  } cases[] = {
+      {kCamera + kBox + "colour = [1, 0, 0]\n", "scene_test.toml:6:1: objects[0].colour: unknown key; expected one of name, shape"},
+      {kCamera + kBox + "size = \"big\"\n", ":6:8: objects[0].size: expected a number or an array of 3 numbers"},
+      {kCamera + kBox + "color = [1.5, 0, 0]\n", "objects[0].color: expected a finite number in [0, 1], got 1.5"},
+      {kCamera + "fov_y = 180\n" + kBox, ":4:9: camera.fov_y: expected a finite number in [0.01, 179], got 180"},
+      {kCamera + "far = 0.01\n" + kBox, "camera.far: must be greater than near"},
+      {kCamera + "up = [0, 0, 1]\n" + kBox, "camera.up: must not be parallel to the view direction"},
+      {"[camera]\neye = [0, 0, 5]\n" + kBox, "camera.target: missing; expected an array of 3 numbers"},
+      {kBox, "camera: missing; expected a [camera] table"},
+      {kCamera, "objects: missing; expected at least one [[objects]] table"},
+      {kCamera + kBox + "shape = \"teapot\"\n", "not valid TOML"},
+      {kCamera + "[[objects]]\nshape = \"teapot\"\n", "objects[0].shape: expected one of mesh, box, sphere"},
+      {kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"nowhere.obj\"\n",
+       "objects[0].file: " + test::outputPath("nowhere.obj").string() + ": cannot open the OBJ file"},
+      {"effects = [\"lambert\"]\n" + kCamera + kBox, "effects: lambert shading needs at least one [[lights]] table"},
+      {"effects = [\"phong\"]\n" + kCamera + kBox, ":1:12: effects[0]: expected one of none, flat, lambert, got 'phong'"},
+      {"[image]\nwidth = 0\n" + kCamera + kBox, ":2:9: image.width: expected an integer in [1, 16384], got 0"},
+      {"[image]\nwidth = 16384\nheight = 16385\n" + kCamera + kBox, "image.height: expected an integer in [1, 16384]"},
+      {kCamera + "[[objects]]\nshape = \"sphere\"\nsegments = 2\n", "objects[0].segments: expected an integer in [3, 4096], got 2"},
+      {kCamera + kBox + "[objects.copies]\nkind = \"ring\"\ncount = 5\n", "objects[0].copies.radius: missing; expected a number"},
+      {kCamera + kBox + "[objects.copies]\nkind = \"grid\"\ncount = [1000, 1000, 1000]\nspacing = 1\n",
+       "objects[0].copies.spacing: expected an array of 3 numbers"},
+      {kCamera + kBox + "[objects.copies]\nkind = \"grid\"\ncount = [1000, 1000, 1000]\nspacing = [1, 1, 1]\n",
+       "the scene exceeds 16777215 triangles"},
+  };
+  for (const auto& c : cases) EXPECT_NE(errorOf(c.toml).find(c.expected), std::string::npos) << errorOf(c.toml);
+}
+
+std::string objErrorOf(const std::string& text) {
+  const auto file = test::outputPath("scene_test.obj");
+  std::ofstream(file) << text;
+  try {
+    loadObj(file);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(loaded without error)";
+}
+
+TEST(Obj, BadInputNamesFileAndLine) {
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_NE(objErrorOf(triangle + "f 1 2 3\n").find("loaded without error"), std::string::npos);
+  EXPECT_NE(objErrorOf("v 0 0 0\nv 1 abc 0\n").find("scene_test.obj:2: vertex needs three numbers x y z"), std::string::npos);
+  EXPECT_NE(objErrorOf("v 0 0\n").find(":1: vertex needs three numbers"), std::string::npos);
+  EXPECT_NE(objErrorOf("v 0 nan 0\n").find(":1: vertex coordinate is not finite (NaN or Inf), got 'nan'"), std::string::npos);
+  EXPECT_NE(objErrorOf("v 0 0 inf\n").find(":1: vertex coordinate is not finite"), std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "f 1 2 4\n").find(":4: face index 4 is out of range: 3 vertices are defined before this line"),
+            std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "f 1 2 -4\n").find(":4: face index -4 is out of range"), std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "f 1 2 0\n").find(":4: face corner '0' is not a vertex index"), std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "f 1 2\n").find(":4: face needs at least 3 corners, got 2"), std::string::npos);
+  EXPECT_NE(objErrorOf(triangle).find(":3: no faces"), std::string::npos);
+  // Negative (relative) indices and slashes are valid OBJ.
+  EXPECT_EQ(loadObj((objErrorOf(triangle + "f -3/1 -2/2 -1/3\n"), test::outputPath("scene_test.obj"))).triangles.size(), 1u);
+}
+
+}  // namespace
+}  // namespace hsr

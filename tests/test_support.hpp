@@ -1,0 +1,155 @@
+// Shared helpers for the tests: build small scenes in code, render them, and an
+// independent visibility oracle (brute-force rays) that shares no code with the
+// rasterizer, so agreement between the two means something.
+#pragma once
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/camera.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/scene.hpp"
+
+namespace hsr::test {
+
+inline std::filesystem::path sourcePath(const std::string& relative) { return std::filesystem::path(HSR_SOURCE_DIR) / relative; }
+
+inline std::filesystem::path outputPath(const std::string& name) {
+  std::filesystem::create_directories(HSR_TEST_OUTPUT_DIR);
+  return std::filesystem::path(HSR_TEST_OUTPUT_DIR) / name;
+}
+
+// An orthographic camera looking down -z whose world units are pixels: world (x, y)
+// lands on pixel coordinates (x + width/2, height/2 - y).
+inline Camera pixelCamera(int height) {
+  Camera camera;
+  camera.projection = Projection::orthographic;
+  camera.eye = {0, 0, 10};
+  camera.target = {0, 0, 0};
+  camera.orthoHeight = height;
+  camera.near = 1;
+  camera.far = 100;
+  return camera;
+}
+
+inline Scene sceneOf(const Camera& camera, int width, int height, const std::vector<Mesh>& meshes) {
+  Scene scene;
+  scene.camera = camera;
+  scene.width = width;
+  scene.height = height;
+  for (const Mesh& mesh : meshes) {
+    SceneObject object;
+    object.mesh = std::make_shared<const Mesh>(mesh);
+    scene.objects.push_back(object);
+  }
+  return scene;
+}
+
+inline Mesh triangleMesh(const std::vector<dvec3>& corners) {
+  Mesh mesh;
+  mesh.positions = corners;
+  for (std::uint32_t i = 0; i + 2 < corners.size(); i += 3) mesh.triangles.push_back({i, i + 1, i + 2});
+  return mesh;
+}
+
+inline Frame renderZBuffer(const PreparedScene& scene, zbuffer::Variant variant = zbuffer::Variant::full,
+                           DepthFormat format = DepthFormat::float32, int threads = 1) {
+  Stats stats;
+  return zbuffer::run(scene, {variant, format}, threads, stats);
+}
+
+// Nearest hit of a ray among all triangles with a view distance in [near, far]
+// (Möller–Trumbore, double precision): returns triangle index + 1, or 0 for none.
+inline std::uint32_t nearestHit(const PreparedScene& scene, const CameraTransform& camera, const Ray& ray) {
+  const dvec3 forward = glm::normalize(camera.camera().target - camera.camera().eye);
+  double nearest = camera.camera().far;
+  std::uint32_t id = 0;
+  for (std::uint32_t i = 0; i < scene.triangleCount(); ++i) {
+    const Triangle& t = scene.triangles()[i];
+    const dvec3 a = scene.positions()[t[0]], e1 = scene.positions()[t[1]] - a, e2 = scene.positions()[t[2]] - a;
+    const dvec3 p = glm::cross(ray.direction, e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0) continue;
+    const dvec3 s = ray.origin - a;
+    const double u = glm::dot(s, p) / det, v = glm::dot(ray.direction, glm::cross(s, e1)) / det;
+    if (u < 0 || v < 0 || u + v > 1) continue;
+    const double along = glm::dot(e2, glm::cross(s, e1)) / det;
+    const double distance = along * glm::dot(ray.direction, forward);  // distance along the view axis
+    if (along > 0 && distance >= camera.camera().near && distance < nearest) {
+      nearest = distance;
+      id = i + 1;
+    }
+  }
+  return id;
+}
+
+struct Agreement {
+  long clearPixels = 0;  // pixels whose answer cannot depend on snapping (see below)
+  long mismatches = 0;   // clear pixels where the frame's id differs from the rays'
+};
+
+inline double distanceToSegment(const dvec2& p, const dvec2& a, const dvec2& b) {
+  const dvec2 ab = b - a;
+  const double along = glm::dot(ab, ab) > 0 ? std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0) : 0.0;
+  return glm::length(p - (a + along * ab));
+}
+
+// Compares a frame's ids with brute-force rays. Snapping moves vertices by at most
+// 1/512 pixel, so a pixel is "clear" when its center is at least 0.01 pixel from the
+// projected edges of every triangle in front of the near plane, and the rays through
+// its center and four points 0.01 pixel away all hit the same triangle (this covers
+// the triangles cut by the near plane). On a clear pixel the rasterizer must agree exactly.
+inline Agreement agreementWithRays(const PreparedScene& scene, const Frame& frame) {
+  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  std::vector<std::array<dvec2, 3>> projected;
+  for (const Triangle& t : scene.triangles()) {
+    std::array<dvec2, 3> corners;
+    bool inFront = true;
+    for (int k = 0; k < 3; ++k) {
+      const ClipVertex v = camera.clipFromWorld(scene.positions()[t[k]]);
+      inFront = inFront && v.d > camera.camera().near;
+      corners[std::size_t(k)] = inFront ? camera.pixelFromClip(v) : dvec2(0);
+    }
+    if (inFront) projected.push_back(corners);
+  }
+  Agreement result;
+  const double offsets[5][2] = {{0, 0}, {0.01, 0}, {-0.01, 0}, {0, 0.01}, {0, -0.01}};
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const dvec2 center(x + 0.5, y + 0.5);
+      const bool nearAnEdge = std::any_of(projected.begin(), projected.end(), [&](const std::array<dvec2, 3>& c) {
+        return distanceToSegment(center, c[0], c[1]) < 0.01 || distanceToSegment(center, c[1], c[2]) < 0.01 ||
+               distanceToSegment(center, c[2], c[0]) < 0.01;
+      });
+      if (nearAnEdge) continue;
+      std::uint32_t ids[5];
+      for (int k = 0; k < 5; ++k)
+        ids[k] = nearestHit(scene, camera, camera.rayThroughPixel(x + 0.5 + offsets[k][0], y + 0.5 + offsets[k][1]));
+      if (std::count(ids, ids + 5, ids[0]) != 5) continue;
+      ++result.clearPixels;
+      if (frame.ids[std::size_t(y) * std::size_t(frame.width) + std::size_t(x)] != ids[0]) ++result.mismatches;
+    }
+  return result;
+}
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+inline CommandResult runCommand(const std::string& command) {
+  CommandResult result;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace hsr::test
