@@ -28,12 +28,12 @@ double ClipVolume::distance(const ClipVertex& v, ClipPlane plane) const {
 }
 
 std::uint32_t ClipVolume::outside(const ClipVertex& v) const {
-  std::uint32_t code = 0;
-  for (std::uint32_t plane = kNearPlane; plane <= kViewTop; plane <<= 1) {
-    if (plane == kFarPlane && !clipFar) continue;
-    if (distance(v, static_cast<ClipPlane>(plane)) < 0) code |= plane;
-  }
-  return code;
+  // Straight-line code: this runs once per vertex per frame.
+  return (v.d < near ? kNearPlane : 0u) | (clipFar && v.d > far ? kFarPlane : 0u) |
+         (guardX * v.w + v.x < 0 ? kGuardLeft : 0u) | (guardX * v.w - v.x < 0 ? kGuardRight : 0u) |
+         (guardY * v.w + v.y < 0 ? kGuardBottom : 0u) | (guardY * v.w - v.y < 0 ? kGuardTop : 0u) |
+         (v.w + v.x < 0 ? kViewLeft : 0u) | (v.w - v.x < 0 ? kViewRight : 0u) |
+         (v.w + v.y < 0 ? kViewBottom : 0u) | (v.w - v.y < 0 ? kViewTop : 0u);
 }
 
 ClipPolygon clipTriangle(const std::array<ClipVertex, 3>& triangle, const ClipVolume& volume, std::uint32_t planes) {

@@ -23,7 +23,7 @@ const char* depthFormatName(DepthFormat format);
 struct DepthEncoding {
   double a = 0, b = 1;
   double z(double t) const { return a + b * t; }
-  double t(double z) const { return (z - a) / b; }
+  double t(double z) const { return (z - a) * (1.0 / b); }  // the reciprocal folds to a constant per frame
 };
 DepthEncoding depthEncoding(DepthFormat format, const CameraTransform& camera);
 

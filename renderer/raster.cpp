@@ -19,14 +19,23 @@ std::pair<int, int> centersWithin(std::int64_t low, std::int64_t high, int size)
           static_cast<int>(std::clamp<std::int64_t>(last, -1, size - 1))};
 }
 
+// Rounds a pixel coordinate to the nearest sub-pixel step (ties to even), without a
+// library call: adding 1.5 * 2^52 leaves no fraction bits, so the addition itself
+// rounds. Exact for |pixel| < 2^43, far beyond the guard band.
+std::int64_t snapToSubpixel(double pixel) {
+  constexpr double kRoundingShift = 0x1.8p52;
+  const double scaled = pixel * double(conventions::kSubpixelScale);
+  return static_cast<std::int64_t>((scaled + kRoundingShift) - kRoundingShift);
+}
+
 }  // namespace
 
 bool setupScreenTriangle(const dvec2 pixelIn[3], const double tIn[3], int width, int height, std::uint32_t triangle,
                          ScreenTriangle& out) {
   std::int64_t xIn[3], yIn[3];
   for (int k = 0; k < 3; ++k) {
-    xIn[k] = std::llround(pixelIn[k].x * double(conventions::kSubpixelScale));
-    yIn[k] = std::llround(pixelIn[k].y * double(conventions::kSubpixelScale));
+    xIn[k] = snapToSubpixel(pixelIn[k].x);
+    yIn[k] = snapToSubpixel(pixelIn[k].y);
   }
   std::int64_t area = orient2d(xIn[0], yIn[0], xIn[1], yIn[1], xIn[2], yIn[2]);
   if (area == 0) return false;

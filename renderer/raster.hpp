@@ -6,6 +6,7 @@
 // coverage is exact: shared edges get every pixel center once, with no cracks.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "renderer/conventions.hpp"
@@ -35,27 +36,48 @@ struct ScreenTriangle {
 bool setupScreenTriangle(const dvec2 pixel[3], const double t[3], int width, int height, std::uint32_t triangle,
                          ScreenTriangle& out);
 
-// Calls covered(x) for every pixel x in [xBegin, xEnd) of `row` whose center the
-// triangle covers. The caller keeps [xBegin, xEnd) inside [minX, maxX]. Edge functions
-// are evaluated exactly at the span's start and stepped exactly in integers, so the
+// Spans wider than this are solved for their covered range; narrower ones test each
+// pixel (three additions beat three integer divisions there). Both are exact.
+inline constexpr int kSolveSpansWiderThan = 16;
+
+// Calls covered(x), in increasing x, for every pixel x in [xBegin, xEnd) of `row` whose
+// center the triangle covers. The caller keeps [xBegin, xEnd) inside [minX, maxX].
+// Everything is exact integer arithmetic evaluated from the span's own start, so the
 // result does not depend on how the image is cut into spans.
 template <typename Covered>
 inline void rasterizeSpan(const ScreenTriangle& tri, int row, int xBegin, int xEnd, Covered&& covered) {
   using conventions::kSubpixelScale;
   const std::int64_t py = row * kSubpixelScale + kSubpixelScale / 2;
   const std::int64_t px = xBegin * kSubpixelScale + kSubpixelScale / 2;
-  std::int64_t e0 = tri.edgeA[0] * px + tri.edgeB[0] * py + tri.edgeC[0];
-  std::int64_t e1 = tri.edgeA[1] * px + tri.edgeB[1] * py + tri.edgeC[1];
-  std::int64_t e2 = tri.edgeA[2] * px + tri.edgeB[2] * py + tri.edgeC[2];
-  const std::int64_t step0 = tri.edgeA[0] * kSubpixelScale;
-  const std::int64_t step1 = tri.edgeA[1] * kSubpixelScale;
-  const std::int64_t step2 = tri.edgeA[2] * kSubpixelScale;
-  for (int x = xBegin; x < xEnd; ++x) {
-    if ((e0 | e1 | e2) >= 0) covered(x);  // all three non-negative: no sign bit set
-    e0 += step0;
-    e1 += step1;
-    e2 += step2;
+  std::int64_t e[3], step[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = tri.edgeA[k] * px + tri.edgeB[k] * py + tri.edgeC[k];
+    step[k] = tri.edgeA[k] * kSubpixelScale;
   }
+  if (xEnd - xBegin <= kSolveSpansWiderThan) {
+    // Edge-function test at every pixel center: all three non-negative means no sign bit set.
+    for (int x = xBegin; x < xEnd; ++x) {
+      if ((e[0] | e[1] | e[2]) >= 0) covered(x);
+      e[0] += step[0];
+      e[1] += step[1];
+      e[2] += step[2];
+    }
+    return;
+  }
+  // Each edge function is linear along the row, e + step * i for the i-th pixel, so
+  // "e + step * i >= 0" bounds i from below (step > 0) or above (step < 0).
+  std::int64_t first = 0, last = xEnd - xBegin - 1;
+  for (int k = 0; k < 3; ++k) {
+    if (step[k] > 0) {
+      if (e[k] < 0) first = std::max(first, (-e[k] + step[k] - 1) / step[k]);  // ceil(-e / step)
+    } else if (step[k] < 0) {
+      if (e[k] < 0) return;  // negative at the start and falling: never inside on this row
+      last = std::min(last, e[k] / -step[k]);  // floor(e / -step)
+    } else if (e[k] < 0) {
+      return;  // parallel to the row and outside
+    }
+  }
+  for (std::int64_t i = first; i <= last; ++i) covered(xBegin + static_cast<int>(i));
 }
 
 }  // namespace hsr

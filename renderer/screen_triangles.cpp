@@ -1,6 +1,7 @@
 #include "renderer/screen_triangles.hpp"
 
 #include <cmath>
+#include <memory>
 
 #include "renderer/clip.hpp"
 #include "renderer/parallel.hpp"
@@ -42,8 +43,9 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
 
   // Vertex stage: every vertex once, into clip space.
   const std::vector<dvec3>& positions = scene.positions();
-  std::vector<ClipVertex> clip(positions.size());
-  std::vector<std::uint32_t> outcodes(positions.size());
+  // Left uninitialized: every element is written by the loop below, in parallel.
+  const auto clip = std::make_unique_for_overwrite<ClipVertex[]>(positions.size());
+  const auto outcodes = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
   const int workers = resolveThreadCount(threads);
   parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
     const auto [begin, end] = partRange(positions.size(), static_cast<std::size_t>(workers), part);
@@ -61,7 +63,6 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
   parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
     const auto [begin, end] = partRange(triangles.size(), static_cast<std::size_t>(workers), part);
     std::vector<ScreenTriangle>& out = parts[part];
-    out.reserve((end - begin) / 2);
     for (std::size_t i = begin; i < end; ++i) {
       const Triangle& t = triangles[i];
       const std::uint32_t codes[3] = {outcodes[t[0]], outcodes[t[1]], outcodes[t[2]]};
@@ -84,12 +85,15 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
     }
   });
 
-  std::size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  geometry.triangles.reserve(total);
+  // Concatenate the parts in order, each copied by its own thread to its final place.
+  std::vector<std::size_t> offsets(parts.size() + 1, 0);
+  for (std::size_t part = 0; part < parts.size(); ++part) offsets[part + 1] = offsets[part] + parts[part].size();
+  geometry.triangles.resize(offsets.back());
+  parallelFor(parts.size(), workers, [&](std::size_t part, int) {
+    std::copy(parts[part].begin(), parts[part].end(), geometry.triangles.begin() + std::ptrdiff_t(offsets[part]));
+  });
   Counts sum;
   for (std::size_t part = 0; part < parts.size(); ++part) {
-    geometry.triangles.insert(geometry.triangles.end(), parts[part].begin(), parts[part].end());
     sum.outside += counts[part].outside;
     sum.clipped += counts[part].clipped;
     sum.empty += counts[part].empty;

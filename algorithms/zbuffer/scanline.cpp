@@ -21,11 +21,11 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
   const int workers = std::min(resolveThreadCount(threads), frame.height);
   const DepthEncoding encoding = depthEncoding(format, geometry.camera);
   withDepthFormat(format, [&]<typename Format>() {
-    std::vector<DepthTest<Format>> tests(static_cast<std::size_t>(workers), DepthTest<Format>{encoding});
+    std::vector<DepthTest<Format>> bandResults(static_cast<std::size_t>(workers));
     parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t band, int) {
       const auto [first, last] = partRange(static_cast<std::size_t>(frame.height), static_cast<std::size_t>(workers), band);
       std::vector<typename Format::Stored> depthRow(static_cast<std::size_t>(frame.width));
-      DepthTest<Format>& test = tests[band];
+      DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other bands
       // Step 2: the active list starts with the triangles that began above the band and reach into it.
       std::vector<std::uint32_t> active, entering, merged;
       for (std::uint32_t i = 0; i < triangles.size(); ++i)
@@ -39,8 +39,9 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
         std::merge(active.begin(), active.end(), starting.begin(), starting.end(), std::back_inserter(merged));
         active.swap(merged);
         // Step 4: clear the row, then depth-test every active triangle's span on it.
-        std::fill(depthRow.begin(), depthRow.end(), Format::kFar);
         const std::size_t row = y * std::size_t(frame.width);
+        std::fill(depthRow.begin(), depthRow.end(), Format::kFar);
+        std::fill(&frame.ids[row], &frame.ids[row] + frame.width, conventions::kBackgroundId);
         test.activeTriangles += static_cast<std::int64_t>(active.size());
         for (const std::uint32_t i : active) {
           const ScreenTriangle& tri = triangles[i];
@@ -50,11 +51,11 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
         }
         // Step 5: the row is final: decode its depth into the frame before the buffer is reused.
         for (int x = 0; x < frame.width; ++x)
-          if (frame.ids[row + std::size_t(x)] != conventions::kBackgroundId)
-            frame.depth[row + std::size_t(x)] = test.distance(depthRow[std::size_t(x)], geometry.camera);
+          frame.depth[row + std::size_t(x)] = test.distance(frame.ids[row + std::size_t(x)], depthRow[std::size_t(x)], geometry.camera);
       }
+      bandResults[band] = test;
     });
-    for (const auto& test : tests) {
+    for (const auto& test : bandResults) {
       stats.add("fragments tested", test.tested);
       stats.add("fragments written", test.written);
       stats.add("active triangles summed over rows", test.activeTriangles);

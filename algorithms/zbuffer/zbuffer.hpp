@@ -6,6 +6,8 @@
 // depth as the chosen format stored it (decoded to view distance), and the shaded color.
 #pragma once
 
+#include <limits>
+
 #include "renderer/depth.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/prepare.hpp"
@@ -27,7 +29,8 @@ struct Knobs {
 // threads: 0 = all cores. The image bits are the same for every thread count.
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
 
-// The variants' visibility passes: they fill frame.ids and frame.depth only.
+// The variants' visibility passes: they overwrite every pixel of frame.ids and
+// frame.depth (a Frame of the scene's size may be reused) and leave frame.color alone.
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats);
 void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats);
 
@@ -47,8 +50,10 @@ struct DepthTest {
     return true;
   }
 
-  // What the buffer stored, decoded back to a distance along the view axis.
-  float distance(typename Format::Stored stored, const CameraTransform& camera) const {
+  // What the buffer stored, decoded back to a distance along the view axis
+  // (+infinity where the pixel shows the background).
+  float distance(std::uint32_t id, typename Format::Stored stored, const CameraTransform& camera) const {
+    if (id == conventions::kBackgroundId) return std::numeric_limits<float>::infinity();
     return static_cast<float>(camera.distanceFromScreenAffine(encoding.t(Format::load(stored))));
   }
 };

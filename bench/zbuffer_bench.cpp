@@ -1,0 +1,94 @@
+// The z-buffer's speed: dragons and counters at 1280x720, per depth format, full-frame
+// vs one-scanline, 1 vs 2 threads. Measures the visibility pass (geometry stage and
+// depth-tested rasterization: what Mesa's peer run does too); "shaded" adds the
+// deferred Lambert shading of the whole render.
+//
+// Protocol: one warm-up render, then Google Benchmark's repetitions; it reports
+// mean, median, min, max. Run: build/bench/zbuffer_bench --benchmark_repetitions=5
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/shading.hpp"
+
+namespace {
+
+struct LoadedScene {
+  hsr::Scene scene;
+  std::unique_ptr<hsr::PreparedScene> prepared;
+};
+
+const LoadedScene& sceneNamed(const std::string& name) {
+  static std::map<std::string, LoadedScene> loaded;
+  LoadedScene& entry = loaded[name];
+  if (!entry.prepared) {
+    entry.scene = hsr::loadScene(std::string(HSR_SOURCE_DIR) + "/scenes/" + name + ".toml");
+    entry.prepared = std::make_unique<hsr::PreparedScene>(entry.scene);
+    entry.prepared->setSize(1280, 720);
+  }
+  return entry;
+}
+
+const char* const kScenes[] = {"dragons", "counters"};
+
+void visibility(benchmark::State& state) {
+  const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
+  const auto variant = static_cast<hsr::zbuffer::Variant>(state.range(1));
+  const auto format = static_cast<hsr::DepthFormat>(state.range(2));
+  const int threads = static_cast<int>(state.range(3));
+  hsr::Frame frame(scene.width(), scene.height());  // reused, as a real-time renderer reuses its framebuffer
+  const auto once = [&](hsr::Stats& stats) {
+    const hsr::CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+    const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, hsr::clipsFarPlane(format, camera), threads, stats);
+    if (variant == hsr::zbuffer::Variant::full)
+      hsr::zbuffer::renderFullFrame(geometry, format, threads, frame, stats);
+    else
+      hsr::zbuffer::renderScanline(geometry, format, threads, frame, stats);
+    benchmark::DoNotOptimize(frame.ids.data());
+  };
+  hsr::Stats warmUp;
+  once(warmUp);
+  for (auto _ : state) {
+    hsr::Stats stats;
+    once(stats);
+  }
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " " + (variant == hsr::zbuffer::Variant::full ? "full" : "scanline") +
+                 " " + hsr::depthFormatName(format) + " threads=" + std::to_string(threads));
+  state.counters["triangles/s"] = benchmark::Counter(double(scene.triangleCount()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["pixels/s"] = benchmark::Counter(double(scene.width()) * scene.height(), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["fragments"] = double(warmUp.counter("fragments tested"));
+}
+
+void shaded(benchmark::State& state) {
+  const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
+  const int threads = static_cast<int>(state.range(1));
+  hsr::Stats warmUp;
+  hsr::zbuffer::run(scene, {}, threads, warmUp);  // also builds the normals, once
+  for (auto _ : state) {
+    hsr::Stats stats;
+    benchmark::DoNotOptimize(hsr::zbuffer::run(scene, {}, threads, stats).color.data());
+  }
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " full float32 lambert threads=" + std::to_string(threads));
+  state.counters["triangles/s"] = benchmark::Counter(double(scene.triangleCount()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void visibilityArguments(benchmark::internal::Benchmark* benchmark) {
+  for (int scene = 0; scene < 2; ++scene)
+    for (int variant = 0; variant < 2; ++variant)
+      for (int format = 0; format < int(hsr::depthFormatNames().size()); ++format)
+        for (int threads : {1, 2}) benchmark->Args({scene, variant, format, threads});
+}
+
+double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+double maximum(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+}  // namespace
+
+BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+
+BENCHMARK_MAIN();
