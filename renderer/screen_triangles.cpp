@@ -47,22 +47,31 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
   const auto clip = std::make_unique_for_overwrite<ClipVertex[]>(positions.size());
   const auto outcodes = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
   const int workers = resolveThreadCount(threads);
-  parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
-    const auto [begin, end] = partRange(positions.size(), static_cast<std::size_t>(workers), part);
-    for (std::size_t v = begin; v < end; ++v) {
-      clip[v] = camera.clipFromWorld(positions[v]);
-      outcodes[v] = volume.outside(clip[v]);
-    }
-  });
+  {
+    PhaseTimer vertexTimer(stats, "geometry: vertices");
+    parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
+      const auto [begin, end] = partRange(positions.size(), static_cast<std::size_t>(workers), part);
+      for (std::size_t v = begin; v < end; ++v) {
+        clip[v] = camera.clipFromWorld(positions[v]);
+        outcodes[v] = volume.outside(clip[v]);
+      }
+    });
+  }
 
-  // Triangle stage, in contiguous parts that are concatenated in order afterwards,
-  // so the output order (and so every tie) is the same for any thread count.
+  // Triangle stage, in fixed chunks claimed by whichever thread is free (the visible
+  // triangles of a scene are seldom spread evenly over its index range), concatenated
+  // in chunk order afterwards: the output order, and so every tie, is the same for any
+  // thread count.
   const std::vector<Triangle>& triangles = scene.triangles();
-  std::vector<std::vector<ScreenTriangle>> parts(static_cast<std::size_t>(workers));
-  std::vector<Counts> counts(static_cast<std::size_t>(workers));
-  parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
-    const auto [begin, end] = partRange(triangles.size(), static_cast<std::size_t>(workers), part);
+  constexpr std::size_t kChunkSize = 4096;
+  const std::size_t chunks = (triangles.size() + kChunkSize - 1) / kChunkSize;
+  std::vector<std::vector<ScreenTriangle>> parts(chunks);
+  std::vector<Counts> counts(chunks);
+  PhaseTimer triangleTimer(stats, "geometry: triangles");
+  parallelFor(chunks, workers, [&](std::size_t part, int) {
+    const std::size_t begin = part * kChunkSize, end = std::min(begin + kChunkSize, triangles.size());
     std::vector<ScreenTriangle>& out = parts[part];
+    out.reserve(end - begin);  // one triangle in, at most one out unless clipped: no regrowth in the common case
     for (std::size_t i = begin; i < end; ++i) {
       const Triangle& t = triangles[i];
       const std::uint32_t codes[3] = {outcodes[t[0]], outcodes[t[1]], outcodes[t[2]]};
