@@ -25,6 +25,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/memory.hpp"
 
 namespace {
 
@@ -183,6 +184,7 @@ int main(int argc, char** argv) {
       scenes.push_back(argument);
   }
   if (scenes.empty()) scenes = {"dragons", "counters"};
+  hsr::keepFreedMemoryForReuse();
   setenv("LP_NUM_THREADS", std::to_string(threads <= 1 ? 0 : threads).c_str(), 1);
 
   std::printf("hsr full-frame z-buffer (float32) vs Mesa %s (OSMesa, llvmpipe), %dx%d, %d thread(s), %d runs after 2 warm-ups\n",

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/memory.hpp"
 #include "renderer/shading.hpp"
 
 namespace {
@@ -91,4 +92,12 @@ BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)
 BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  hsr::keepFreedMemoryForReuse();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("threads", "as in each benchmark's name (1 or 2)");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -11,6 +11,7 @@
 #include "algorithms/registry.hpp"
 #include "renderer/error.hpp"
 #include "renderer/frame.hpp"
+#include "renderer/memory.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/scene.hpp"
 
@@ -91,6 +92,7 @@ int list() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  hsr::keepFreedMemoryForReuse();
   CLI::App app{"hsr: classic hidden-surface algorithms on one software rasterizer"};
   app.require_subcommand(1);
 

@@ -44,8 +44,12 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
   // Vertex stage: every vertex once, into clip space.
   const std::vector<dvec3>& positions = scene.positions();
   // Left uninitialized: every element is written by the loop below, in parallel.
+  // A vertex in front of the near plane is also projected here, once, however many
+  // triangles share it (on a closed mesh, about six).
   const auto clip = std::make_unique_for_overwrite<ClipVertex[]>(positions.size());
   const auto outcodes = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
+  const auto pixels = std::make_unique_for_overwrite<dvec2[]>(positions.size());
+  const auto depths = std::make_unique_for_overwrite<double[]>(positions.size());
   const int workers = resolveThreadCount(threads);
   {
     PhaseTimer vertexTimer(stats, "geometry: vertices");
@@ -54,6 +58,10 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
       for (std::size_t v = begin; v < end; ++v) {
         clip[v] = camera.clipFromWorld(positions[v]);
         outcodes[v] = volume.outside(clip[v]);
+        if (!(outcodes[v] & kNearPlane)) {
+          pixels[v] = camera.pixelFromClip(clip[v]);
+          depths[v] = camera.screenAffineDepth(clip[v].d);
+        }
       }
     });
   }
@@ -80,16 +88,19 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
         ++counts[part].outside;
         continue;
       }
-      const std::array<ClipVertex, 3> vertices = {clip[t[0]], clip[t[1]], clip[t[2]]};
-      ClipPolygon polygon;
       const std::uint32_t crossed = (codes[0] | codes[1] | codes[2]) & kClippingPlanes;
-      if (crossed) {
-        polygon = clipTriangle(vertices, volume, crossed);
-        ++counts[part].clipped;
-      } else {
-        polygon.count = 3;
-        std::copy(vertices.begin(), vertices.end(), polygon.vertices.begin());
+      if (!crossed) {  // the common case: already projected by the vertex stage
+        const dvec2 corners[3] = {pixels[t[0]], pixels[t[1]], pixels[t[2]]};
+        const double cornerDepths[3] = {depths[t[0]], depths[t[1]], depths[t[2]]};
+        ScreenTriangle screen;
+        if (setupScreenTriangle(corners, cornerDepths, camera.width(), camera.height(), static_cast<std::uint32_t>(i), screen))
+          out.push_back(screen);
+        else
+          ++counts[part].empty;
+        continue;
       }
+      ++counts[part].clipped;
+      const ClipPolygon polygon = clipTriangle({clip[t[0]], clip[t[1]], clip[t[2]]}, volume, crossed);
       if (polygon.count >= 3) emitPolygon(polygon, camera, static_cast<std::uint32_t>(i), out, counts[part]);
     }
   });
