@@ -51,7 +51,9 @@ struct UnormDepth {
   using Stored = Integer;
   static constexpr double kSteps = double((std::uint64_t{1} << Bits) - 1);
   static constexpr Stored kFar = static_cast<Stored>((std::uint64_t{1} << Bits) - 1);
-  static Stored store(double z) { return static_cast<Stored>(std::lround(std::clamp(z, 0.0, 1.0) * kSteps)); }
+  // Round to the nearest step (halves up): the clamped value is never negative, so
+  // adding one half and truncating is exact and needs no library call per fragment.
+  static Stored store(double z) { return static_cast<Stored>(std::clamp(z, 0.0, 1.0) * kSteps + 0.5); }
   static double load(Stored s) { return s / kSteps; }
   static bool nearer(Stored candidate, Stored current) { return candidate < current; }
 };

@@ -44,8 +44,11 @@ TEST_P(BadInput, OneLineExitTwoNoFile) {
   EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
   EXPECT_NE(result.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << result.output;
   EXPECT_FALSE(std::filesystem::exists(output));
+  // Nor a temporary one (OutputFiles names them ".<stem>.partial-<pid>.png"; other
+  // tests running at the same time may have their own in this folder).
+  const std::string partial = "." + output.stem().string() + ".partial-";
   for (const auto& entry : std::filesystem::directory_iterator(output.parent_path()))
-    EXPECT_EQ(entry.path().filename().string().find(".partial-"), std::string::npos) << entry.path();
+    EXPECT_NE(entry.path().filename().string().rfind(partial, 0), 0u) << entry.path();
 }
 
 const std::string kCube = std::string(HSR_SOURCE_DIR) + "/scenes/cube.toml";
