@@ -19,6 +19,13 @@ void writeImage(const std::filesystem::path& path, const OIIO::ImageSpec& spec, 
 
 }  // namespace
 
+std::string partialFilePrefix(const std::filesystem::path& final) {
+  std::string prefix(1, '.');
+  prefix += final.stem().string();
+  prefix += ".partial-";
+  return prefix;
+}
+
 Frame::Frame(int w, int h)
     : width(w),
       height(h),
@@ -41,7 +48,7 @@ std::filesystem::path OutputFiles::stage(const std::filesystem::path& path, cons
     throw InputError(path.string() + ": the folder " + folder.string() + " does not exist");
   // Same folder, same extension (OpenImageIO picks the format by it), a name no one else uses.
   std::filesystem::path temporary = path;
-  temporary.replace_filename("." + path.stem().string() + ".partial-" + std::to_string(::getpid()) + extension);
+  temporary.replace_filename(partialFilePrefix(path) + std::to_string(::getpid()) + extension);
   staged_.emplace_back(temporary, path);
   return temporary;
 }

@@ -26,6 +26,10 @@ inline std::uint32_t idFromRgb(const std::uint8_t* rgb) {
   return std::uint32_t(rgb[0]) << 16 | std::uint32_t(rgb[1]) << 8 | rgb[2];
 }
 
+// Temporary files of OutputFiles start with this prefix (then the process id and the
+// extension), in the final file's folder.
+std::string partialFilePrefix(const std::filesystem::path& final);
+
 class OutputFiles {
  public:
   OutputFiles() = default;

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "renderer/frame.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -44,9 +45,8 @@ TEST_P(BadInput, OneLineExitTwoNoFile) {
   EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
   EXPECT_NE(result.output.find(c.message), std::string::npos) << "expected \"" << c.message << "\" in: " << result.output;
   EXPECT_FALSE(std::filesystem::exists(output));
-  // Nor a temporary one (OutputFiles names them ".<stem>.partial-<pid>.png"; other
-  // tests running at the same time may have their own in this folder).
-  const std::string partial = "." + output.stem().string() + ".partial-";
+  // Nor a temporary one (other tests running at the same time may have their own here).
+  const std::string partial = partialFilePrefix(output);
   for (const auto& entry : std::filesystem::directory_iterator(output.parent_path()))
     EXPECT_NE(entry.path().filename().string().rfind(partial, 0), 0u) << entry.path();
 }
