@@ -106,29 +106,32 @@ Mesh makeSphere(double radius, int segments, int rings) {
   return mesh;
 }
 
-Mesh makeCylinder(double radius, double height, int segments) {
+namespace {
+
+// A capped frustum along y, centered at the origin: a cylinder when the radii are
+// equal, a cone when the top radius is 0 (its side is then a fan from the apex).
+Mesh makeFrustum(double bottomRadius, double topRadius, double height, int segments) {
   HSR_CHECK(segments >= 3);
   Mesh mesh;
   const std::uint32_t bottomCenter = addVertex(mesh, {0, -height / 2, 0});
   const std::uint32_t topCenter = addVertex(mesh, {0, height / 2, 0});
-  const std::uint32_t bottom = addRing(mesh, radius, -height / 2, segments);
-  const std::uint32_t top = addRing(mesh, radius, height / 2, segments);
+  const std::uint32_t bottom = addRing(mesh, bottomRadius, -height / 2, segments);
   addCap(mesh, bottomCenter, bottom, segments, false);
-  addWall(mesh, bottom, top, segments);
-  addCap(mesh, topCenter, top, segments, true);
+  if (topRadius > 0) {
+    const std::uint32_t top = addRing(mesh, topRadius, height / 2, segments);
+    addWall(mesh, bottom, top, segments);
+    addCap(mesh, topCenter, top, segments, true);
+  } else {
+    addCap(mesh, topCenter, bottom, segments, true);
+  }
   return mesh;
 }
 
-Mesh makeCone(double radius, double height, int segments) {
-  HSR_CHECK(segments >= 3);
-  Mesh mesh;
-  const std::uint32_t bottomCenter = addVertex(mesh, {0, -height / 2, 0});
-  const std::uint32_t apex = addVertex(mesh, {0, height / 2, 0});
-  const std::uint32_t bottom = addRing(mesh, radius, -height / 2, segments);
-  addCap(mesh, bottomCenter, bottom, segments, false);
-  addCap(mesh, apex, bottom, segments, true);
-  return mesh;
-}
+}  // namespace
+
+Mesh makeCylinder(double radius, double height, int segments) { return makeFrustum(radius, radius, height, segments); }
+
+Mesh makeCone(double radius, double height, int segments) { return makeFrustum(radius, 0, height, segments); }
 
 Mesh makeGrid(const dvec2& size, int segmentsX, int segmentsZ) {
   return makeLattice(size, segmentsX, segmentsZ, [](double, double) { return 0.0; });

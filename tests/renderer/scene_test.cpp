@@ -58,15 +58,21 @@ TEST(Scene, ScatterIsDeterministicAndStaysInItsAnnulus) {
   }
 }
 
-std::string errorOf(const std::string& toml) {
-  const auto file = test::outputPath("scene_test.toml");
-  std::ofstream(file) << toml;
+// Writes `text` to a file named `name` and returns what loading it says.
+template <typename Load>
+std::string errorOfLoading(const std::string& name, const std::string& text, Load&& load) {
+  const auto file = test::outputPath(name);
+  std::ofstream(file) << text;
   try {
-    loadScene(file);
+    load(file);
   } catch (const InputError& error) {
     return error.what();
   }
   return "(loaded without error)";
+}
+
+std::string errorOf(const std::string& toml) {
+  return errorOfLoading("scene_test.toml", toml, [](const auto& file) { loadScene(file); });
 }
 
 const std::string kCamera = "[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n";
@@ -104,14 +110,7 @@ TEST(Scene, BadInputNamesFileLineKeyAndExpectation) {
 }
 
 std::string objErrorOf(const std::string& text) {
-  const auto file = test::outputPath("scene_test.obj");
-  std::ofstream(file) << text;
-  try {
-    loadObj(file);
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "(loaded without error)";
+  return errorOfLoading("scene_test.obj", text, [](const auto& file) { loadObj(file); });
 }
 
 TEST(Obj, BadInputNamesFileAndLine) {
