@@ -1,8 +1,11 @@
 // One test per statement of renderer/conventions.hpp, each rendering a known triangle.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "renderer/conventions.hpp"
 #include "renderer/screen_triangles.hpp"
+#include "renderer/shading.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -153,6 +156,42 @@ TEST(Conventions, IdsCountObjectsThenInstancesThenTriangles) {
   EXPECT_LE(idAt(frame, 22, 32), 24u);
   EXPECT_GE(idAt(frame, 42, 32), 35u);
   EXPECT_LE(idAt(frame, 42, 32), 36u);
+}
+
+}  // namespace
+}  // namespace hsr
+
+namespace hsr {
+namespace {
+
+// Attributes are interpolated perspective-correctly: for any point on a slanted
+// triangle, the barycentrics recovered at the pixel it projects to are its own, not
+// the screen-space (affine) ones, which differ visibly under perspective.
+TEST(Conventions, AttributesArePerspectiveCorrect) {
+  Camera camera;
+  camera.eye = {0, 0, 2};
+  const Mesh slanted = test::triangleMesh({{-1, -1, 0}, {1, -1, -8}, {0, 1, -1}});
+  const PreparedScene scene(test::sceneOf(camera, 256, 256, {slanted}));
+  const CameraTransform transform(camera, 256, 256);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double largestAffineError = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    double u = unit(random), v = unit(random);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const dvec3 bary(1 - u - v, u, v);
+    const dvec3 point = bary.x * slanted.positions[0] + bary.y * slanted.positions[1] + bary.z * slanted.positions[2];
+    const dvec2 pixel = transform.pixelFromClip(transform.clipFromWorld(point));
+    const dvec3 recovered = barycentricAlongRay(scene, 0, transform.rayThroughPixel(pixel.x, pixel.y));
+    EXPECT_NEAR(glm::distance(recovered, bary), 0.0, 1e-9);
+    // The affine answer: barycentrics of the pixel within the projected triangle.
+    dvec2 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = transform.pixelFromClip(transform.clipFromWorld(slanted.positions[std::size_t(k)]));
+    const double area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+    const double affineU = ((pixel.x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (pixel.y - p[0].y)) / area;
+    largestAffineError = std::max(largestAffineError, std::abs(affineU - u));
+  }
+  EXPECT_GT(largestAffineError, 0.1);  // the difference perspective correction makes here
 }
 
 }  // namespace
