@@ -28,12 +28,11 @@ double ClipVolume::distance(const ClipVertex& v, ClipPlane plane) const {
 }
 
 std::uint32_t ClipVolume::outside(const ClipVertex& v) const {
-  // Straight-line code: this runs once per vertex per frame.
-  return (v.d < near ? kNearPlane : 0u) | (clipFar && v.d > far ? kFarPlane : 0u) |
-         (guardX * v.w + v.x < 0 ? kGuardLeft : 0u) | (guardX * v.w - v.x < 0 ? kGuardRight : 0u) |
-         (guardY * v.w + v.y < 0 ? kGuardBottom : 0u) | (guardY * v.w - v.y < 0 ? kGuardTop : 0u) |
-         (v.w + v.x < 0 ? kViewLeft : 0u) | (v.w - v.x < 0 ? kViewRight : 0u) |
-         (v.w + v.y < 0 ? kViewBottom : 0u) | (v.w - v.y < 0 ? kViewTop : 0u);
+  // One call per plane with a constant argument: each inlines to its plane equation,
+  // and the result is straight-line code (this runs once per vertex per frame).
+  const auto bit = [&](ClipPlane plane) { return distance(v, plane) < 0 ? std::uint32_t(plane) : 0u; };
+  return bit(kNearPlane) | (clipFar ? bit(kFarPlane) : 0u) | bit(kGuardLeft) | bit(kGuardRight) | bit(kGuardBottom) |
+         bit(kGuardTop) | bit(kViewLeft) | bit(kViewRight) | bit(kViewBottom) | bit(kViewTop);
 }
 
 ClipPolygon clipTriangle(const std::array<ClipVertex, 3>& triangle, const ClipVolume& volume, std::uint32_t planes) {

@@ -24,8 +24,4 @@ inline std::int64_t orient2d(std::int64_t ax, std::int64_t ay, std::int64_t bx, 
   return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
 }
 
-inline bool isFinite(const dvec3& v) {
-  return glm::all(glm::lessThan(glm::abs(v), dvec3(1e300)));  // false for NaN and Inf
-}
-
 }  // namespace hsr

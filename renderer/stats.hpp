@@ -18,9 +18,6 @@ class Stats {
   std::int64_t counter(const std::string& name) const;
   double seconds(const std::string& phase) const;
 
-  const std::map<std::string, std::int64_t>& counters() const { return counters_; }
-  const std::map<std::string, double>& phases() const { return seconds_; }
-
   std::string report() const;  // one "name value" line each, counters then phase times
 
  private:

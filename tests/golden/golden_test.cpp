@@ -67,8 +67,7 @@ TEST_P(Golden, ZBufferMatchesTheGoldenImage) {
   const double failing = double(result.nfail) / double(frame.pixelCount());
   if (failing > kFailingPixelFraction) {
     // Leave the evidence where a person can look at it.
-    const std::string stem = name;
-    std::string flat = stem;
+    std::string flat = name;
     std::replace(flat.begin(), flat.end(), '/', '-');
     const auto actualPath = test::outputPath("golden-" + flat + ".actual.png");
     const auto diffPath = test::outputPath("golden-" + flat + ".diff.png");
