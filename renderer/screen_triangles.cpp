@@ -13,6 +13,16 @@ struct Counts {
   std::int64_t outside = 0, clipped = 0, empty = 0;
 };
 
+// Sets up one screen triangle and keeps it, or counts it when it covers no pixel center.
+void emitTriangle(const dvec2 pixel[3], const double t[3], const CameraTransform& camera, std::uint32_t triangle,
+                  std::vector<ScreenTriangle>& out, Counts& counts) {
+  ScreenTriangle screen;
+  if (setupScreenTriangle(pixel, t, camera.width(), camera.height(), triangle, screen))
+    out.push_back(screen);
+  else
+    ++counts.empty;
+}
+
 // Projects a convex clip-space polygon and emits it as a fan of screen triangles.
 void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std::uint32_t triangle,
                  std::vector<ScreenTriangle>& out, Counts& counts) {
@@ -25,11 +35,7 @@ void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std:
   for (int i = 1; i + 1 < polygon.count; ++i) {
     const dvec2 fanPixel[3] = {pixel[0], pixel[i], pixel[i + 1]};
     const double fanT[3] = {t[0], t[i], t[i + 1]};
-    ScreenTriangle screen;
-    if (setupScreenTriangle(fanPixel, fanT, camera.width(), camera.height(), triangle, screen))
-      out.push_back(screen);
-    else
-      ++counts.empty;
+    emitTriangle(fanPixel, fanT, camera, triangle, out, counts);
   }
 }
 
@@ -92,11 +98,7 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
       if (!crossed) {  // the common case: already projected by the vertex stage
         const dvec2 corners[3] = {pixels[t[0]], pixels[t[1]], pixels[t[2]]};
         const double cornerDepths[3] = {depths[t[0]], depths[t[1]], depths[t[2]]};
-        ScreenTriangle screen;
-        if (setupScreenTriangle(corners, cornerDepths, camera.width(), camera.height(), static_cast<std::uint32_t>(i), screen))
-          out.push_back(screen);
-        else
-          ++counts[part].empty;
+        emitTriangle(corners, cornerDepths, camera, static_cast<std::uint32_t>(i), out, counts[part]);
         continue;
       }
       ++counts[part].clipped;
