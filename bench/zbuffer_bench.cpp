@@ -41,8 +41,8 @@ void visibility(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(3));
   hsr::Frame frame(scene.width(), scene.height());  // reused, as a real-time renderer reuses its framebuffer
   const auto once = [&](hsr::Stats& stats) {
-    const hsr::CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
-    const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, hsr::clipsFarPlane(format, camera), threads, stats);
+    const bool clipFar = hsr::clipsFarPlane(format, scene.scene().camera.projection);
+    const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats);
     if (variant == hsr::zbuffer::Variant::full)
       hsr::zbuffer::renderFullFrame(geometry, format, threads, frame, stats);
     else

@@ -10,8 +10,8 @@ const std::vector<std::string>& depthFormatNames() {
 
 const char* depthFormatName(DepthFormat format) { return depthFormatNames()[static_cast<int>(format)].c_str(); }
 
-bool clipsFarPlane(DepthFormat format, const CameraTransform& camera) {
-  return !(format == DepthFormat::reversedFloat32Infinite && camera.perspective());
+bool clipsFarPlane(DepthFormat format, Projection projection) {
+  return !(format == DepthFormat::reversedFloat32Infinite && projection == Projection::perspective);
 }
 
 DepthEncoding depthEncoding(DepthFormat format, const CameraTransform& camera) {

@@ -29,7 +29,7 @@ DepthEncoding depthEncoding(DepthFormat format, const CameraTransform& camera);
 
 // Whether triangles are clipped against the far plane (not with an infinite far plane
 // under perspective).
-bool clipsFarPlane(DepthFormat format, const CameraTransform& camera);
+bool clipsFarPlane(DepthFormat format, Projection projection);
 
 // The stored type, the value a cleared buffer holds (the far end), and the test.
 struct Float32Depth {

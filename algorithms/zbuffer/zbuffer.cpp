@@ -73,8 +73,8 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
 
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
   Frame frame(scene.width(), scene.height());
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
-  const ScreenGeometry geometry = buildScreenTriangles(scene, clipsFarPlane(knobs.depthFormat, camera), threads, stats);
+  const bool clipFar = clipsFarPlane(knobs.depthFormat, scene.scene().camera.projection);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats);
   if (knobs.variant == Variant::full)
     renderFullFrame(geometry, knobs.depthFormat, threads, frame, stats);
   else
