@@ -36,6 +36,10 @@ class CameraTransform {
   double screenAffineDepth(double d) const { return perspective() ? 1.0 / d : d; }
   double distanceFromScreenAffine(double t) const { return perspective() ? 1.0 / t : t; }
 
+  // The world-space view basis: d = (p - eye) . forward is the distance along the view axis.
+  const dvec3& forward() const { return forward_; }
+  const dvec3& right() const { return right_; }
+  const dvec3& up() const { return up_; }
   bool perspective() const { return camera_.projection == Projection::perspective; }
   const Camera& camera() const { return camera_; }
   int width() const { return width_; }

@@ -1,5 +1,6 @@
 #include "renderer/frame.hpp"
 
+#include <fstream>
 #include <limits>
 
 #include <OpenImageIO/imageio.h>
@@ -54,8 +55,25 @@ std::filesystem::path OutputFiles::stage(const std::filesystem::path& path, cons
 }
 
 void OutputFiles::addColorPng(const std::filesystem::path& path, const Frame& frame) {
+  addRgbaPng(path, frame.width, frame.height, frame.color);
+}
+
+void OutputFiles::addRgbaPng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
+  HSR_CHECK(rgba.size() == std::size_t(width) * std::size_t(height) * 4);
   const auto temporary = stage(path, ".png");
-  writeImage(temporary, OIIO::ImageSpec(frame.width, frame.height, 4, OIIO::TypeDesc::UINT8), frame.color.data());
+  writeImage(temporary, OIIO::ImageSpec(width, height, 4, OIIO::TypeDesc::UINT8), rgba.data());
+}
+
+void OutputFiles::addText(const std::filesystem::path& path, const std::string& text) {
+  const auto temporary = stage(path, path.extension().string());
+  std::ofstream file(temporary, std::ios::binary);
+  file << text;
+  file.close();
+  if (!file) throw InputError(path.string() + ": cannot write the file");
+}
+
+std::filesystem::path OutputFiles::addWrittenElsewhere(const std::filesystem::path& path) {
+  return stage(path, path.extension().string());
 }
 
 void OutputFiles::addIdsPng(const std::filesystem::path& path, const Frame& frame) {

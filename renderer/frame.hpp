@@ -42,6 +42,10 @@ class OutputFiles {
   void addColorPng(const std::filesystem::path& path, const Frame& frame);
   void addIdsPng(const std::filesystem::path& path, const Frame& frame);
   void addDepthExr(const std::filesystem::path& path, const Frame& frame);
+  void addRgbaPng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba);
+  void addText(const std::filesystem::path& path, const std::string& text);
+  // For a file another program writes (gnuplot): the temporary name to write it under.
+  std::filesystem::path addWrittenElsewhere(const std::filesystem::path& path);
   void commit();  // renames every file into place
 
  private:

@@ -8,26 +8,31 @@
 
 namespace hsr {
 
-PreparedScene::PreparedScene(const Scene& scene) : scene_(&scene), width_(scene.width), height_(scene.height) {
+PreparedScene::PreparedScene(const Scene& scene) : PreparedScene(scene, {dmat4(1.0)}) {}
+
+PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies)
+    : scene_(&scene), width_(scene.width), height_(scene.height) {
   // Flatten every copy of every object into world space, in id order. Transforms are
   // composed in double so a model far from the origin keeps its float precision.
-  for (std::uint32_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex) {
-    const SceneObject& object = scene.objects[objectIndex];
-    const dmat4 objectToWorld = object.transform.worldFromObject();
-    const std::vector<dmat4> copies = object.instancing.copies();
-    for (std::uint32_t copy = 0; copy < copies.size(); ++copy) {
-      const dmat4 worldFromObject = copies[copy] * objectToWorld;
-      const auto firstVertex = static_cast<std::uint32_t>(positions_.size());
-      for (const dvec3& p : object.mesh->positions) positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
-      Instance instance;
-      instance.object = objectIndex;
-      instance.copy = copy;
-      instance.firstTriangle = static_cast<std::uint32_t>(triangles_.size());
-      instance.triangleCount = static_cast<std::uint32_t>(object.mesh->triangles.size());
-      instance.color = object.color;
-      instances_.push_back(instance);
-      for (const Triangle& t : object.mesh->triangles)
-        triangles_.push_back({t[0] + firstVertex, t[1] + firstVertex, t[2] + firstVertex});
+  for (const dmat4& sceneCopy : sceneCopies) {
+    for (std::uint32_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex) {
+      const SceneObject& object = scene.objects[objectIndex];
+      const dmat4 objectToWorld = object.transform.worldFromObject();
+      const std::vector<dmat4> copies = object.instancing.copies();
+      for (std::uint32_t copy = 0; copy < copies.size(); ++copy) {
+        const dmat4 worldFromObject = sceneCopy * copies[copy] * objectToWorld;
+        const auto firstVertex = static_cast<std::uint32_t>(positions_.size());
+        for (const dvec3& p : object.mesh->positions) positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
+        Instance instance;
+        instance.object = objectIndex;
+        instance.copy = copy;
+        instance.firstTriangle = static_cast<std::uint32_t>(triangles_.size());
+        instance.triangleCount = static_cast<std::uint32_t>(object.mesh->triangles.size());
+        instance.color = object.color;
+        instances_.push_back(instance);
+        for (const Triangle& t : object.mesh->triangles)
+          triangles_.push_back({t[0] + firstVertex, t[1] + firstVertex, t[2] + firstVertex});
+      }
     }
   }
 }
@@ -95,6 +100,18 @@ const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& sta
     stats.add("normals computed", static_cast<std::int64_t>(3 * faces));
   });
   return cornerNormals_;
+}
+
+const Bvh& PreparedScene::triangleBvh(Stats& stats) const {
+  std::call_once(bvhBuilt_, [&] {
+    PhaseTimer timer(stats, "bvh build");
+    std::vector<Aabb> boxes(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i)
+      for (std::uint32_t v : triangles_[i]) boxes[i].grow(positions_[v]);
+    triangleBvh_ = Bvh(boxes);
+    stats.add("bvh nodes built", static_cast<std::int64_t>(triangleBvh_.nodes().size()));
+  });
+  return triangleBvh_;
 }
 
 }  // namespace hsr

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <vector>
 
+#include "renderer/bvh.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/stats.hpp"
 
@@ -24,6 +25,9 @@ struct Instance {
 class PreparedScene {
  public:
   explicit PreparedScene(const Scene& scene);
+  // The whole scene repeated once per transform (world from scene copy), copy by copy:
+  // how hsr sweep --scale triangles grows a scene by instancing.
+  PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies);
 
   const Scene& scene() const { return *scene_; }
   int width() const { return width_; }
@@ -50,6 +54,10 @@ class PreparedScene {
   static constexpr double kCreaseDegrees = 40;
   const std::vector<std::array<dvec3, 3>>& cornerNormals(Stats& stats) const;
 
+  // A BVH over the triangles (primitive i = global triangle i), built on first use
+  // (phase "bvh build", counter "bvh nodes built").
+  const Bvh& triangleBvh(Stats& stats) const;
+
  private:
   const Scene* scene_;
   int width_, height_;
@@ -58,6 +66,8 @@ class PreparedScene {
   std::vector<Instance> instances_;
   mutable std::once_flag normalsBuilt_;
   mutable std::vector<std::array<dvec3, 3>> cornerNormals_;
+  mutable std::once_flag bvhBuilt_;
+  mutable Bvh triangleBvh_;
 };
 
 }  // namespace hsr

@@ -11,6 +11,9 @@ packages=(
   libtinyobjloader-dev         # OBJ meshes
   libtomlplusplus-dev          # TOML scenes
   libcli11-dev                 # the hsr command line
+  libgmp-dev                   # exact rational arithmetic in the reference
+  gnuplot-nox                  # hsr sweep's plots
+  fonts-dejavu-core            # labels on hsr compare's contact sheet
   libgtest-dev libgmock-dev    # tests
   libbenchmark-dev             # bench/
   libosmesa6-dev               # the Mesa peer benchmark (bench/ only)

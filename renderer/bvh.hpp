@@ -1,0 +1,92 @@
+// A bounding volume hierarchy over boxes (triangles or whole objects), built with the
+// surface area heuristic over binned centroids (Wald 2007), shared by the exact
+// reference, ray casting and the culling stages.
+//
+// Nodes are 32 bytes with float bounds rounded outward from the double boxes, so a box
+// test against a node can only be more generous than the exact one: traversal may
+// visit a node it did not need, never skip one it needed.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "renderer/math.hpp"
+
+namespace hsr {
+
+struct Aabb {
+  dvec3 lo{std::numeric_limits<double>::infinity()};
+  dvec3 hi{-std::numeric_limits<double>::infinity()};
+
+  void grow(const dvec3& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+  void grow(const Aabb& box) { lo = glm::min(lo, box.lo), hi = glm::max(hi, box.hi); }
+  bool empty() const { return lo.x > hi.x; }
+  dvec3 center() const { return (lo + hi) * 0.5; }
+  // Half the surface area: the SAH only needs areas up to a common factor.
+  double halfArea() const;
+};
+
+struct BvhNode {
+  float lo[3], hi[3];    // bounds, rounded outward
+  std::uint32_t index;   // interior: first child (the second is index + 1); leaf: first slot in order()
+  std::uint16_t count;   // primitives in a leaf; 0 for an interior node
+  std::uint16_t axis;    // interior: the split axis, so traversal can visit the nearer child first
+  bool leaf() const { return count != 0; }
+};
+
+class Bvh {
+ public:
+  static constexpr int kBins = 16;        // centroid bins per axis for the SAH sweep
+  static constexpr int kMaxLeafSize = 8;  // a larger node is always split
+  // Relative costs of visiting a node and testing a primitive (the SAH's C_trav, C_isect).
+  // Depth limit of SAH splitting; below it nodes are halved, so depth() <= kSahDepth + 32.
+  static constexpr int kSahDepth = 48;
+  static constexpr int kMaxDepth = kSahDepth + 32;
+  static constexpr double kTraversalCost = 1.0, kIntersectionCost = 1.0;
+
+  Bvh() = default;
+  // boxes[i] bounds primitive i; the node order() lists primitives leaf by leaf.
+  explicit Bvh(std::span<const Aabb> boxes);
+
+  const std::vector<BvhNode>& nodes() const { return nodes_; }       // nodes()[0] is the root
+  const std::vector<std::uint32_t>& order() const { return order_; }  // primitive ids by leaf
+  int depth() const { return depth_; }                                // root alone = 1
+  bool empty() const { return order_.empty(); }
+
+ private:
+  std::vector<BvhNode> nodes_;
+  std::vector<std::uint32_t> order_;
+  int depth_ = 0;
+};
+
+// The slab test of a ray against node boxes, made conservative: the far distance of
+// every slab is widened by 2 gamma(3) (Ize 2013, "Robust BVH ray traversal"), which
+// covers the rounding of the subtraction and the multiplication.
+struct RayBoxTest {
+  dvec3 origin, inverseDirection;
+
+  // A direction component of 0 gives an infinite inverse; a slab whose plane holds the
+  // origin then yields NaN, which the comparisons below ignore, so the ray counts as
+  // inside that (closed) slab, as it is.
+  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : origin(rayOrigin), inverseDirection(1.0 / direction) {}
+
+  // The entry parameter of the ray into the node's box when the box is met within
+  // [0, tMax]; +infinity otherwise.
+  double entry(const BvhNode& node, double tMax) const {
+    constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
+    double tEnter = 0, tExit = tMax;
+    for (int axis = 0; axis < 3; ++axis) {
+      double tNear = (double(node.lo[axis]) - origin[axis]) * inverseDirection[axis];
+      double tFar = (double(node.hi[axis]) - origin[axis]) * inverseDirection[axis];
+      if (tNear > tFar) std::swap(tNear, tFar);
+      // Written so that a NaN (see the constructor) leaves tEnter and tExit as they are.
+      tEnter = tNear > tEnter ? tNear : tEnter;
+      tExit = tFar * widen < tExit ? tFar * widen : tExit;
+    }
+    return tEnter <= tExit ? tEnter : std::numeric_limits<double>::infinity();
+  }
+};
+
+}  // namespace hsr

@@ -1,0 +1,71 @@
+// The exact surface reference: for every pixel center, the visible triangle decided in
+// object space, the ground truth every surface algorithm is measured against.
+//
+// It shares no code with the rasterizer. A ray leaves the eye through the pixel center
+// (parallel to the view axis from the near-plane rectangle under orthographic, as
+// CameraTransform::rayThroughPixel defines it), and the nearest triangle it meets
+// between the near and far planes wins:
+//   1. Candidates come from a BVH (renderer/bvh) with conservative box tests.
+//   2. Each is tested with the watertight ray-triangle test of Woop, Benthin and Wald
+//      (2013) in double precision, with a forward error bound on each of its values.
+//   3. Wherever a bound leaves a decision open (a pixel center on an edge, a hit on the
+//      near plane, two hits closer than their depth bounds), the same test is evaluated
+//      again in exact rational arithmetic (GMP). The ray's origin and direction and the
+//      vertices are doubles, hence exact rationals: the decision is exact for that ray.
+//   4. A pixel whose nearest hit is shared exactly by two or more triangles (coplanar
+//      faces overlapping, a center exactly on a shared edge or vertex) is *ambiguous*:
+//      any of them is a correct answer. The id recorded is the lowest, and metrics skip
+//      the pixel.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "renderer/camera.hpp"
+#include "renderer/frame.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr {
+
+struct ReferenceHit {
+  std::uint32_t id = 0;     // global triangle index + 1; 0 = nothing between near and far
+  double distance = 0;      // along the view axis, as Frame::depth measures it
+  bool ambiguous = false;   // two or more triangles are exactly the nearest
+  bool usedExact = false;   // some decision for this ray needed exact arithmetic
+};
+
+class SurfaceReference {
+ public:
+  // Builds (or reuses) the scene's triangle BVH.
+  SurfaceReference(const PreparedScene& scene, Stats& stats);
+
+  // Per-ray work counters, summed by the caller.
+  struct Counters {
+    std::int64_t nodesVisited = 0, triangleTests = 0, exactTriangleTests = 0, exactComparisons = 0;
+  };
+  ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
+
+ private:
+  struct PackedTriangle {
+    dvec3 a, b, c;
+    std::uint32_t id;  // global triangle index + 1
+  };
+  const PreparedScene& scene_;
+  const Bvh& bvh_;
+  std::vector<PackedTriangle> triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
+};
+
+struct ReferenceImage {
+  Frame frame;                           // ids, depth, and color shaded as every algorithm shades
+  std::vector<std::uint8_t> ambiguous;   // 1 where the pixel is ambiguous (see above)
+  std::int64_t ambiguousPixels = 0;
+  std::int64_t exactFallbacks = 0;       // pixels whose ray needed exact arithmetic
+};
+
+// Stats: "reference rays", "reference exact fall-backs", "reference ambiguous pixels",
+// "bvh nodes visited", "ray-triangle tests", "exact ray-triangle tests", "exact depth
+// comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
+ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);
+
+}  // namespace hsr
