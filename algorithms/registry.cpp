@@ -4,6 +4,7 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/error.hpp"
+#include "renderer/reference.hpp"
 
 namespace hsr {
 namespace {
@@ -28,6 +29,8 @@ AlgorithmEntry zbufferEntry() {
        {"full", "scanline"}},
       {"depth-format", "what the depth buffer stores (conventions.hpp)", depthFormatNames()},
   };
+  entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
+  entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
   entry.render = [knobs = entry.knobs](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
     zbuffer::Knobs typed;
     typed.variant = static_cast<zbuffer::Variant>(choiceIndex(knobs[0], values.at("variant")));
@@ -37,10 +40,22 @@ AlgorithmEntry zbufferEntry() {
   return entry;
 }
 
+AlgorithmEntry referenceEntry() {
+  AlgorithmEntry entry;
+  entry.name = "reference";
+  entry.kind = "reference";
+  entry.summary = "exact visibility per pixel center: BVH, watertight ray test, exact fall-back (renderer/reference)";
+  entry.keyCounters = {"reference exact fall-backs", "reference ambiguous pixels", "bvh nodes visited", "ray-triangle tests"};
+  entry.render = [](const PreparedScene& scene, const KnobValues&, int threads, Stats& stats) {
+    return renderReference(scene, threads, stats).frame;
+  };
+  return entry;
+}
+
 }  // namespace
 
 const std::vector<AlgorithmEntry>& algorithms() {
-  static const std::vector<AlgorithmEntry> all = {zbufferEntry()};
+  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry()};
   return all;
 }
 
@@ -53,7 +68,7 @@ const AlgorithmEntry& findAlgorithm(const std::string& name) {
   throw InputError("--algo " + name + ": unknown algorithm; expected one of " + joined(names));
 }
 
-KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const std::vector<std::pair<std::string, std::string>>& settings) {
+KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings) {
   KnobValues values;
   for (const auto& knob : algorithm.knobs) values[knob.name] = knob.choices.front();
   for (const auto& [name, value] : settings) {
@@ -70,6 +85,21 @@ KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const std::vector<std::
     values[name] = value;
   }
   return values;
+}
+
+std::pair<std::string, std::string> parseKnobSetting(const std::string& text, const std::string& where) {
+  const auto equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) throw InputError(where + " " + text + ": expected NAME=VALUE");
+  return {text.substr(0, equals), text.substr(equals + 1)};
+}
+
+std::string describeKnobs(const AlgorithmEntry& algorithm, const KnobValues& values) {
+  std::string text;
+  for (const auto& knob : algorithm.knobs) {
+    const std::string& value = values.at(knob.name);
+    if (value != knob.choices.front()) text += (text.empty() ? "" : " ") + knob.name + "=" + value;
+  }
+  return text.empty() ? "defaults" : text;
 }
 
 }  // namespace hsr

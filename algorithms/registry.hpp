@@ -22,11 +22,21 @@ struct KnobSpec {
 
 using KnobValues = std::map<std::string, std::string>;  // every knob of the algorithm, validated
 
+using KnobSettings = std::vector<std::pair<std::string, std::string>>;  // NAME=VALUE as the user gave them
+
 struct AlgorithmEntry {
   std::string name;
-  std::string kind;  // "surface" for now; line algorithms and culling stages come later
+  std::string kind;  // "surface", or "reference" for the exact reference every surface algorithm is judged by
   std::string summary;
   std::vector<KnobSpec> knobs;
+  // The counters hsr compare prints for this algorithm, in this order.
+  std::vector<std::string> keyCounters;
+  // The configurations hsr compare's default study runs (the defaults first), chosen
+  // to show what the knobs trade.
+  std::vector<KnobSettings> studyConfigurations = {{}};
+  // Why the algorithm cannot render a scene, or "" when it can (every surface
+  // algorithm so far renders every scene).
+  std::function<std::string(const Scene&)> refusal = [](const Scene&) { return std::string(); };
   // threads: 0 = all cores.
   std::function<Frame(const PreparedScene&, const KnobValues&, int threads, Stats&)> render;
 };
@@ -38,6 +48,12 @@ const AlgorithmEntry& findAlgorithm(const std::string& name);
 
 // Fills in defaults and checks every setting; throws InputError for an unknown knob or
 // a value outside its choices, naming the algorithm, the knob and what is allowed.
-KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const std::vector<std::pair<std::string, std::string>>& settings);
+KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings);
+
+// "NAME=VALUE" split at the first '='; throws InputError naming `where` otherwise.
+std::pair<std::string, std::string> parseKnobSetting(const std::string& text, const std::string& where);
+
+// The settings that differ from the defaults, as "name=value name=value" ("defaults" if none).
+std::string describeKnobs(const AlgorithmEntry& algorithm, const KnobValues& values);
 
 }  // namespace hsr

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,27 @@ inline Mesh triangleMesh(const std::vector<dvec3>& corners) {
   return mesh;
 }
 
+// The scene seen the same way after the world map p -> scale p + offset: the camera
+// moves with it, and each object's transform is composed with it (objects must be
+// single, not instanced, for that: the map is not applied to instancing offsets).
+inline Camera movedAndScaled(Camera camera, double scale, const dvec3& offset) {
+  camera.eye = camera.eye * scale + offset;
+  camera.target = camera.target * scale + offset;
+  camera.near *= scale;
+  camera.far *= scale;
+  camera.orthoHeight *= scale;
+  return camera;
+}
+
+inline Scene movedAndScaled(Scene scene, double scale, const dvec3& offset) {
+  for (SceneObject& object : scene.objects) {
+    object.transform.translate = object.transform.translate * scale + offset;
+    object.transform.scale *= scale;
+  }
+  scene.camera = movedAndScaled(scene.camera, scale, offset);
+  return scene;
+}
+
 inline Frame renderZBuffer(const PreparedScene& scene, zbuffer::Variant variant = zbuffer::Variant::full,
                            DepthFormat format = DepthFormat::float32, int threads = 1) {
   Stats stats;
@@ -98,6 +121,29 @@ inline double distanceToSegment(const dvec2& p, const dvec2& a, const dvec2& b) 
   return glm::length(p - (a + along * ab));
 }
 
+// A triangle's corners in pixel coordinates, or nothing when a corner is not in front
+// of the near plane (its projection would not bound the triangle's image).
+inline std::optional<std::array<dvec2, 3>> projectedCorners(const PreparedScene& scene, const CameraTransform& camera,
+                                                            std::uint32_t triangle) {
+  std::array<dvec2, 3> corners;
+  for (int k = 0; k < 3; ++k) {
+    const ClipVertex v = camera.clipFromWorld(scene.positions()[scene.triangles()[triangle][std::size_t(k)]]);
+    if (!(v.d > camera.camera().near)) return std::nullopt;
+    corners[std::size_t(k)] = camera.pixelFromClip(v);
+  }
+  return corners;
+}
+
+// Distance in pixels from a point to a triangle's projected boundary (+infinity when
+// the triangle crosses the near plane).
+inline double distanceToProjectedEdges(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle,
+                                       const dvec2& point) {
+  const auto c = projectedCorners(scene, camera, triangle);
+  if (!c) return std::numeric_limits<double>::infinity();
+  return std::min({distanceToSegment(point, (*c)[0], (*c)[1]), distanceToSegment(point, (*c)[1], (*c)[2]),
+                   distanceToSegment(point, (*c)[2], (*c)[0])});
+}
+
 // Compares a frame's ids with brute-force rays. Snapping moves vertices by at most
 // 1/512 pixel, so a pixel is "clear" when its center is at least 0.01 pixel from the
 // projected edges of every triangle in front of the near plane, and the rays through
@@ -106,16 +152,8 @@ inline double distanceToSegment(const dvec2& p, const dvec2& a, const dvec2& b) 
 inline Agreement agreementWithRays(const PreparedScene& scene, const Frame& frame) {
   const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
   std::vector<std::array<dvec2, 3>> projected;
-  for (const Triangle& t : scene.triangles()) {
-    std::array<dvec2, 3> corners;
-    bool inFront = true;
-    for (int k = 0; k < 3; ++k) {
-      const ClipVertex v = camera.clipFromWorld(scene.positions()[t[k]]);
-      inFront = inFront && v.d > camera.camera().near;
-      corners[std::size_t(k)] = inFront ? camera.pixelFromClip(v) : dvec2(0);
-    }
-    if (inFront) projected.push_back(corners);
-  }
+  for (std::uint32_t t = 0; t < scene.triangleCount(); ++t)
+    if (const auto corners = projectedCorners(scene, camera, t)) projected.push_back(*corners);
   Agreement result;
   const double offsets[5][2] = {{0, 0}, {0.01, 0}, {-0.01, 0}, {0, 0.01}, {0, -0.01}};
   for (int y = 0; y < frame.height; ++y)

@@ -72,7 +72,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"size-absurd", kCube + " --size 100000x100 -o OUT", "image size 100000x100 is out of range; expected 1 to 16384"},
         Case{"size-too-many-pixels", kCube + " --size 16384x16385 -o OUT", "at most 256 Mpixel"},
         Case{"size-malformed", kCube + " --size big -o OUT", "--size big: expected WIDTHxHEIGHT"},
-        Case{"unknown-algorithm", kCube + " --algo zbufer -o OUT", "--algo zbufer: unknown algorithm; expected one of zbuffer"},
+        Case{"unknown-algorithm", kCube + " --algo zbufer -o OUT", "--algo zbufer: unknown algorithm; expected one of reference, zbuffer"},
         Case{"unknown-knob", kCube + " --knob precision=high -o OUT", "zbuffer has no knob 'precision'; expected one of variant, depth-format"},
         Case{"bad-knob-value", kCube + " --depth-format float16 -o OUT", "zbuffer depth-format must be one of float32, reversed-float32"},
         Case{"knob-without-value", kCube + " --knob variant -o OUT", "--knob variant: expected NAME=VALUE"},

@@ -163,20 +163,6 @@ TEST(HardCase, CoplanarFacesPerDepthFormat) {
 }
 
 // 4. Large coordinates: moving and scaling the whole scene changes no pixel.
-Scene movedAndScaled(Scene scene, double scale, const dvec3& offset) {
-  for (SceneObject& object : scene.objects) {
-    object.transform.translate = object.transform.translate * scale + offset;
-    object.transform.scale *= scale;
-  }
-  Camera& camera = scene.camera;
-  camera.eye = camera.eye * scale + offset;
-  camera.target = camera.target * scale + offset;
-  camera.near *= scale;
-  camera.far *= scale;
-  camera.orthoHeight *= scale;
-  return scene;
-}
-
 TEST(HardCase, LargeCoordinatesGiveTheSameIdImage) {
   const Scene scene = loadScene(test::sourcePath("scenes/hard/large_coordinates.toml"));
   for (const auto& object : scene.objects) ASSERT_EQ(object.instancing.kind, Instancing::Kind::single);
@@ -187,7 +173,7 @@ TEST(HardCase, LargeCoordinatesGiveTheSameIdImage) {
     dvec3 offset;
   } variants[] = {{1, dvec3(1e5)}, {1e-3, dvec3(0)}, {1e3, dvec3(0)}, {1e-3, dvec3(1e5)}, {1e3, dvec3(-1e5, 1e5, 3e5)}};
   for (const auto& v : variants) {
-    const Frame frame = test::renderZBuffer(PreparedScene(movedAndScaled(scene, v.scale, v.offset)));
+    const Frame frame = test::renderZBuffer(PreparedScene(test::movedAndScaled(scene, v.scale, v.offset)));
     long differing = 0;
     for (std::size_t p = 0; p < frame.ids.size(); ++p) differing += frame.ids[p] != original.ids[p];
     EXPECT_EQ(differing, 0) << "scale " << v.scale << " offset " << v.offset.x;

@@ -1,0 +1,103 @@
+// The BVH's structural promises: every primitive in exactly one leaf, every node's
+// float box containing everything below it, and a bounded depth on any input.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "renderer/bvh.hpp"
+
+namespace hsr {
+namespace {
+
+bool contains(const BvhNode& node, const Aabb& box) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (double(node.lo[axis]) > box.lo[axis] || double(node.hi[axis]) < box.hi[axis]) return false;
+  return true;
+}
+
+// Checks the subtree under `index` and returns the union of its primitives' boxes.
+Aabb checkSubtree(const Bvh& bvh, std::span<const Aabb> boxes, std::uint32_t index, std::vector<int>& seen) {
+  const BvhNode& node = bvh.nodes()[index];
+  Aabb below;
+  if (node.leaf()) {
+    EXPECT_LE(node.count, Bvh::kMaxLeafSize);
+    for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) {
+      const std::uint32_t primitive = bvh.order()[slot];
+      ++seen[primitive];
+      below.grow(boxes[primitive]);
+    }
+  } else {
+    below.grow(checkSubtree(bvh, boxes, node.index, seen));
+    below.grow(checkSubtree(bvh, boxes, node.index + 1, seen));
+  }
+  EXPECT_TRUE(contains(node, below)) << "node " << index;
+  return below;
+}
+
+std::vector<Aabb> randomTriangleBoxes(std::size_t count, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> position(-100, 100), size(0, 3);
+  std::vector<Aabb> boxes(count);
+  for (Aabb& box : boxes)
+    for (int corner = 0; corner < 3; ++corner) box.grow(dvec3(position(random), position(random), position(random)) * 0.01 + size(random));
+  return boxes;
+}
+
+TEST(Bvh, EveryPrimitiveInOneLeafAndEveryBoxContainsItsChildren) {
+  for (const std::size_t count : {1u, 2u, 9u, 1000u, 20000u}) {
+    const std::vector<Aabb> boxes = randomTriangleBoxes(count, 7);
+    const Bvh bvh(boxes);
+    std::vector<int> seen(count, 0);
+    checkSubtree(bvh, boxes, 0, seen);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(count));
+    EXPECT_LE(bvh.depth(), Bvh::kMaxDepth);
+  }
+}
+
+TEST(Bvh, DepthStaysBoundedWhenTheSahWouldPeelOnePrimitiveAtATime) {
+  // Centroids spaced geometrically: each binned split can only cut off the largest few.
+  std::vector<Aabb> boxes(3000);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const double x = std::pow(2.0, double(i) / 16);
+    boxes[i].grow(dvec3(x, 0, 0));
+    boxes[i].grow(dvec3(x * 1.001, 1, 1));
+  }
+  const Bvh bvh(boxes);
+  std::vector<int> seen(boxes.size(), 0);
+  checkSubtree(bvh, boxes, 0, seen);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(boxes.size()));
+  EXPECT_LE(bvh.depth(), Bvh::kMaxDepth);
+  EXPECT_GT(bvh.depth(), 12);  // the input really is adversarial: a balanced tree would be ~9 deep
+}
+
+TEST(Bvh, IdenticalBoxesAreSplitByCount) {
+  const std::vector<Aabb> boxes(100, Aabb{dvec3(0), dvec3(1)});
+  const Bvh bvh(boxes);
+  std::vector<int> seen(boxes.size(), 0);
+  checkSubtree(bvh, boxes, 0, seen);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 100);
+}
+
+TEST(Bvh, BoxTestNeverMissesABoxTheRayMeets) {
+  // Rays aimed at random points inside random boxes, including axis-parallel rays
+  // (zero direction components): the conservative slab test must report every one.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0, 1), position(-10, 10);
+  for (int trial = 0; trial < 20000; ++trial) {
+    Aabb box;
+    box.grow(dvec3(position(random), position(random), position(random)));
+    box.grow(box.lo + dvec3(unit(random), unit(random), unit(random)) * (trial % 3 == 0 ? 0.0 : 2.0));
+    BvhNode node{};
+    for (int axis = 0; axis < 3; ++axis) node.lo[axis] = float(box.lo[axis]), node.hi[axis] = float(box.hi[axis]);
+    // Keep the float box inside the double one: then a hit on the float box is certain.
+    const dvec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
+    const dvec3 target = lo + (hi - lo) * dvec3(unit(random), unit(random), unit(random));
+    dvec3 origin(position(random) * 3, position(random) * 3, position(random) * 3);
+    if (trial % 2) origin[trial % 3] = target[trial % 3];  // an axis-parallel ray
+    const RayBoxTest test(origin, target - origin);
+    EXPECT_LE(test.entry(node, 1.0), 1.0) << "trial " << trial;
+  }
+}
+
+}  // namespace
+}  // namespace hsr
