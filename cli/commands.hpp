@@ -1,0 +1,52 @@
+// The hsr subcommands. Each validates all of its input before doing any work, throws
+// InputError for bad input (main prints it as one line and exits 2), and writes its
+// output files only when all of them are complete.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace hsr::cli {
+
+struct RenderOptions {
+  std::string scene;
+  std::string algorithm = "zbuffer";
+  std::string variant, depthFormat, size;
+  std::vector<std::string> knobs;
+  int threads = 0;
+  std::string output, depth, ids;
+  bool stats = false;
+};
+int render(const RenderOptions& options);
+int list();
+
+struct CompareOptions {
+  std::vector<std::string> scenes;  // none: the built-in default study
+  std::string algorithms;           // "a,b:knob=v,..." ; empty: every surface algorithm
+  int repeat = 3;
+  int threads = 0;
+  std::string size;
+  std::string out = "out/compare";
+};
+int compare(const CompareOptions& options);
+
+struct SweepOptions {
+  std::string scene;
+  std::string algorithm = "zbuffer";
+  std::vector<std::string> knobs;  // NAME=v1,v2,...; NAME "size" sweeps the resolution
+  std::string scale;               // "", "triangles" or "pixels"
+  int repeat = 3;
+  int threads = 0;
+  std::string size;
+  std::string out = "out/sweep";
+};
+int sweep(const SweepOptions& options);
+
+struct DiffOptions {
+  std::string first, second;
+  std::string heatmap;
+  double tolerance = 0;  // per channel, in [0, 1]
+};
+int diff(const DiffOptions& options);
+
+}  // namespace hsr::cli

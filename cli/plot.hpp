@@ -1,0 +1,29 @@
+// Plots through gnuplot (Debian's gnuplot-nox): the script is generated, kept beside
+// the plots so a reader can edit and re-run it, and run once for PNG and SVG.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "renderer/frame.hpp"
+
+namespace hsr::cli {
+
+// `body` is the gnuplot text after the terminal and output lines, ending in a plot
+// command. Adds stem.gp, stem.png and stem.svg in `folder` to `files`.
+void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std::string& stem, const std::string& body);
+
+// A bar on stderr, shown only on a terminal and only once the work has taken a second.
+class Progress {
+ public:
+  explicit Progress(std::size_t total);
+  ~Progress();
+  void update(std::size_t done, const std::string& label);
+
+ private:
+  std::size_t total_;
+  double start_;
+  bool shown_ = false;
+};
+
+}  // namespace hsr::cli

@@ -1,0 +1,50 @@
+// hsr render and hsr list.
+#include <cstdio>
+
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+#include "renderer/error.hpp"
+#include "renderer/frame.hpp"
+
+namespace hsr::cli {
+
+int render(const RenderOptions& options) {
+  const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
+  KnobSettings settings;
+  if (!options.variant.empty()) settings.emplace_back("variant", options.variant);
+  if (!options.depthFormat.empty()) settings.emplace_back("depth-format", options.depthFormat);
+  for (const std::string& knob : options.knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
+  const KnobValues knobs = resolveKnobs(algorithm, settings);
+
+  const LoadedScene scene = loadPrepared(options.scene, options.size);
+  if (const std::string refusal = algorithm.refusal(*scene.scene); !refusal.empty())
+    throw InputError(options.scene + ": " + algorithm.name + " cannot render it: " + refusal);
+  Stats stats;
+  const Frame frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
+
+  OutputFiles outputs;
+  outputs.addColorPng(options.output, frame);
+  if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
+  if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
+  outputs.commit();
+  if (options.stats) std::printf("%s", stats.report().c_str());
+  return 0;
+}
+
+int list() {
+  std::printf("algorithms:\n");
+  for (const auto& algorithm : algorithms()) {
+    std::printf("  %-10s %-9s %s\n", algorithm.name.c_str(), algorithm.kind.c_str(), algorithm.summary.c_str());
+    for (const auto& knob : algorithm.knobs) {
+      std::string choices;
+      for (const auto& choice : knob.choices) choices += (choices.empty() ? "" : " | ") + choice;
+      std::printf("    --knob %s=%s   (default %s)\n      %s\n", knob.name.c_str(), choices.c_str(),
+                  knob.choices.front().c_str(), knob.help.c_str());
+    }
+  }
+  std::printf("scenes (in %s):\n", HSR_SCENES_DIR);
+  for (const auto& scene : shippedScenes()) std::printf("  %s\n", scene.string().c_str());
+  return 0;
+}
+
+}  // namespace hsr::cli

@@ -1,0 +1,178 @@
+#include "cli/results.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace hsr::cli {
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+std::string milliseconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f", seconds * 1e3);
+  return text;
+}
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string jsonString(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", c);
+      quoted += escape;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
+// The measured fields, in column order, shared by the CSV and the JSON.
+std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow& row) {
+  return {
+      {"width", std::to_string(row.width)},
+      {"height", std::to_string(row.height)},
+      {"triangles", std::to_string(row.triangles)},
+      {"threads", std::to_string(row.threads)},
+      {"repeats", std::to_string(row.repeats)},
+      {"time_median_ms", milliseconds(row.time.median)},
+      {"time_min_ms", milliseconds(row.time.min)},
+      {"time_max_ms", milliseconds(row.time.max)},
+      {"pixel_error", number(row.error.pixelError)},
+      {"wrong_pixels", std::to_string(row.error.wrongPixels)},
+      {"compared_pixels", std::to_string(row.error.comparedPixels)},
+      {"ambiguous_pixels", std::to_string(row.error.ambiguousPixels)},
+      {"depth_error_mean", number(row.error.depthErrorMean)},
+      {"depth_error_max", number(row.error.depthErrorMax)},
+      {"peak_memory_bytes", std::to_string(row.peakBytes)},
+  };
+}
+
+// "name=value;name=value" for the CSV, "name value, name value" for the terminal.
+std::string joinedCounters(const ResultRow& row, const char* between, const char* separator) {
+  std::string text;
+  for (const auto& [name, value] : row.counters) {
+    if (!text.empty()) text += separator;
+    text += name;
+    text += between;
+    text += std::to_string(value);
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
+  const auto line = [](const std::vector<std::string>& fields) {
+    std::string text;
+    for (const std::string& field : fields) {
+      if (!text.empty()) text += ',';
+      text += csvField(field);
+    }
+    return text + '\n';
+  };
+  std::vector<std::string> heading = {"scene", "algorithm", "knobs"};
+  heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
+  for (const auto& [name, value] : measuredFields(ResultRow{})) heading.push_back(name);
+  if (!sweptKnobs.empty()) heading.push_back("pareto");
+  heading.push_back("counters");
+  std::string csv = line(heading);
+  for (const ResultRow& row : rows) {
+    std::vector<std::string> fields = {row.scene, row.algorithm, row.knobs};
+    for (const auto& [knob, value] : row.swept) fields.push_back(value);
+    for (const auto& [name, value] : measuredFields(row)) fields.push_back(value);
+    if (!sweptKnobs.empty()) fields.push_back(row.pareto ? "1" : "0");
+    fields.push_back(joinedCounters(row, "=", ";"));
+    csv += line(fields);
+  }
+  return csv;
+}
+
+std::string resultsJson(const std::vector<ResultRow>& rows) {
+  std::string json = "[";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ResultRow& row = rows[i];
+    json += i ? ",\n  {" : "\n  {";
+    json += "\"scene\": " + jsonString(row.scene) + ", \"algorithm\": " + jsonString(row.algorithm) +
+            ", \"knobs\": " + jsonString(row.knobs);
+    if (!row.swept.empty()) {
+      json += ", \"swept\": {";
+      for (std::size_t k = 0; k < row.swept.size(); ++k) {
+        if (k) json += ", ";
+        json += jsonString(row.swept[k].first) + ": " + jsonString(row.swept[k].second);
+      }
+      json += "}, \"pareto\": " + std::string(row.pareto ? "true" : "false");
+    }
+    for (const auto& [name, value] : measuredFields(row)) json += ", \"" + name + "\": " + value;
+    json += ", \"counters\": {";
+    for (std::size_t k = 0; k < row.counters.size(); ++k) {
+      if (k) json += ", ";
+      json += jsonString(row.counters[k].first) + ": " + std::to_string(row.counters[k].second);
+    }
+    json += "}}";
+  }
+  return json + "\n]\n";
+}
+
+std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::string> heading = {"algorithm", "knobs"};
+  heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
+  for (const char* name : {"time ms: median [min-max]", "pixel error", "wrong px", "depth error mean / max", "peak MB", "counters"})
+    heading.push_back(name);
+  cells.push_back(heading);
+  for (const ResultRow& row : rows) {
+    std::vector<std::string> line = {row.algorithm + (row.pareto ? " *" : ""), row.knobs};
+    for (const auto& [knob, value] : row.swept) line.push_back(value);
+    char text[160];
+    std::snprintf(text, sizeof text, "%.2f [%.2f-%.2f]", row.time.median * 1e3, row.time.min * 1e3, row.time.max * 1e3);
+    line.push_back(text);
+    std::snprintf(text, sizeof text, "%.4f%%", row.error.pixelError * 100);
+    line.push_back(text);
+    line.push_back(std::to_string(row.error.wrongPixels));
+    std::snprintf(text, sizeof text, "%.2g / %.2g", row.error.depthErrorMean, row.error.depthErrorMax);
+    line.push_back(text);
+    std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
+    line.push_back(text);
+    line.push_back(joinedCounters(row, " ", ", "));
+    cells.push_back(line);
+  }
+  std::vector<std::size_t> widths(heading.size(), 0);
+  for (const auto& line : cells)
+    for (std::size_t c = 0; c < line.size(); ++c) widths[c] = std::max(widths[c], line[c].size());
+  std::string table;
+  for (const auto& line : cells) {
+    std::string text;
+    for (std::size_t c = 0; c < line.size(); ++c)
+      text += line[c] + (c + 1 < line.size() ? std::string(widths[c] - line[c].size() + 2, ' ') : "");
+    table += "  " + text + "\n";
+  }
+  return table;
+}
+
+void markParetoFront(std::vector<ResultRow>& rows) {
+  for (ResultRow& row : rows) {
+    row.pareto = std::none_of(rows.begin(), rows.end(), [&](const ResultRow& other) {
+      const bool noWorse = other.time.median <= row.time.median && other.error.pixelError <= row.error.pixelError;
+      const bool better = other.time.median < row.time.median || other.error.pixelError < row.error.pixelError;
+      return noWorse && better;
+    });
+  }
+}
+
+}  // namespace hsr::cli

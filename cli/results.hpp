@@ -1,0 +1,41 @@
+// One measured configuration (a row of hsr compare's and hsr sweep's tables) and the
+// CSV and JSON they write. The columns are documented in README.md ("hsr compare").
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli/measure.hpp"
+#include "renderer/metrics.hpp"
+
+namespace hsr::cli {
+
+struct ResultRow {
+  std::string scene;      // scene file as given
+  std::string algorithm;  // registry name
+  std::string knobs;      // settings that differ from the defaults, or "defaults"
+  std::vector<std::pair<std::string, std::string>> swept;  // hsr sweep: the value of each swept knob
+  int width = 0, height = 0;
+  std::int64_t triangles = 0;
+  int repeats = 0, threads = 0;
+  Timing time;
+  std::int64_t peakBytes = 0;
+  SurfaceError error;
+  std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
+  bool pareto = false;  // hsr sweep: on the front of (time, pixel error)
+};
+
+// Columns: scene, algorithm, knobs, then one per swept knob (hsr sweep), then the
+// measurements; the counters as one "name=value;..." field.
+std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
+// An array of objects with the same fields; counters as an object.
+std::string resultsJson(const std::vector<ResultRow>& rows);
+// The terminal table: one line per row.
+std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
+
+// Marks the rows no other row beats in both time (median) and pixel error.
+void markParetoFront(std::vector<ResultRow>& rows);
+
+}  // namespace hsr::cli

@@ -1,0 +1,306 @@
+// hsr sweep: one algorithm over the cross product of knob values (or, with --scale,
+// over growing triangle counts or resolutions), each configuration timed and measured
+// against the exact reference, written as CSV and JSON and plotted.
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+#include "cli/plot.hpp"
+#include "cli/results.hpp"
+#include "renderer/camera.hpp"
+#include "renderer/conventions.hpp"
+#include "renderer/error.hpp"
+#include "renderer/reference.hpp"
+
+namespace hsr::cli {
+namespace {
+
+constexpr const char* kSizeKnob = "size";  // not an algorithm's knob: the image resolution
+
+struct Axis {
+  std::string name;
+  std::vector<std::string> values;
+};
+
+std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const std::vector<std::string>& knobs) {
+  std::vector<Axis> axes;
+  std::set<std::string> seen;
+  for (const std::string& text : knobs) {
+    const auto [name, list] = parseKnobSetting(text, "--knob");
+    if (!seen.insert(name).second) throw InputError("--knob " + text + ": " + name + " is swept twice; give one list");
+    Axis axis{name, splitList(list, "--knob " + name + "=")};
+    for (const std::string& value : axis.values) {
+      if (name == kSizeKnob) parseSize(value, "--knob size=");
+      else resolveKnobs(algorithm, {{name, value}});  // throws for an unknown knob or value
+    }
+    axes.push_back(axis);
+  }
+  return axes;
+}
+
+// Every combination of the axes' values, the first axis varying slowest.
+std::vector<std::vector<std::pair<std::string, std::string>>> crossProduct(const std::vector<Axis>& axes) {
+  std::vector<std::vector<std::pair<std::string, std::string>>> combinations = {{}};
+  for (const Axis& axis : axes) {
+    std::vector<std::vector<std::pair<std::string, std::string>>> grown;
+    for (const auto& partial : combinations)
+      for (const std::string& value : axis.values) {
+        grown.push_back(partial);
+        grown.back().emplace_back(axis.name, value);
+      }
+    combinations = std::move(grown);
+  }
+  return combinations;
+}
+
+std::string dataBlock(const std::string& name, const std::vector<std::string>& lines) {
+  std::string text = "$" + name + " << EOD\n";
+  for (const std::string& line : lines) text += line + "\n";
+  return text + "EOD\n";
+}
+
+std::string quotedLabel(std::string text) {
+  for (char& c : text)
+    if (c == '"' || c == '\'') c = ' ';
+  return "\"" + text + "\"";
+}
+
+// Runs one configuration on the prepared scene at its current size.
+ResultRow measureRow(const std::string& sceneName, const PreparedScene& prepared, const ReferenceImage& truth,
+                     const Configuration& configuration, int repeats, int threads) {
+  const AlgorithmEntry& algorithm = *configuration.algorithm;
+  const auto measured = measure(repeats, [&](Stats& stats) { return algorithm.render(prepared, configuration.knobs, threads, stats); });
+  ResultRow row;
+  row.scene = sceneName;
+  row.algorithm = algorithm.name;
+  row.knobs = describeKnobs(algorithm, configuration.knobs);
+  row.width = prepared.width();
+  row.height = prepared.height();
+  row.triangles = static_cast<std::int64_t>(prepared.triangleCount());
+  row.repeats = repeats;
+  row.threads = threads;
+  row.time = measured.time;
+  row.peakBytes = measured.peakBytes;
+  row.error = surfaceError(measured.result, truth);
+  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
+  return row;
+}
+
+int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
+  LoadedScene scene = loadPrepared(options.scene, options.size);
+  makeFolder(options.out, "--out");
+  const int defaultWidth = scene.prepared->width(), defaultHeight = scene.prepared->height();
+
+  std::vector<std::string> sweptKnobs;
+  for (const Axis& axis : axes) sweptKnobs.push_back(axis.name);
+  const auto combinations = crossProduct(axes);
+  std::map<std::pair<int, int>, ReferenceImage> references;  // one per resolution
+  std::vector<ResultRow> rows;
+  Progress progress(combinations.size());
+  for (const auto& combination : combinations) {
+    KnobSettings settings;
+    std::pair<int, int> size{defaultWidth, defaultHeight};
+    std::string label;
+    for (const auto& [name, value] : combination) {
+      label += (label.empty() ? "" : " ") + name + "=" + value;
+      if (name == kSizeKnob) size = parseSize(value, "--knob size=");
+      else settings.emplace_back(name, value);
+    }
+    progress.update(rows.size(), label);
+    scene.prepared->setSize(size.first, size.second);
+    if (!references.contains(size)) {
+      Stats ignored;
+      references.emplace(size, renderReference(*scene.prepared, options.threads, ignored));
+    }
+    ResultRow row = measureRow(scene.name, *scene.prepared, references.at(size), configurationOf(algorithm, settings),
+                               options.repeat, options.threads);
+    row.swept = combination;
+    rows.push_back(std::move(row));
+  }
+  progress.update(rows.size(), "done");
+  markParetoFront(rows);
+  std::printf("%s on %s (* = on the Pareto front of time and pixel error)\n%s", algorithm.name.c_str(), options.scene.c_str(),
+              resultsTable(rows, sweptKnobs).c_str());
+
+  // Pixel error on a log axis, where a tenfold gain in accuracy reads as one step; an
+  // error of exactly 0 is drawn on the floor below the smallest non-zero one.
+  double smallest = 1;
+  for (const ResultRow& row : rows)
+    if (row.error.pixelError > 0) smallest = std::min(smallest, row.error.pixelError);
+  const double floor = smallest / 10;
+  const auto plotted = [&](const ResultRow& row) { return std::max(row.error.pixelError, floor) * 100; };
+  std::vector<std::string> points, front;
+  std::vector<const ResultRow*> frontRows;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ResultRow& row = rows[i];
+    std::string label;
+    for (const auto& [name, value] : row.swept) label += (label.empty() ? "" : " ") + value;
+    if (row.error.pixelError == 0) label += " (error 0)";
+    char line[256];
+    // Labels alternate above and below their points, so neighbours do not overprint.
+    std::snprintf(line, sizeof line, "%.6g %.6g %s %d", row.time.median * 1e3, plotted(row), quotedLabel(label).c_str(),
+                  i % 2 ? -1 : 1);
+    points.push_back(line);
+    if (row.pareto) frontRows.push_back(&row);
+  }
+  std::sort(frontRows.begin(), frontRows.end(), [](const ResultRow* a, const ResultRow* b) { return a->time.median < b->time.median; });
+  for (const ResultRow* row : frontRows) {
+    char line[128];
+    std::snprintf(line, sizeof line, "%.6g %.6g", row->time.median * 1e3, plotted(*row));
+    front.push_back(line);
+  }
+  const std::string sceneFile = std::filesystem::path(options.scene).filename().string();
+  const std::string body =
+      dataBlock("points", points) + dataBlock("front", front) + "set title " +
+      quotedLabel(algorithm.name + " on " + sceneFile + ": pixel error against time") +
+      "\nset xlabel 'time per frame, median of " + std::to_string(options.repeat) +
+      " runs (ms)'\nset ylabel 'pixel error (% of non-ambiguous pixels, log scale)'\nset logscale y\nset format y '%g'\nset grid\n"
+      "set offsets graph 0.1, graph 0.35, graph 0.3, graph 0.3\nset key top right\n"
+      "plot $front using 1:2 with linespoints lw 2 pt 6 ps 2 lc rgb '#d95f02' title 'Pareto front', \\\n"
+      "     $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'configurations', \\\n"
+      "     $points using 1:($2 * (1 + 0.25 * $4)):3 with labels left offset char 1,0 font ',9' notitle";
+  const std::filesystem::path out = options.out;
+  OutputFiles files;
+  files.addText(out / "sweep.csv", resultsCsv(rows, sweptKnobs));
+  files.addText(out / "sweep.json", resultsJson(rows));
+  addPlot(files, out, "sweep", body);
+  files.commit();
+  std::printf("wrote sweep.csv, sweep.json, sweep.png, sweep.svg and sweep.gp in %s\n", out.string().c_str());
+  return 0;
+}
+
+// Least-squares slope and intercept of log(time) against log(size): time ~ e^b size^a.
+std::pair<double, double> powerFit(const std::vector<double>& sizes, const std::vector<double>& times) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = double(sizes.size());
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const double x = std::log(sizes[i]), y = std::log(times[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return {slope, (sy - slope * sx) / n};
+}
+
+// The scene tiled n x n times across its own footprint in the view plane, each copy
+// shrunk by 1/n about the scene's center: the triangles grow by n^2, the covered
+// pixels stay about the same.
+std::vector<dmat4> tiledCopies(const PreparedScene& scene, int n) {
+  Aabb bounds;
+  for (const dvec3& p : scene.positions()) bounds.grow(p);
+  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const dvec3 extent = bounds.hi - bounds.lo;
+  const double step = std::max({extent.x, extent.y, extent.z}) / n;
+  std::vector<dmat4> copies;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const dvec3 offset = camera.right() * ((i - (n - 1) / 2.0) * step) + camera.up() * ((j - (n - 1) / 2.0) * step);
+      dmat4 copy = glm::translate(dmat4(1.0), bounds.center() + offset);
+      copy = glm::scale(copy, dvec3(1.0 / n));
+      copies.push_back(glm::translate(copy, -bounds.center()));
+    }
+  return copies;
+}
+
+int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
+  if (options.scale != "triangles" && options.scale != "pixels")
+    throw InputError("--scale " + options.scale + ": expected triangles or pixels");
+  KnobSettings settings;
+  for (const Axis& axis : axes) {
+    if (axis.values.size() != 1 || axis.name == kSizeKnob)
+      throw InputError("--knob " + axis.name + ": with --scale, each --knob fixes one algorithm setting (NAME=VALUE)");
+    settings.emplace_back(axis.name, axis.values.front());
+  }
+  const Configuration configuration = configurationOf(algorithm, settings);
+  LoadedScene scene = loadPrepared(options.scene, options.size);
+  makeFolder(options.out, "--out");
+
+  // The sizes: resolutions 256^2 ... 4096^2, or n x n copies with 1k ... 1M triangles.
+  std::vector<int> steps;
+  const auto baseTriangles = static_cast<double>(scene.prepared->triangleCount());
+  if (options.scale == "pixels") {
+    steps = {256, 512, 1024, 2048, 4096};
+  } else {
+    if (baseTriangles == 0 || baseTriangles * 4 > 1.1e6)
+      throw InputError(options.scene + ": has " + std::to_string(std::int64_t(baseTriangles)) +
+                       " triangles; --scale triangles grows a scene of at most 275,000 to about 1,000,000");
+    for (int n = std::max(1, int(std::ceil(std::sqrt(1000 / baseTriangles)))); baseTriangles * n * n <= 1.1e6; n *= 2)
+      steps.push_back(n);
+  }
+
+  std::vector<ResultRow> rows;
+  std::vector<double> sizes, times;
+  Progress progress(steps.size());
+  for (const int step : steps) {
+    std::unique_ptr<PreparedScene> grown;
+    const PreparedScene* prepared = scene.prepared.get();
+    std::string value;
+    if (options.scale == "pixels") {
+      scene.prepared->setSize(step, step);
+      value = std::to_string(step) + "x" + std::to_string(step);
+    } else {
+      grown = std::make_unique<PreparedScene>(*scene.scene, tiledCopies(*scene.prepared, step));
+      grown->setSize(scene.prepared->width(), scene.prepared->height());
+      prepared = grown.get();
+      value = std::to_string(prepared->triangleCount());
+    }
+    progress.update(rows.size(), options.scale + " " + value);
+    Stats ignored;
+    const ReferenceImage truth = renderReference(*prepared, options.threads, ignored);
+    ResultRow row = measureRow(scene.name, *prepared, truth, configuration, options.repeat, options.threads);
+    row.swept = {{options.scale, value}};
+    sizes.push_back(options.scale == "pixels" ? double(step) * step : double(prepared->triangleCount()));
+    times.push_back(row.time.median);
+    rows.push_back(std::move(row));
+  }
+  progress.update(rows.size(), "done");
+  const auto [exponent, intercept] = powerFit(sizes, times);
+  std::printf("%s on %s, growing %s\n%s  fit: time ~ %s^%.3f\n", algorithm.name.c_str(), options.scene.c_str(),
+              options.scale.c_str(), resultsTable(rows, {options.scale}).c_str(), options.scale.c_str(), exponent);
+
+  std::vector<std::string> points;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    char line[128];
+    std::snprintf(line, sizeof line, "%.6g %.6g", sizes[i], times[i] * 1e3);
+    points.push_back(line);
+  }
+  char fit[256];
+  std::snprintf(fit, sizeof fit, "fit(x) = exp(%.9g) * x**%.9g * 1000\n", intercept, exponent);
+  char key[96];
+  std::snprintf(key, sizeof key, "fit: time ~ %s^%.2f", options.scale.c_str(), exponent);
+  const std::string sceneFile = std::filesystem::path(options.scene).filename().string();
+  const std::string body = dataBlock("points", points) + fit + "set title " +
+                           quotedLabel(algorithm.name + " on " + sceneFile + ": time against " + options.scale) +
+                           "\nset logscale xy\nset xlabel '" + options.scale + "'\nset ylabel 'time per frame, median (ms)'\n"
+                           "set grid\nset key top left\n"
+                           "plot $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'measured', \\\n"
+                           "     fit(x) with lines lw 2 lc rgb '#d95f02' title " + quotedLabel(key);
+  const std::filesystem::path out = options.out;
+  const std::string stem = "scale_" + options.scale;
+  OutputFiles files;
+  files.addText(out / (stem + ".csv"), resultsCsv(rows, {options.scale}));
+  files.addText(out / (stem + ".json"), resultsJson(rows));
+  addPlot(files, out, stem, body);
+  files.commit();
+  std::printf("wrote %s.csv, .json, .png, .svg and .gp in %s\n", stem.c_str(), out.string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int sweep(const SweepOptions& options) {
+  const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
+  if (algorithm.kind != "surface")
+    throw InputError("--algo " + options.algorithm + ": only surface algorithms are swept against the reference");
+  if (options.repeat < 1) throw InputError("--repeat " + std::to_string(options.repeat) + ": expected at least 1");
+  const std::vector<Axis> axes = parseAxes(algorithm, options.knobs);
+  if (!options.scale.empty()) return scaleSweep(options, algorithm, axes);
+  if (axes.empty()) throw InputError("hsr sweep: give at least one --knob NAME=v1,v2,... (or --scale triangles|pixels)");
+  return knobSweep(options, algorithm, axes);
+}
+
+}  // namespace hsr::cli
