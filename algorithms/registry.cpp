@@ -59,16 +59,16 @@ const std::vector<AlgorithmEntry>& algorithms() {
   return all;
 }
 
-const AlgorithmEntry& findAlgorithm(const std::string& name) {
+const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& where) {
   std::vector<std::string> names;
   for (const auto& entry : algorithms()) {
     if (entry.name == name) return entry;
     names.push_back(entry.name);
   }
-  throw InputError("--algo " + name + ": unknown algorithm; expected one of " + joined(names));
+  throw InputError(where + " " + name + ": unknown algorithm; expected one of " + joined(names));
 }
 
-KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings) {
+KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where) {
   KnobValues values;
   for (const auto& knob : algorithm.knobs) values[knob.name] = knob.choices.front();
   for (const auto& [name, value] : settings) {
@@ -76,11 +76,11 @@ KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& set
     if (knob == algorithm.knobs.end()) {
       std::vector<std::string> names;
       for (const auto& k : algorithm.knobs) names.push_back(k.name);
-      throw InputError("--knob " + name + "=" + value + ": " + algorithm.name + " has no knob '" + name +
+      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " has no knob '" + name +
                        "'; expected one of " + joined(names));
     }
     if (choiceIndex(*knob, value) == knob->choices.size())
-      throw InputError("--knob " + name + "=" + value + ": " + algorithm.name + " " + name + " must be one of " +
+      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " must be one of " +
                        joined(knob->choices));
     values[name] = value;
   }

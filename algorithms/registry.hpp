@@ -43,12 +43,13 @@ struct AlgorithmEntry {
 
 const std::vector<AlgorithmEntry>& algorithms();
 
-// Throws InputError naming the unknown algorithm and listing the known ones.
-const AlgorithmEntry& findAlgorithm(const std::string& name);
+// Throws InputError naming the unknown algorithm (after `where`, the option that gave
+// it) and listing the known ones.
+const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& where = "--algo");
 
 // Fills in defaults and checks every setting; throws InputError for an unknown knob or
 // a value outside its choices, naming the algorithm, the knob and what is allowed.
-KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings);
+KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where = "--knob");
 
 // "NAME=VALUE" split at the first '='; throws InputError naming `where` otherwise.
 std::pair<std::string, std::string> parseKnobSetting(const std::string& text, const std::string& where);

@@ -40,7 +40,8 @@ Configuration parseConfiguration(const std::string& text, const std::string& whe
   parts.push_back(text.substr(start));
   KnobSettings settings;
   for (std::size_t i = 1; i < parts.size(); ++i) settings.push_back(parseKnobSetting(parts[i], where + " " + text + ":"));
-  return configurationOf(findAlgorithm(parts[0]), settings);
+  const AlgorithmEntry& algorithm = findAlgorithm(parts[0], where);
+  return {&algorithm, resolveKnobs(algorithm, settings, where + " " + parts[0] + ":")};
 }
 
 LoadedScene loadPrepared(const std::string& path, const std::string& size) {
@@ -53,6 +54,11 @@ LoadedScene loadPrepared(const std::string& path, const std::string& size) {
     loaded.prepared->setSize(width, height);
   }
   return loaded;
+}
+
+void checkRenders(const AlgorithmEntry& algorithm, const LoadedScene& scene) {
+  if (const std::string refusal = algorithm.refusal(*scene.scene); !refusal.empty())
+    throw InputError(scene.name + ": " + algorithm.name + " cannot render it: " + refusal);
 }
 
 void makeFolder(const std::filesystem::path& folder, const std::string& where) {

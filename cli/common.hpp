@@ -38,6 +38,9 @@ struct LoadedScene {
 };
 LoadedScene loadPrepared(const std::string& path, const std::string& size);
 
+// Throws InputError when the algorithm refuses the scene (AlgorithmEntry::refusal).
+void checkRenders(const AlgorithmEntry& algorithm, const LoadedScene& scene);
+
 // Creates the folder (and parents) or throws InputError naming it.
 void makeFolder(const std::filesystem::path& folder, const std::string& where);
 

@@ -29,12 +29,7 @@ int diff(const DiffOptions& options) {
   };
   const auto tolerance = static_cast<float>(options.tolerance);
   const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(wrap(first), wrap(second), tolerance, tolerance);
-  const double pixels = double(first.width) * first.height;
-  std::printf("mean error %.6g, rms %.6g, PSNR %.2f dB, max error %.6g at (%d, %d) channel %d\n", result.meanerror,
-              result.rms_error, result.PSNR, result.maxerror, result.maxx, result.maxy, result.maxc);
-  std::printf("pixels over tolerance %.6g: %llu (%.4f%%)\n", options.tolerance, static_cast<unsigned long long>(result.nfail),
-              100.0 * double(result.nfail) / pixels);
-
+  OutputFiles files;  // written only once everything has succeeded
   if (!options.heatmap.empty()) {
     // The first image dimmed to grey; each differing pixel in red, brighter the larger its
     // largest channel difference, and full red beyond the tolerance.
@@ -58,10 +53,15 @@ int diff(const DiffOptions& options) {
         out[1] = out[2] = beyond ? 0 : 60;
       }
     }
-    OutputFiles files;
     files.addRgbaPng(options.heatmap, first.width, first.height, heat);
-    files.commit();
   }
+  const double pixels = double(first.width) * first.height;
+  std::printf("mean error %.6g, rms %.6g, PSNR %.2f dB, max error %.6g at (%d, %d) channel %d\n", result.meanerror,
+              result.rms_error, result.PSNR, result.maxerror, result.maxx, result.maxy, result.maxc);
+  std::printf("pixels over tolerance %.6g: %llu (%.4f%%)\n", options.tolerance, static_cast<unsigned long long>(result.nfail),
+              100.0 * double(result.nfail) / pixels);
+
+  files.commit();
   return result.nfail == 0 ? 0 : 1;
 }
 

@@ -3,7 +3,6 @@
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
-#include "renderer/error.hpp"
 #include "renderer/frame.hpp"
 
 namespace hsr::cli {
@@ -17,8 +16,7 @@ int render(const RenderOptions& options) {
   const KnobValues knobs = resolveKnobs(algorithm, settings);
 
   const LoadedScene scene = loadPrepared(options.scene, options.size);
-  if (const std::string refusal = algorithm.refusal(*scene.scene); !refusal.empty())
-    throw InputError(options.scene + ": " + algorithm.name + " cannot render it: " + refusal);
+  checkRenders(algorithm, scene);
   Stats stats;
   const Frame frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
 

@@ -35,7 +35,7 @@ std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const std::vector<s
     if (!seen.insert(name).second) throw InputError("--knob " + text + ": " + name + " is swept twice; give one list");
     Axis axis{name, splitList(list, "--knob " + name + "=")};
     for (const std::string& value : axis.values) {
-      if (name == kSizeKnob) parseSize(value, "--knob size=");
+      if (name == kSizeKnob) parseSize(value, "--knob size:");
       else resolveKnobs(algorithm, {{name, value}});  // throws for an unknown knob or value
     }
     axes.push_back(axis);
@@ -93,6 +93,7 @@ ResultRow measureRow(const std::string& sceneName, const PreparedScene& prepared
 
 int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
   LoadedScene scene = loadPrepared(options.scene, options.size);
+  checkRenders(algorithm, scene);
   makeFolder(options.out, "--out");
   const int defaultWidth = scene.prepared->width(), defaultHeight = scene.prepared->height();
 
@@ -108,7 +109,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     std::string label;
     for (const auto& [name, value] : combination) {
       label += (label.empty() ? "" : " ") + name + "=" + value;
-      if (name == kSizeKnob) size = parseSize(value, "--knob size=");
+      if (name == kSizeKnob) size = parseSize(value, "--knob size:");
       else settings.emplace_back(name, value);
     }
     progress.update(rows.size(), label);
@@ -217,7 +218,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
   }
   const Configuration configuration = configurationOf(algorithm, settings);
   LoadedScene scene = loadPrepared(options.scene, options.size);
-  makeFolder(options.out, "--out");
+  checkRenders(algorithm, scene);
 
   // The sizes: resolutions 256^2 ... 4096^2, or n x n copies with 1k ... 1M triangles.
   std::vector<int> steps;
@@ -231,6 +232,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     for (int n = std::max(1, int(std::ceil(std::sqrt(1000 / baseTriangles)))); baseTriangles * n * n <= 1.1e6; n *= 2)
       steps.push_back(n);
   }
+  makeFolder(options.out, "--out");
 
   std::vector<ResultRow> rows;
   std::vector<double> sizes, times;

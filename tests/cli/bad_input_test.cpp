@@ -12,8 +12,9 @@ namespace {
 
 struct Case {
   std::string name;
-  std::string arguments;  // after "hsr render"; OUT stands for the output path
+  std::string arguments;  // after "hsr COMMAND"; OUT stands for the output path (or folder)
   std::string message;    // must appear in the error line
+  std::string command = "render";
 };
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
@@ -39,7 +40,7 @@ TEST_P(BadInput, OneLineExitTwoNoFile) {
   std::filesystem::remove(output);
   std::string arguments = c.arguments;
   if (const auto at = arguments.find("OUT"); at != std::string::npos) arguments.replace(at, 3, output.string());
-  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " render " + arguments);
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " " + c.command + " " + arguments);
   EXPECT_EQ(result.exitCode, 2) << result.output;
   EXPECT_EQ(result.output.rfind("hsr: error: ", 0), 0u) << result.output;
   EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
@@ -52,6 +53,7 @@ TEST_P(BadInput, OneLineExitTwoNoFile) {
 }
 
 const std::string kCube = std::string(HSR_SOURCE_DIR) + "/scenes/cube.toml";
+const std::string kGoldenCube = std::string(HSR_SOURCE_DIR) + "/images/golden/zbuffer/cube.png";
 const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
 INSTANTIATE_TEST_SUITE_P(
@@ -81,7 +83,36 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"output-folder-missing", kCube + " -o /no/such/folder/out.png", "the folder /no/such/folder does not exist"},
         Case{"output-not-png", kCube + " -o " + test::outputPath("bad-output-not-png.jpg").string(), "expected a file name ending in .png"},
         Case{"depth-not-exr", kCube + " -o OUT --depth " + test::outputPath("depth.png").string(), "expected a file name ending in .exr"},
-        Case{"threads-negative", kCube + " --threads -3 -o OUT", "--threads"}),
+        Case{"threads-negative", kCube + " --threads -3 -o OUT", "--threads"},
+        // hsr compare: everything is checked before the first render, so no folder appears.
+        Case{"compare-unknown-algorithm", kCube + " --algos zbufer --out OUT", "--algos zbufer: unknown algorithm", "compare"},
+        Case{"compare-bad-knob", kCube + " --algos zbuffer:depth-format=float16 --out OUT",
+             "--algos zbuffer: depth-format=float16: zbuffer depth-format must be one of", "compare"},
+        Case{"compare-knob-without-value", kCube + " --algos zbuffer:variant --out OUT", "variant: expected NAME=VALUE", "compare"},
+        Case{"compare-reference-named", kCube + " --algos reference --out OUT", "the reference is always run", "compare"},
+        Case{"compare-empty-list-item", kCube + " --algos zbuffer,,zbuffer --out OUT", "empty item", "compare"},
+        Case{"compare-repeat-zero", kCube + " --repeat 0 --out OUT", "--repeat 0: expected at least 1", "compare"},
+        Case{"compare-missing-scene", "/no/such/scene.toml --out OUT", "/no/such/scene.toml: cannot open the scene file", "compare"},
+        Case{"compare-out-under-a-file", kCube + " --out " + kCube + "/folder", "cannot create the folder", "compare"},
+        // hsr sweep
+        Case{"sweep-no-knob", kCube + " --out OUT", "give at least one --knob", "sweep"},
+        Case{"sweep-unknown-knob", kCube + " --knob precision=1,2 --out OUT", "zbuffer has no knob 'precision'", "sweep"},
+        Case{"sweep-bad-value", kCube + " --knob depth-format=float32,float16 --out OUT", "depth-format must be one of", "sweep"},
+        Case{"sweep-bad-size", kCube + " --knob size=64x48,big --out OUT", "--knob size: big: expected WIDTHxHEIGHT", "sweep"},
+        Case{"sweep-knob-twice", kCube + " --knob variant=full --knob variant=scanline --out OUT", "variant is swept twice", "sweep"},
+        Case{"sweep-knob-without-values", kCube + " --knob variant --out OUT", "--knob variant: expected NAME=VALUE", "sweep"},
+        Case{"sweep-bad-scale", kCube + " --scale triangle --out OUT", "--scale triangle: expected triangles or pixels", "sweep"},
+        Case{"sweep-scale-with-a-list", kCube + " --scale pixels --knob variant=full,scanline --out OUT", "each --knob fixes one", "sweep"},
+        Case{"sweep-reference", kCube + " --algo reference --knob size=8x8 --out OUT", "only surface algorithms are swept", "sweep"},
+        Case{"sweep-scale-too-many-triangles", std::string(HSR_SOURCE_DIR) + "/scenes/dragons.toml --scale triangles --out OUT",
+             "--scale triangles grows a scene of at most 275,000", "sweep"},
+        // hsr diff
+        Case{"diff-missing-image", "/no/such/a.png " + kGoldenCube, "/no/such/a.png: cannot read the image", "diff"},
+        Case{"diff-size-mismatch", kGoldenCube + " " + std::string(HSR_SOURCE_DIR) + "/images/golden/zbuffer/dragons.png",
+             "expected 320x240", "diff"},
+        Case{"diff-tolerance-out-of-range", kGoldenCube + " " + kGoldenCube + " --tolerance 2", "--tolerance 2", "diff"},
+        Case{"diff-heatmap-not-png", kGoldenCube + " " + kGoldenCube + " --heatmap " + test::outputPath("bad-heat.jpg").string(),
+             "expected a file name ending in .png", "diff"}),
     [](const testing::TestParamInfo<Case>& param) {
       std::string name = param.param.name;
       std::replace(name.begin(), name.end(), '-', '_');

@@ -1,0 +1,208 @@
+// hsr compare, sweep and diff on good input: the files they write are well formed, have
+// the columns README.md documents, and say what the measurements say.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "json_reader.hpp"
+#include "renderer/frame.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+using Row = std::map<std::string, std::string>;
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// RFC 4180 fields: commas inside double quotes, "" for a quote.
+std::vector<std::string> csvFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') fields.back() += '"', ++i;
+    else if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) fields.emplace_back();
+    else fields.back() += c;
+  }
+  return fields;
+}
+
+// Every row as column -> field; fails the test if a row's field count differs from the header's.
+std::vector<Row> readCsv(const std::filesystem::path& path, std::vector<std::string>& header) {
+  std::istringstream lines(readText(path));
+  std::string line;
+  std::getline(lines, line);
+  header = csvFields(line);
+  std::vector<Row> rows;
+  while (std::getline(lines, line)) {
+    const std::vector<std::string> fields = csvFields(line);
+    EXPECT_EQ(fields.size(), header.size()) << line;
+    Row row;
+    for (std::size_t i = 0; i < std::min(fields.size(), header.size()); ++i) row[header[i]] = fields[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const Row& row, const std::string& column) {
+  std::size_t used = 0;
+  const double value = std::stod(row.at(column), &used);
+  EXPECT_EQ(used, row.at(column).size()) << column << " = " << row.at(column);
+  return value;
+}
+
+// The measured columns, in order, as README.md ("hsr compare") documents them.
+const std::vector<std::string> kMeasuredColumns = {
+    "width", "height", "triangles", "threads", "repeats", "time_median_ms", "time_min_ms", "time_max_ms",
+    "pixel_error", "wrong_pixels", "compared_pixels", "ambiguous_pixels", "depth_error_mean", "depth_error_max",
+    "peak_memory_bytes"};
+
+void expectConsistentMeasurements(const Row& row) {
+  EXPECT_LE(number(row, "time_min_ms"), number(row, "time_median_ms"));
+  EXPECT_LE(number(row, "time_median_ms"), number(row, "time_max_ms"));
+  EXPECT_GT(number(row, "time_min_ms"), 0);
+  const double wrong = number(row, "wrong_pixels"), compared = number(row, "compared_pixels");
+  EXPECT_NEAR(number(row, "pixel_error"), wrong / compared, 1e-9);
+  EXPECT_EQ(compared + number(row, "ambiguous_pixels"), number(row, "width") * number(row, "height"));
+  EXPECT_LE(number(row, "depth_error_mean"), number(row, "depth_error_max"));
+  EXPECT_GT(number(row, "peak_memory_bytes"), 0);
+}
+
+std::filesystem::path freshFolder(const std::string& name) {
+  const auto folder = test::outputPath(name);
+  std::filesystem::remove_all(folder);
+  return folder;
+}
+
+const std::string kScenes = std::string(HSR_SOURCE_DIR) + "/scenes/";
+
+TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
+  const auto folder = freshFolder("compare");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " compare " + kScenes + "cube.toml " +
+                                                      kScenes + "hard/coplanar.toml --size 96x72 --repeat 2 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("reference: 0 ambiguous pixels"), std::string::npos) << result.output;
+
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "results.csv", header);
+  std::vector<std::string> expected = {"scene", "algorithm", "knobs"};
+  expected.insert(expected.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
+  expected.push_back("counters");
+  EXPECT_EQ(header, expected);
+  ASSERT_EQ(rows.size(), 4u);  // per scene: the reference, then zbuffer at its defaults
+  for (const Row& row : rows) {
+    expectConsistentMeasurements(row);
+    EXPECT_EQ(row.at("repeats"), "2");
+  }
+  EXPECT_EQ(rows[0].at("algorithm"), "reference");
+  EXPECT_EQ(number(rows[0], "pixel_error"), 0);
+  EXPECT_EQ(rows[1].at("algorithm"), "zbuffer");
+  EXPECT_EQ(rows[1].at("knobs"), "defaults");
+  EXPECT_NE(rows[1].at("counters").find("fragments tested="), std::string::npos);
+  EXPECT_GT(number(rows[3], "ambiguous_pixels"), 0);  // the coplanar tie
+
+  const test::JsonValue json = test::parseJson(readText(folder / "results.json"));
+  ASSERT_EQ(json.array().size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const test::JsonValue& object = json.array()[i];
+    EXPECT_EQ(object["algorithm"].string(), rows[i].at("algorithm"));
+    for (const std::string& column : kMeasuredColumns) EXPECT_DOUBLE_EQ(object[column].number(), number(rows[i], column)) << column;
+  }
+  EXPECT_GT(json.array()[1]["counters"]["fragments tested"].number(), 0);
+
+  const Image sheet = readImage(folder / "contact_sheet.png");
+  EXPECT_EQ(sheet.width, 10 + 2 * (256 + 10));  // two columns: the reference and zbuffer
+  EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
+}
+
+TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
+  const auto folder = freshFolder("sweep");
+  const test::CommandResult result =
+      test::runCommand(std::string(HSR_BINARY) + " sweep " + kScenes + "hard/coplanar.toml --algo zbuffer " +
+                       "--knob depth-format=unorm16,unorm24,float32,reversed-float32 --repeat 1 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "sweep.csv", header);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(header[3], "depth-format");
+  EXPECT_EQ(header[header.size() - 2], "pareto");
+  std::map<std::string, double> error;
+  int onFront = 0;
+  for (const Row& row : rows) {
+    expectConsistentMeasurements(row);
+    error[row.at("depth-format")] = number(row, "pixel_error");
+    onFront += row.at("pareto") == "1";
+  }
+  EXPECT_GT(error["unorm16"], 10 * error["unorm24"]);
+  EXPECT_GT(error["float32"], error["reversed-float32"]);
+  EXPECT_GE(onFront, 1);
+  EXPECT_EQ(test::parseJson(readText(folder / "sweep.json")).array().size(), 4u);
+  EXPECT_GT(readImage(folder / "sweep.png").width, 0);
+  EXPECT_NE(readText(folder / "sweep.svg").find("<svg"), std::string::npos);
+  EXPECT_NE(readText(folder / "sweep.gp").find("plot $front"), std::string::npos);
+}
+
+TEST(Sweep, ResolutionIsAKnobOfEveryAlgorithm) {
+  const auto folder = freshFolder("sweep-size");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " sweep " + kScenes +
+                                                      "cube.toml --knob size=64x48,128x96 --knob variant=full,scanline "
+                                                      "--repeat 1 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "sweep.csv", header);
+  ASSERT_EQ(rows.size(), 4u);  // the cross product, the first knob varying slowest
+  EXPECT_EQ(rows[0].at("size"), "64x48");
+  EXPECT_EQ(rows[1].at("variant"), "scanline");
+  EXPECT_EQ(rows[2].at("width"), "128");
+}
+
+TEST(Sweep, TriangleScalingFitsAnExponent) {
+  const auto folder = freshFolder("scale");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " sweep " + kScenes +
+                                                      "cube.toml --scale triangles --size 64x48 --repeat 1 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "scale_triangles.csv", header);
+  ASSERT_GE(rows.size(), 4u);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    EXPECT_EQ(number(rows[i], "triangles"), 4 * number(rows[i - 1], "triangles"));  // n x n copies, n doubling
+  EXPECT_GE(number(rows.front(), "triangles"), 1000);
+  EXPECT_LE(number(rows.back(), "triangles"), 1.1e6);
+  std::smatch fit;
+  ASSERT_TRUE(std::regex_search(result.output, fit, std::regex(R"(fit: time ~ triangles\^([0-9.]+))"))) << result.output;
+  EXPECT_GT(std::stod(fit[1]), 0.2);  // more triangles cost more time
+  EXPECT_LT(std::stod(fit[1]), 1.5);
+  EXPECT_TRUE(std::filesystem::exists(folder / "scale_triangles.png"));
+}
+
+TEST(Diff, ExitsZeroWithinToleranceAndOneBeyond) {
+  const std::string golden = std::string(HSR_SOURCE_DIR) + "/images/golden/zbuffer/";
+  const auto heatmap = test::outputPath("diff-heat.png");
+  std::filesystem::remove(heatmap);
+  const std::string cube = golden + "cube.png";
+  EXPECT_EQ(test::runCommand(std::string(HSR_BINARY) + " diff " + cube + " " + cube).exitCode, 0);
+
+  // The same scene rendered with another depth format differs only where depth decides.
+  const auto other = test::outputPath("diff-cube-unorm16.png");
+  ASSERT_EQ(test::runCommand(std::string(HSR_BINARY) + " render " + kScenes + "hard/coplanar.toml --depth-format unorm16 -o " +
+                             other.string()).exitCode, 0);
+  const test::CommandResult beyond =
+      test::runCommand(std::string(HSR_BINARY) + " diff " + golden + "hard/coplanar.png " + other.string() + " --heatmap " + heatmap.string());
+  EXPECT_EQ(beyond.exitCode, 1) << beyond.output;
+  EXPECT_NE(beyond.output.find("pixels over tolerance 0: "), std::string::npos) << beyond.output;
+  EXPECT_EQ(readImage(heatmap).width, 320);
+  EXPECT_EQ(test::runCommand(std::string(HSR_BINARY) + " diff " + golden + "hard/coplanar.png " + other.string() +
+                             " --tolerance 1").exitCode, 0);
+}
+
+}  // namespace
+}  // namespace hsr
