@@ -1,7 +1,9 @@
 // The z-buffer's speed: dragons and counters at 1280x720, per depth format, full-frame
 // vs one-scanline, 1 vs 2 threads. Measures the visibility pass (geometry stage and
 // depth-tested rasterization: what Mesa's peer run does too); "shaded" adds the
-// deferred Lambert shading of the whole render.
+// deferred Lambert shading of the whole render. "reference" traces the exact reference
+// (renderer/reference) over the same scenes, BVH already built, so the cost of ground
+// truth comes out as a ratio to the z-buffer from one run; "bvh_build" times the BVH.
 //
 // Protocol: one warm-up render, then Google Benchmark's repetitions; it reports
 // mean, median, min, max. Run: build/bench/zbuffer_bench --benchmark_repetitions=5
@@ -12,6 +14,7 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/memory.hpp"
+#include "renderer/reference.hpp"
 #include "renderer/shading.hpp"
 
 namespace {
@@ -75,6 +78,30 @@ void shaded(benchmark::State& state) {
   state.counters["triangles/s"] = benchmark::Counter(double(scene.triangleCount()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+void reference(benchmark::State& state) {
+  const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
+  const int threads = static_cast<int>(state.range(1));
+  hsr::Stats warmUp;
+  hsr::traceReference(scene, threads, warmUp);  // also builds the BVH, once
+  for (auto _ : state) {
+    hsr::Stats stats;
+    benchmark::DoNotOptimize(hsr::traceReference(scene, threads, stats).frame.ids.data());
+  }
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " exact reference threads=" + std::to_string(threads));
+  state.counters["exact fall-backs"] = double(warmUp.counter("reference exact fall-backs"));
+  state.counters["rays/s"] = benchmark::Counter(double(scene.width()) * scene.height(), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void bvhBuild(benchmark::State& state) {
+  const hsr::Scene& scene = sceneNamed(kScenes[state.range(0)]).scene;
+  for (auto _ : state) {
+    const hsr::PreparedScene prepared(scene);
+    hsr::Stats stats;
+    benchmark::DoNotOptimize(prepared.triangleBvh(stats).nodes().data());
+  }
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " flatten + SAH build");
+}
+
 void visibilityArguments(benchmark::internal::Benchmark* benchmark) {
   for (int scene = 0; scene < 2; ++scene)
     for (int variant = 0; variant < 2; ++variant)
@@ -89,6 +116,9 @@ double maximum(const std::vector<double>& v) { return *std::max_element(v.begin(
 
 BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+BENCHMARK(reference)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+BENCHMARK(bvhBuild)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 

@@ -302,10 +302,10 @@ ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& r
   return result;
 }
 
-ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats) {
+ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats) {
   const SurfaceReference reference(scene, stats);
   const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
-  std::optional<PhaseTimer> timer(std::in_place, stats, "reference");
+  PhaseTimer timer(stats, "reference");
   ReferenceImage image;
   image.frame = Frame(scene.width(), scene.height());
   image.ambiguous.assign(image.frame.pixelCount(), 0);
@@ -315,16 +315,23 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
   std::vector<SurfaceReference::Counters> counters(rows);
   std::vector<std::int64_t> exactRays(rows, 0), ambiguousPixels(rows, 0);
   parallelFor(rows, threads, [&](std::size_t row, int) {
+    // Counted on this thread's stack and stored once: neighbouring rows' counters share
+    // cache lines, and other threads work on them.
+    SurfaceReference::Counters rowCounters;
+    std::int64_t rowExact = 0, rowAmbiguous = 0;
     for (int x = 0; x < scene.width(); ++x) {
       const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
-      const ReferenceHit hit = reference.trace(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5), counters[row]);
+      const ReferenceHit hit = reference.trace(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5), rowCounters);
       image.frame.ids[pixel] = hit.id;
       image.frame.depth[pixel] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
                                                                        : static_cast<float>(hit.distance);
       image.ambiguous[pixel] = hit.ambiguous;
-      exactRays[row] += hit.usedExact;
-      ambiguousPixels[row] += hit.ambiguous;
+      rowExact += hit.usedExact;
+      rowAmbiguous += hit.ambiguous;
     }
+    counters[row] = rowCounters;
+    exactRays[row] = rowExact;
+    ambiguousPixels[row] = rowAmbiguous;
   });
   SurfaceReference::Counters total;
   for (std::size_t row = 0; row < rows; ++row) {
@@ -342,8 +349,12 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
   stats.add("ray-triangle tests", total.triangleTests);
   stats.add("exact ray-triangle tests", total.exactTriangleTests);
   stats.add("exact depth comparisons", total.exactComparisons);
-  timer.reset();
-  shadeFrame(scene, camera, image.frame, threads, stats);
+  return image;
+}
+
+ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats) {
+  ReferenceImage image = traceReference(scene, threads, stats);
+  shadeFrame(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), image.frame, threads, stats);
   return image;
 }
 

@@ -63,9 +63,12 @@ struct ReferenceImage {
   std::int64_t exactFallbacks = 0;       // pixels whose ray needed exact arithmetic
 };
 
+// The visibility pass alone: ids, depth and ambiguity; the color is left black.
 // Stats: "reference rays", "reference exact fall-backs", "reference ambiguous pixels",
 // "bvh nodes visited", "ray-triangle tests", "exact ray-triangle tests", "exact depth
 // comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
+ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats);
+// traceReference, then the shading every algorithm's frame gets (renderer/shading).
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);
 
 }  // namespace hsr
