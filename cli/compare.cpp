@@ -27,31 +27,6 @@ std::string formatCount(std::int64_t value) {
   return text;
 }
 
-ResultRow rowOf(const LoadedScene& scene, const std::string& algorithm, const std::string& knobs, int repeats,
-                int threads) {
-  ResultRow row;
-  row.scene = scene.name;
-  row.algorithm = algorithm;
-  row.knobs = knobs;
-  row.width = scene.prepared->width();
-  row.height = scene.prepared->height();
-  row.triangles = static_cast<std::int64_t>(scene.prepared->triangleCount());
-  row.repeats = repeats;
-  row.threads = threads;
-  return row;
-}
-
-template <typename Result>
-void fillMeasurement(ResultRow& row, const Measured<Result>& measured, const AlgorithmEntry& algorithm) {
-  row.time = measured.time;
-  row.peakBytes = measured.peakBytes;
-  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
-}
-
-SheetImage sheetImage(int width, int height, std::vector<std::uint8_t> rgba, std::vector<std::string> caption) {
-  return {width, height, std::move(rgba), std::move(caption)};
-}
-
 }  // namespace
 
 int compare(const CompareOptions& options) {
@@ -97,35 +72,29 @@ int compare(const CompareOptions& options) {
                 formatCount(truth.ambiguousPixels).c_str(), formatCount(truth.exactFallbacks).c_str());
 
     std::vector<ResultRow> sceneRows;
-    ResultRow referenceRow = rowOf(scene, "reference", "exact", options.repeat, options.threads);
-    fillMeasurement(referenceRow, reference, referenceEntry);
+    ResultRow referenceRow = measuredRow(scene.name, prepared, referenceEntry, "exact", reference, options.threads);
     referenceRow.error = surfaceError(truth.frame, truth);
     sceneRows.push_back(referenceRow);
     char line[128];
     std::snprintf(line, sizeof line, "%.1f ms", referenceRow.time.median * 1e3);
-    section.images.push_back(sheetImage(prepared.width(), prepared.height(), truth.frame.color, {"reference (exact)", line}));
-    section.heatMaps.push_back(sheetImage(prepared.width(), prepared.height(), errorHeatMap(truth.frame, truth),
-                                          {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}));
+    section.images.push_back({prepared.width(), prepared.height(), truth.frame.color, {"reference (exact)", line}});
+    section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(truth.frame, truth),
+                                {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
 
     for (const Configuration& configuration : configurations) {
       const AlgorithmEntry& algorithm = *configuration.algorithm;
-      const std::string knobs = describeKnobs(algorithm, configuration.knobs);
       if (const std::string refusal = algorithm.refusal(*scene.scene); !refusal.empty()) {
-        std::printf("  %s %s: skipped, %s\n", algorithm.name.c_str(), knobs.c_str(), refusal.c_str());
+        std::printf("  %s %s: skipped, %s\n", algorithm.name.c_str(), describeKnobs(algorithm, configuration.knobs).c_str(),
+                    refusal.c_str());
         continue;
       }
-      const auto measured = measure(options.repeat, [&](Stats& stats) {
-        return algorithm.render(prepared, configuration.knobs, options.threads, stats);
-      });
-      ResultRow row = rowOf(scene, algorithm.name, knobs, options.repeat, options.threads);
-      fillMeasurement(row, measured, algorithm);
-      row.error = surfaceError(measured.result, truth);
+      const auto [row, frame] = measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
       sceneRows.push_back(row);
       std::snprintf(line, sizeof line, "%.1f ms, error %.4f%%", row.time.median * 1e3, row.error.pixelError * 100);
-      section.images.push_back(sheetImage(prepared.width(), prepared.height(), measured.result.color,
-                                          {algorithm.name + (knobs == "defaults" ? "" : " " + knobs), line}));
-      section.heatMaps.push_back(sheetImage(prepared.width(), prepared.height(), errorHeatMap(measured.result, truth),
-                                            {formatCount(row.error.wrongPixels) + " wrong px (red)"}));
+      section.images.push_back({prepared.width(), prepared.height(), frame.color,
+                                {algorithm.name + (row.knobs == "defaults" ? "" : " " + row.knobs), line}});
+      section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(frame, truth),
+                                  {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
     }
     std::printf("%s\n", resultsTable(sceneRows, {}).c_str());
     rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());

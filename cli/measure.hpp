@@ -32,6 +32,7 @@ struct Measured {
   Stats stats;    // of the last timed run
   Timing time;
   std::int64_t peakBytes = 0;
+  int repeats = 0;
 };
 
 // run(Stats&) -> Result. repeats >= 1.
@@ -56,6 +57,7 @@ auto measure(int repeats, Run&& run) {
     measured.stats = std::move(stats);
   }
   measured.time = summarize(std::move(seconds));
+  measured.repeats = repeats;
   return measured;
 }
 

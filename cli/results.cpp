@@ -77,6 +77,15 @@ std::string joinedCounters(const ResultRow& row, const char* between, const char
 
 }  // namespace
 
+MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
+                                           const Configuration& configuration, int repeats, int threads) {
+  const AlgorithmEntry& algorithm = *configuration.algorithm;
+  auto measured = measure(repeats, [&](Stats& stats) { return algorithm.render(prepared, configuration.knobs, threads, stats); });
+  ResultRow row = measuredRow(scene, prepared, algorithm, describeKnobs(algorithm, configuration.knobs), measured, threads);
+  row.error = surfaceError(measured.result, truth);
+  return {std::move(row), std::move(measured.result)};
+}
+
 std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
   const auto line = [](const std::vector<std::string>& fields) {
     std::string text;

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/common.hpp"
 #include "cli/measure.hpp"
 #include "renderer/metrics.hpp"
 
@@ -26,6 +27,35 @@ struct ResultRow {
   std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
   bool pareto = false;  // hsr sweep: on the front of (time, pixel error)
 };
+
+// A row for a measured run: what ran, its timing and memory, and the algorithm's key
+// counters from the last run (the error is left for the caller to fill in).
+template <typename Result>
+ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, const AlgorithmEntry& algorithm,
+                      const std::string& knobs, const Measured<Result>& measured, int threads) {
+  ResultRow row;
+  row.scene = scene;
+  row.algorithm = algorithm.name;
+  row.knobs = knobs;
+  row.width = prepared.width();
+  row.height = prepared.height();
+  row.triangles = static_cast<std::int64_t>(prepared.triangleCount());
+  row.repeats = measured.repeats;
+  row.threads = threads;
+  row.time = measured.time;
+  row.peakBytes = measured.peakBytes;
+  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
+  return row;
+}
+
+// Measures one configuration on the prepared scene (at its current size) and its error
+// against the reference; also returns the last run's frame.
+struct MeasuredConfiguration {
+  ResultRow row;
+  Frame frame;
+};
+MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
+                                           const Configuration& configuration, int repeats, int threads);
 
 // Columns: scene, algorithm, knobs, then one per swept knob (hsr sweep), then the
 // measurements; the counters as one "name=value;..." field.

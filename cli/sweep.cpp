@@ -13,7 +13,6 @@
 #include "cli/plot.hpp"
 #include "cli/results.hpp"
 #include "renderer/camera.hpp"
-#include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
 #include "renderer/reference.hpp"
 
@@ -70,27 +69,6 @@ std::string quotedLabel(std::string text) {
   return "\"" + text + "\"";
 }
 
-// Runs one configuration on the prepared scene at its current size.
-ResultRow measureRow(const std::string& sceneName, const PreparedScene& prepared, const ReferenceImage& truth,
-                     const Configuration& configuration, int repeats, int threads) {
-  const AlgorithmEntry& algorithm = *configuration.algorithm;
-  const auto measured = measure(repeats, [&](Stats& stats) { return algorithm.render(prepared, configuration.knobs, threads, stats); });
-  ResultRow row;
-  row.scene = sceneName;
-  row.algorithm = algorithm.name;
-  row.knobs = describeKnobs(algorithm, configuration.knobs);
-  row.width = prepared.width();
-  row.height = prepared.height();
-  row.triangles = static_cast<std::int64_t>(prepared.triangleCount());
-  row.repeats = repeats;
-  row.threads = threads;
-  row.time = measured.time;
-  row.peakBytes = measured.peakBytes;
-  row.error = surfaceError(measured.result, truth);
-  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
-  return row;
-}
-
 int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
   LoadedScene scene = loadPrepared(options.scene, options.size);
   checkRenders(algorithm, scene);
@@ -118,8 +96,8 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       Stats ignored;
       references.emplace(size, renderReference(*scene.prepared, options.threads, ignored));
     }
-    ResultRow row = measureRow(scene.name, *scene.prepared, references.at(size), configurationOf(algorithm, settings),
-                               options.repeat, options.threads);
+    ResultRow row = measureConfiguration(scene.name, *scene.prepared, references.at(size), configurationOf(algorithm, settings),
+                                         options.repeat, options.threads).row;
     row.swept = combination;
     rows.push_back(std::move(row));
   }
@@ -253,7 +231,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     progress.update(rows.size(), options.scale + " " + value);
     Stats ignored;
     const ReferenceImage truth = renderReference(*prepared, options.threads, ignored);
-    ResultRow row = measureRow(scene.name, *prepared, truth, configuration, options.repeat, options.threads);
+    ResultRow row = measureConfiguration(scene.name, *prepared, truth, configuration, options.repeat, options.threads).row;
     row.swept = {{options.scale, value}};
     sizes.push_back(options.scale == "pixels" ? double(step) * step : double(prepared->triangleCount()));
     times.push_back(row.time.median);
