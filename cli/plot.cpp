@@ -12,8 +12,8 @@ namespace hsr::cli {
 namespace {
 
 std::string script(const std::string& png, const std::string& svg, const std::string& body) {
-  return "set terminal pngcairo size 960,640 font 'DejaVu Sans,11'\nset output '" + png + "'\n" + body +
-         "\nset terminal svg size 960,640 font 'DejaVu Sans,11'\nset output '" + svg + "'\nreplot\n";
+  return "set terminal pngcairo noenhanced size 960,640 font 'DejaVu Sans,11'\nset output '" + png + "'\n" + body +
+         "\nset terminal svg noenhanced size 960,640 font 'DejaVu Sans,11'\nset output '" + svg + "'\nreplot\n";
 }
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
