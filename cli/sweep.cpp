@@ -69,6 +69,17 @@ std::string quotedLabel(std::string text) {
   return "\"" + text + "\"";
 }
 
+// Writes stem.csv, stem.json and the plot (stem.png, .svg, .gp) into the folder, all or none.
+void writeResults(const std::filesystem::path& folder, const std::string& stem, const std::vector<ResultRow>& rows,
+                  const std::vector<std::string>& sweptKnobs, const std::string& plotBody) {
+  OutputFiles files;
+  files.addText(folder / (stem + ".csv"), resultsCsv(rows, sweptKnobs));
+  files.addText(folder / (stem + ".json"), resultsJson(rows));
+  addPlot(files, folder, stem, plotBody);
+  files.commit();
+  std::printf("wrote %s.csv, .json, .png, .svg and .gp in %s\n", stem.c_str(), folder.string().c_str());
+}
+
 int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
   LoadedScene scene = loadPrepared(options.scene, options.size);
   checkRenders(algorithm, scene);
@@ -143,13 +154,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       "plot $front using 1:2 with linespoints lw 2 pt 6 ps 2 lc rgb '#d95f02' title 'Pareto front', \\\n"
       "     $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'configurations', \\\n"
       "     $points using 1:($2 * (1 + 0.25 * $4)):3 with labels left offset char 1,0 font ',9' notitle";
-  const std::filesystem::path out = options.out;
-  OutputFiles files;
-  files.addText(out / "sweep.csv", resultsCsv(rows, sweptKnobs));
-  files.addText(out / "sweep.json", resultsJson(rows));
-  addPlot(files, out, "sweep", body);
-  files.commit();
-  std::printf("wrote sweep.csv, sweep.json, sweep.png, sweep.svg and sweep.gp in %s\n", out.string().c_str());
+  writeResults(options.out, "sweep", rows, sweptKnobs, body);
   return 0;
 }
 
@@ -259,14 +264,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
                            "set grid\nset key top left\n"
                            "plot $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'measured', \\\n"
                            "     fit(x) with lines lw 2 lc rgb '#d95f02' title " + quotedLabel(key);
-  const std::filesystem::path out = options.out;
-  const std::string stem = "scale_" + options.scale;
-  OutputFiles files;
-  files.addText(out / (stem + ".csv"), resultsCsv(rows, {options.scale}));
-  files.addText(out / (stem + ".json"), resultsJson(rows));
-  addPlot(files, out, stem, body);
-  files.commit();
-  std::printf("wrote %s.csv, .json, .png, .svg and .gp in %s\n", stem.c_str(), out.string().c_str());
+  writeResults(options.out, "scale_" + options.scale, rows, {options.scale}, body);
   return 0;
 }
 
