@@ -81,8 +81,9 @@ struct WoopBounds {
   double u, v, w, det, t;
 };
 
+// t = terms.scaledT / terms.det, as the caller computed it.
 WoopBounds woopBounds(const ShearedRay<double>& ray, const dvec3& a, const dvec3& b, const dvec3& c,
-                      const WoopTerms<double>& terms) {
+                      const WoopTerms<double>& terms, double t) {
   struct Magnitude {
     double x, y, z;
   };
@@ -103,7 +104,6 @@ WoopBounds woopBounds(const ShearedRay<double>& ray, const dvec3& a, const dvec3
   const double scaledT = edge * ((absU + bounds.u) * A.z + (absV + bounds.v) * B.z + (absW + bounds.w) * C.z) +
                          bounds.u * A.z + bounds.v * B.z + bounds.w * C.z;
   const double absDet = std::abs(terms.det);
-  const double t = terms.scaledT / terms.det;
   bounds.t = absDet > bounds.det ? (scaledT + std::abs(t) * bounds.det) / (absDet - bounds.det) + sum * std::abs(t)
                                  : kInfinity;
   return bounds;
@@ -219,10 +219,11 @@ ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& r
     const PackedTriangle& tri = triangles_[slot];
     ++counters.triangleTests;
     const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
-    const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms);
+    double t = terms.scaledT / terms.det;
+    const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms, t);
     Certainty hit = insideWithBounds(terms, bounds);
     if (hit == Certainty::no) return;
-    double t = terms.scaledT / terms.det, tBound = bounds.t;
+    double tBound = bounds.t;
     if (hit == Certainty::yes) {
       if (t - tBound > horizon) return;
       hit = query.inRange(t, tBound);
