@@ -1,7 +1,12 @@
 #include "algorithms/registry.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
+#include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/error.hpp"
 #include "renderer/reference.hpp"
@@ -17,6 +22,31 @@ std::string joined(const std::vector<std::string>& words) {
 
 std::size_t choiceIndex(const KnobSpec& knob, const std::string& value) {
   return static_cast<std::size_t>(std::find(knob.choices.begin(), knob.choices.end(), value) - knob.choices.begin());
+}
+
+// The number a knob value spells ("12", "0.25", "1e9", and "0.5%" when allowed), or
+// nothing when it spells none or lies outside the range.
+std::optional<KnobNumber> parseNumber(const KnobSpec::Range& range, std::string text) {
+  const bool percent = range.percent && !text.empty() && text.back() == '%';
+  if (percent) text.pop_back();
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  if (value < range.minimum || value > range.maximum || (range.integer && value != std::floor(value))) return std::nullopt;
+  return KnobNumber{value, percent};
+}
+
+std::string describeRange(const KnobSpec::Range& range) {
+  const auto number = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return std::string(text);
+  };
+  std::string text = std::string(range.integer ? "an integer" : "a number") + " in [" + number(range.minimum) + ", " +
+                     number(range.maximum) + "]";
+  if (range.percent) text += ", or a percentage P% with P in that range";
+  return text;
 }
 
 AlgorithmEntry zbufferEntry() {
@@ -40,6 +70,48 @@ AlgorithmEntry zbufferEntry() {
   return entry;
 }
 
+AlgorithmEntry rayCastingEntry() {
+  AlgorithmEntry entry;
+  entry.name = "ray_casting";
+  entry.kind = "surface";
+  entry.summary = "a ray per pixel center, nearest surface wins (Appel 1968): through a BVH, naive, or marched in steps";
+  entry.knobs = {
+      {"variant",
+       "bvh: nearest hit through the BVH; naive: every ray against every triangle; march: fixed steps with inside tests",
+       {"bvh", "naive", "march"}},
+      {"budget", "naive and march refuse a run of more ray-triangle tests (naive) or samples (march) than this",
+       {"1e9", "1e10", "1e11"}, KnobSpec::Range{1, 1e15}, {"naive", "march"}},
+      {"step", "march: the distance between samples, in world units, or P% of the scene's bounding-box diagonal",
+       {"0.5%", "2%", "1%", "0.25%", "0.1%"}, KnobSpec::Range{1e-6, 1e6, false, true}, {"march"}},
+      {"grid", "march: occupancy-grid voxels along each mesh's longest side",
+       {"64", "16", "32", "128", "256"}, KnobSpec::Range{1, ray_casting::kMaxGrid, true}, {"march"}},
+      {"refine", "march: bisection steps back to the surface once a sample is inside",
+       {"0", "2", "4", "8"}, KnobSpec::Range{0, 52, true}, {"march"}},
+  };
+  entry.keyCounters = {"primary rays", "bvh nodes visited", "ray-triangle tests", "march samples", "inside tests"};
+  entry.studyConfigurations = {{}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "4"}},
+                               {{"variant", "march"}, {"step", "0.1%"}, {"refine", "4"}}};
+  const auto typed = [](const KnobValues& values) {
+    ray_casting::Knobs knobs;
+    knobs.variant = values.at("variant") == "naive"   ? ray_casting::Variant::naive
+                    : values.at("variant") == "march" ? ray_casting::Variant::march
+                                                      : ray_casting::Variant::bvh;
+    knobs.budget = knobNumber(values, "budget").value;
+    const KnobNumber step = knobNumber(values, "step");
+    knobs.step = {step.value, step.percent};
+    knobs.grid = int(knobNumber(values, "grid").value);
+    knobs.refine = int(knobNumber(values, "refine").value);
+    return knobs;
+  };
+  entry.refusal = [typed](const PreparedScene& scene, const KnobValues& values) {
+    return ray_casting::refusal(scene, typed(values));
+  };
+  entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
+    return ray_casting::run(scene, typed(values), threads, stats);
+  };
+  return entry;
+}
+
 AlgorithmEntry referenceEntry() {
   AlgorithmEntry entry;
   entry.name = "reference";
@@ -55,7 +127,7 @@ AlgorithmEntry referenceEntry() {
 }  // namespace
 
 const std::vector<AlgorithmEntry>& algorithms() {
-  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry()};
+  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry()};
   return all;
 }
 
@@ -79,12 +151,25 @@ KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& set
       throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " has no knob '" + name +
                        "'; expected one of " + joined(names));
     }
-    if (choiceIndex(*knob, value) == knob->choices.size())
-      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " must be one of " +
-                       joined(knob->choices));
+    if (knob->range ? !parseNumber(*knob->range, value) : choiceIndex(*knob, value) == knob->choices.size())
+      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " must be " +
+                       (knob->range ? describeRange(*knob->range) : "one of " + joined(knob->choices)));
     values[name] = value;
   }
+  // A knob of one variant given with another is a mistake, not something to ignore.
+  for (const auto& [name, value] : settings) {
+    const auto& knob = *std::find_if(algorithm.knobs.begin(), algorithm.knobs.end(), [&](const KnobSpec& k) { return k.name == name; });
+    if (!knob.variants.empty() && std::find(knob.variants.begin(), knob.variants.end(), values.at("variant")) == knob.variants.end())
+      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " applies only to variant " +
+                       joined(knob.variants) + ", not to variant " + values.at("variant"));
+  }
   return values;
+}
+
+KnobNumber knobNumber(const KnobValues& values, const std::string& name) {
+  const std::string& text = values.at(name);
+  const bool percent = !text.empty() && text.back() == '%';
+  return {std::stod(percent ? text.substr(0, text.size() - 1) : text), percent};
 }
 
 std::pair<std::string, std::string> parseKnobSetting(const std::string& text, const std::string& where) {

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,7 +18,17 @@ namespace hsr {
 struct KnobSpec {
   std::string name;
   std::string help;
-  std::vector<std::string> choices;  // allowed values; the first is the default
+  // Allowed values; the first is the default. A numeric knob (below) accepts any number
+  // in its range, and its choices are the default followed by values worth sweeping.
+  std::vector<std::string> choices;
+  struct Range {
+    double minimum, maximum;
+    bool integer = false;
+    bool percent = false;  // also "P%": a percentage of some scene size the help names
+  };
+  std::optional<Range> range = std::nullopt;
+  // The values of the algorithm's "variant" knob this knob applies to; empty: all.
+  std::vector<std::string> variants = {};
 };
 
 using KnobValues = std::map<std::string, std::string>;  // every knob of the algorithm, validated
@@ -34,9 +45,11 @@ struct AlgorithmEntry {
   // The configurations hsr compare's default study runs (the defaults first), chosen
   // to show what the knobs trade.
   std::vector<KnobSettings> studyConfigurations = {{}};
-  // Why the algorithm cannot render a scene, or "" when it can (every surface
-  // algorithm so far renders every scene).
-  std::function<std::string(const Scene&)> refusal = [](const Scene&) { return std::string(); };
+  // Why the algorithm cannot render the scene at its size with these knobs, or "" when
+  // it can; the message names the knob to change when there is one.
+  std::function<std::string(const PreparedScene&, const KnobValues&)> refusal = [](const PreparedScene&, const KnobValues&) {
+    return std::string();
+  };
   // threads: 0 = all cores.
   std::function<Frame(const PreparedScene&, const KnobValues&, int threads, Stats&)> render;
 };
@@ -47,12 +60,21 @@ const std::vector<AlgorithmEntry>& algorithms();
 // it) and listing the known ones.
 const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& where = "--algo");
 
-// Fills in defaults and checks every setting; throws InputError for an unknown knob or
-// a value outside its choices, naming the algorithm, the knob and what is allowed.
+// Fills in defaults and checks every setting; throws InputError for an unknown knob, a
+// value outside its choices or range, or a knob the chosen variant does not have,
+// naming the algorithm, the knob and what is allowed.
 KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where = "--knob");
 
 // "NAME=VALUE" split at the first '='; throws InputError naming `where` otherwise.
 std::pair<std::string, std::string> parseKnobSetting(const std::string& text, const std::string& where);
+
+// A numeric knob's value (checked by resolveKnobs); a percentage is returned as given
+// (e.g. 0.5 for "0.5%"), with `percent` set.
+struct KnobNumber {
+  double value;
+  bool percent;
+};
+KnobNumber knobNumber(const KnobValues& values, const std::string& name);
 
 // The settings that differ from the defaults, as "name=value name=value" ("defaults" if none).
 std::string describeKnobs(const AlgorithmEntry& algorithm, const KnobValues& values);

@@ -33,6 +33,7 @@ int compare(const CompareOptions& options);
 struct SweepOptions {
   std::string scene;
   std::string algorithm = "zbuffer";
+  std::string variant;             // fixed for every configuration
   std::vector<std::string> knobs;  // NAME=v1,v2,...; NAME "size" sweeps the resolution
   std::string scale;               // "", "triangles" or "pixels"
   int repeat = 3;

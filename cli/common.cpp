@@ -56,9 +56,10 @@ LoadedScene loadPrepared(const std::string& path, const std::string& size) {
   return loaded;
 }
 
-void checkRenders(const AlgorithmEntry& algorithm, const LoadedScene& scene) {
-  if (const std::string refusal = algorithm.refusal(*scene.scene); !refusal.empty())
-    throw InputError(scene.name + ": " + algorithm.name + " cannot render it: " + refusal);
+void checkRenders(const AlgorithmEntry& algorithm, const KnobValues& knobs, const std::string& sceneName,
+                  const PreparedScene& scene) {
+  if (const std::string refusal = algorithm.refusal(scene, knobs); !refusal.empty())
+    throw InputError(sceneName + ": " + algorithm.name + " cannot render it: " + refusal);
 }
 
 void makeFolder(const std::filesystem::path& folder, const std::string& where) {

@@ -39,7 +39,8 @@ struct LoadedScene {
 LoadedScene loadPrepared(const std::string& path, const std::string& size);
 
 // Throws InputError when the algorithm refuses the scene (AlgorithmEntry::refusal).
-void checkRenders(const AlgorithmEntry& algorithm, const LoadedScene& scene);
+void checkRenders(const AlgorithmEntry& algorithm, const KnobValues& knobs, const std::string& sceneName,
+                  const PreparedScene& scene);
 
 // Creates the folder (and parents) or throws InputError naming it.
 void makeFolder(const std::filesystem::path& folder, const std::string& where);

@@ -83,7 +83,7 @@ int compare(const CompareOptions& options) {
 
     for (const Configuration& configuration : configurations) {
       const AlgorithmEntry& algorithm = *configuration.algorithm;
-      if (const std::string refusal = algorithm.refusal(*scene.scene); !refusal.empty()) {
+      if (const std::string refusal = algorithm.refusal(prepared, configuration.knobs); !refusal.empty()) {
         std::printf("  %s %s: skipped, %s\n", algorithm.name.c_str(), describeKnobs(algorithm, configuration.knobs).c_str(),
                     refusal.c_str());
         continue;

@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   CLI::App* sweepCommand = app.add_subcommand("sweep", "an algorithm's accuracy against time over its knobs, plotted");
   sweepCommand->add_option("scene", sweep.scene, "scene file (TOML)")->required();
   sweepCommand->add_option("--algo", sweep.algorithm, "algorithm (see `hsr list`)")->capture_default_str();
+  sweepCommand->add_option("--variant", sweep.variant, "the algorithm's variant, the same in every configuration");
   sweepCommand->add_option("--knob", sweep.knobs, "NAME=v1,v2,... (repeatable; the cross product is run); size=WxH,... sweeps the resolution");
   sweepCommand->add_option("--scale", sweep.scale, "triangles | pixels: time against scene size instead, with the fitted exponent");
   sweepCommand->add_option("--repeat", sweep.repeat, "timed runs after one warm-up")->capture_default_str();

@@ -16,7 +16,7 @@ int render(const RenderOptions& options) {
   const KnobValues knobs = resolveKnobs(algorithm, settings);
 
   const LoadedScene scene = loadPrepared(options.scene, options.size);
-  checkRenders(algorithm, scene);
+  checkRenders(algorithm, knobs, scene.name, *scene.prepared);
   Stats stats;
   const Frame frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
 
@@ -32,12 +32,20 @@ int render(const RenderOptions& options) {
 int list() {
   std::printf("algorithms:\n");
   for (const auto& algorithm : algorithms()) {
-    std::printf("  %-10s %-9s %s\n", algorithm.name.c_str(), algorithm.kind.c_str(), algorithm.summary.c_str());
+    std::printf("  %-12s %-9s %s\n", algorithm.name.c_str(), algorithm.kind.c_str(), algorithm.summary.c_str());
     for (const auto& knob : algorithm.knobs) {
       std::string choices;
       for (const auto& choice : knob.choices) choices += (choices.empty() ? "" : " | ") + choice;
-      std::printf("    --knob %s=%s   (default %s)\n      %s\n", knob.name.c_str(), choices.c_str(),
-                  knob.choices.front().c_str(), knob.help.c_str());
+      if (knob.range) {
+        char range[96];
+        std::snprintf(range, sizeof range, "%s in [%g, %g]%s, e.g. ", knob.range->integer ? "INTEGER" : "NUMBER",
+                      knob.range->minimum, knob.range->maximum, knob.range->percent ? " or P%" : "");
+        choices = range + choices;
+      }
+      std::string applies;
+      for (const auto& variant : knob.variants) applies += (applies.empty() ? ", variant " : " or ") + variant;
+      std::printf("    --knob %s=%s   (default %s%s)\n      %s\n", knob.name.c_str(), choices.c_str(),
+                  knob.choices.front().c_str(), applies.c_str(), knob.help.c_str());
     }
   }
   std::printf("scenes (in %s):\n", HSR_SCENES_DIR);

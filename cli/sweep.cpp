@@ -26,16 +26,29 @@ struct Axis {
   std::vector<std::string> values;
 };
 
-std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const std::vector<std::string>& knobs) {
+// The settings every configuration of the sweep shares (--variant).
+KnobSettings fixedSettings(const SweepOptions& options) {
+  if (options.variant.empty()) return {};
+  return {{"variant", options.variant}};
+}
+
+std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const SweepOptions& options) {
   std::vector<Axis> axes;
   std::set<std::string> seen;
-  for (const std::string& text : knobs) {
+  for (const std::string& text : options.knobs) {
     const auto [name, list] = parseKnobSetting(text, "--knob");
     if (!seen.insert(name).second) throw InputError("--knob " + text + ": " + name + " is swept twice; give one list");
+    if (name == "variant" && !options.variant.empty())
+      throw InputError("--knob " + text + ": the variant is already fixed by --variant " + options.variant);
     Axis axis{name, splitList(list, "--knob " + name + "=")};
     for (const std::string& value : axis.values) {
-      if (name == kSizeKnob) parseSize(value, "--knob size:");
-      else resolveKnobs(algorithm, {{name, value}});  // throws for an unknown knob or value
+      if (name == kSizeKnob) {
+        parseSize(value, "--knob size:");
+        continue;
+      }
+      KnobSettings settings = fixedSettings(options);
+      settings.emplace_back(name, value);
+      resolveKnobs(algorithm, settings);  // throws for an unknown knob or value
     }
     axes.push_back(axis);
   }
@@ -82,18 +95,21 @@ void writeResults(const std::filesystem::path& folder, const std::string& stem, 
 
 int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
   LoadedScene scene = loadPrepared(options.scene, options.size);
-  checkRenders(algorithm, scene);
-  makeFolder(options.out, "--out");
   const int defaultWidth = scene.prepared->width(), defaultHeight = scene.prepared->height();
 
+  // Every configuration is checked (a knob combination, an over-budget size) before
+  // the first render.
+  struct Planned {
+    Configuration configuration;
+    std::pair<int, int> size;
+    std::string label;
+  };
   std::vector<std::string> sweptKnobs;
   for (const Axis& axis : axes) sweptKnobs.push_back(axis.name);
   const auto combinations = crossProduct(axes);
-  std::map<std::pair<int, int>, ReferenceImage> references;  // one per resolution
-  std::vector<ResultRow> rows;
-  Progress progress(combinations.size());
+  std::vector<Planned> plan;
   for (const auto& combination : combinations) {
-    KnobSettings settings;
+    KnobSettings settings = fixedSettings(options);
     std::pair<int, int> size{defaultWidth, defaultHeight};
     std::string label;
     for (const auto& [name, value] : combination) {
@@ -101,15 +117,27 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       if (name == kSizeKnob) size = parseSize(value, "--knob size:");
       else settings.emplace_back(name, value);
     }
+    Planned planned{configurationOf(algorithm, settings), size, label};
+    scene.prepared->setSize(size.first, size.second);
+    checkRenders(algorithm, planned.configuration.knobs, scene.name + " (" + label + ")", *scene.prepared);
+    plan.push_back(std::move(planned));
+  }
+  makeFolder(options.out, "--out");
+
+  std::map<std::pair<int, int>, ReferenceImage> references;  // one per resolution
+  std::vector<ResultRow> rows;
+  Progress progress(combinations.size());
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const auto& [configuration, size, label] = plan[i];
     progress.update(rows.size(), label);
     scene.prepared->setSize(size.first, size.second);
     if (!references.contains(size)) {
       Stats ignored;
       references.emplace(size, renderReference(*scene.prepared, options.threads, ignored));
     }
-    ResultRow row = measureConfiguration(scene.name, *scene.prepared, references.at(size), configurationOf(algorithm, settings),
-                                         options.repeat, options.threads).row;
-    row.swept = combination;
+    ResultRow row = measureConfiguration(scene.name, *scene.prepared, references.at(size), configuration, options.repeat,
+                                         options.threads).row;
+    row.swept = combinations[i];
     rows.push_back(std::move(row));
   }
   progress.update(rows.size(), "done");
@@ -193,7 +221,7 @@ std::vector<dmat4> tiledCopies(const PreparedScene& scene, int n) {
 int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, const std::vector<Axis>& axes) {
   if (options.scale != "triangles" && options.scale != "pixels")
     throw InputError("--scale " + options.scale + ": expected triangles or pixels");
-  KnobSettings settings;
+  KnobSettings settings = fixedSettings(options);
   for (const Axis& axis : axes) {
     if (axis.values.size() != 1 || axis.name == kSizeKnob)
       throw InputError("--knob " + axis.name + ": with --scale, each --knob fixes one algorithm setting (NAME=VALUE)");
@@ -201,7 +229,6 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
   }
   const Configuration configuration = configurationOf(algorithm, settings);
   LoadedScene scene = loadPrepared(options.scene, options.size);
-  checkRenders(algorithm, scene);
 
   // The sizes: resolutions 256^2 ... 4096^2, or n x n copies with 1k ... 1M triangles.
   std::vector<int> steps;
@@ -233,6 +260,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
       prepared = grown.get();
       value = std::to_string(prepared->triangleCount());
     }
+    checkRenders(algorithm, configuration.knobs, scene.name + " (" + options.scale + " " + value + ")", *prepared);
     progress.update(rows.size(), options.scale + " " + value);
     Stats ignored;
     const ReferenceImage truth = renderReference(*prepared, options.threads, ignored);
@@ -275,7 +303,7 @@ int sweep(const SweepOptions& options) {
   if (algorithm.kind != "surface")
     throw InputError("--algo " + options.algorithm + ": only surface algorithms are swept against the reference");
   if (options.repeat < 1) throw InputError("--repeat " + std::to_string(options.repeat) + ": expected at least 1");
-  const std::vector<Axis> axes = parseAxes(algorithm, options.knobs);
+  const std::vector<Axis> axes = parseAxes(algorithm, options);
   if (!options.scale.empty()) return scaleSweep(options, algorithm, axes);
   if (axes.empty()) throw InputError("hsr sweep: give at least one --knob NAME=v1,v2,... (or --scale triangles|pixels)");
   return knobSweep(options, algorithm, axes);

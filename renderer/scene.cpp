@@ -245,7 +245,7 @@ Instancing readInstancing(TableReader& copies) {
 }
 
 std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::string>& keys,
-                                      std::map<std::filesystem::path, std::shared_ptr<const Mesh>>& meshCache) {
+                                      std::map<std::filesystem::path, std::shared_ptr<const Mesh>>& meshCache, Solid& solid) {
   const std::string shape =
       object.choice("shape", std::nullopt, {"mesh", "box", "sphere", "cylinder", "cone", "grid", "heightfield"});
   const auto segments = [&](const std::string& key, int fallback, int min) {
@@ -295,29 +295,36 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
   }
   if (shape == "box") {
     keys.push_back("size");
-    return std::make_shared<const Mesh>(makeBox(object.vector3("size", dvec3(1), 1e-9, kHuge, true)));
+    solid.kind = Solid::Kind::box;
+    solid.size = object.vector3("size", dvec3(1), 1e-9, kHuge, true);
+    return std::make_shared<const Mesh>(makeBox(solid.size));
   }
   if (shape == "sphere") {
-    const double radius = positive("radius", 1.0);
+    solid.kind = Solid::Kind::sphere;
+    solid.radius = positive("radius", 1.0);
     const int around = segments("segments", 32, 3);
-    return std::make_shared<const Mesh>(makeSphere(radius, around, segments("rings", 16, 2)));
+    return std::make_shared<const Mesh>(makeSphere(solid.radius, around, segments("rings", 16, 2)));
   }
   if (shape == "cylinder" || shape == "cone") {
-    const double radius = positive("radius", 0.5);
-    const double height = positive("height", 1.0);
+    solid.kind = shape == "cylinder" ? Solid::Kind::cylinder : Solid::Kind::cone;
+    solid.radius = positive("radius", 0.5);
+    solid.height = positive("height", 1.0);
     const int around = segments("segments", 32, 3);
-    return std::make_shared<const Mesh>(shape == "cylinder" ? makeCylinder(radius, height, around)
-                                                            : makeCone(radius, height, around));
+    return std::make_shared<const Mesh>(shape == "cylinder" ? makeCylinder(solid.radius, solid.height, around)
+                                                            : makeCone(solid.radius, solid.height, around));
   }
-  const dvec2 size = size2();
+  solid.kind = Solid::Kind::heightField;
+  solid.footprint = size2();
   const glm::ivec2 cells = segments2(shape == "grid" ? 1 : 64);
-  if (shape == "grid") return std::make_shared<const Mesh>(makeGrid(size, cells.x, cells.y));
+  if (shape == "grid") {
+    solid.function = {"waves", 0.0, 1.0};
+    return std::make_shared<const Mesh>(makeGrid(solid.footprint, cells.x, cells.y));
+  }
   keys.insert(keys.end(), {"function", "amplitude", "frequency"});
-  HeightFunction function;
-  function.name = object.choice("function", std::nullopt, heightFunctionNames());
-  function.amplitude = object.number("amplitude", 1.0, -kHuge, kHuge);
-  function.frequency = object.number("frequency", 1.0, -kHuge, kHuge);
-  return std::make_shared<const Mesh>(makeHeightField(size, cells.x, cells.y, function));
+  solid.function.name = object.choice("function", std::nullopt, heightFunctionNames());
+  solid.function.amplitude = object.number("amplitude", 1.0, -kHuge, kHuge);
+  solid.function.frequency = object.number("frequency", 1.0, -kHuge, kHuge);
+  return std::make_shared<const Mesh>(makeHeightField(solid.footprint, cells.x, cells.y, solid.function));
 }
 
 void readObject(TableReader& object, Scene& scene,
@@ -325,7 +332,7 @@ void readObject(TableReader& object, Scene& scene,
   SceneObject result;
   std::vector<std::string> keys = {"name", "shape", "color", "translate", "rotate", "scale", "copies"};
   result.name = object.has("name") ? object.string("name") : "object" + std::to_string(scene.objects.size());
-  result.mesh = readShape(object, keys, meshCache);
+  result.mesh = readShape(object, keys, meshCache, result.solid);
   result.color = object.color("color", vec3(0.8f));
   result.transform.translate = object.vector3("translate", dvec3(0), -kHuge, kHuge);
   result.transform.rotateDegrees = object.vector3("rotate", dvec3(0), -36000, 36000);

@@ -53,9 +53,22 @@ struct Instancing {
   std::vector<dmat4> copies() const;  // worldFromObject of each copy, applied after the object's transform
 };
 
+// The exact shape a procedural object's mesh tessellates, in object space, for
+// algorithms that test points against it (ray casting's march). A mesh from a file has
+// none. A grid or height field is a surface, not a solid: it stands for the solid
+// beneath it (object-space y <= f(x, z) over its footprint).
+struct Solid {
+  enum class Kind { none, box, sphere, cylinder, cone, heightField } kind = Kind::none;
+  dvec3 size{0};                 // box: edge lengths
+  double radius = 0, height = 0;  // sphere (radius), cylinder and cone (both)
+  dvec2 footprint{0};            // height field: extent in x and z, centered
+  HeightFunction function;       // height field: f (a grid has amplitude 0)
+};
+
 struct SceneObject {
   std::string name;
   std::shared_ptr<const Mesh> mesh;
+  Solid solid;
   Transform transform;
   vec3 color{0.8f};
   Instancing instancing;

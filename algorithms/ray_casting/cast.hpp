@@ -1,0 +1,66 @@
+// The frame loop every ray-casting variant shares: one ray per pixel center, the part of
+// it between the near and far planes, and the variant's answer written into the Frame.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "renderer/camera.hpp"
+#include "renderer/conventions.hpp"
+#include "renderer/frame.hpp"
+#include "renderer/parallel.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr::ray_casting {
+
+// A pixel's ray and the parameters where it crosses the near and far planes. Points on
+// it are origin + t * direction, at view distance d(t) = startDistance + t * slope.
+struct PixelRay {
+  Ray ray;
+  double startDistance, slope;
+  double tNear, tFar;
+
+  PixelRay(const CameraTransform& camera, const Ray& pixelRay)
+      : ray(pixelRay),
+        startDistance(glm::dot(pixelRay.origin - camera.camera().eye, camera.forward())),
+        slope(glm::dot(pixelRay.direction, camera.forward())),
+        tNear((camera.camera().near - startDistance) / slope),
+        tFar((camera.camera().far - startDistance) / slope) {}
+
+  dvec3 at(double t) const { return ray.origin + t * ray.direction; }
+  double distance(double t) const { return startDistance + t * slope; }
+};
+
+struct Hit {
+  std::uint32_t id = conventions::kBackgroundId;  // global triangle index + 1
+  double t = std::numeric_limits<double>::infinity();
+};
+
+// Runs tracer.trace(PixelRay, Counters&) -> Hit for every pixel center, one row per work
+// item, and fills frame.ids and frame.depth. Counters is the tracer's own tally (summed
+// with +=); each row counts on its own stack, since neighbouring rows' counters share
+// cache lines and other threads are writing them.
+template <typename Tracer>
+typename Tracer::Counters castRays(const Tracer& tracer, const CameraTransform& camera, int threads, Frame& frame) {
+  using Counters = typename Tracer::Counters;
+  const auto rows = static_cast<std::size_t>(frame.height);
+  std::vector<Counters> rowCounters(rows);
+  parallelFor(rows, threads, [&](std::size_t row, int) {
+    Counters counters;
+    for (int x = 0; x < frame.width; ++x) {
+      const PixelRay pixel(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5));
+      const Hit hit = tracer.trace(pixel, counters);
+      const std::size_t index = row * std::size_t(frame.width) + std::size_t(x);
+      frame.ids[index] = hit.id;
+      frame.depth[index] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
+                                                                : static_cast<float>(pixel.distance(hit.t));
+    }
+    rowCounters[row] = counters;
+  });
+  Counters total;
+  for (const Counters& counters : rowCounters) total += counters;
+  return total;
+}
+
+}  // namespace hsr::ray_casting

@@ -1,0 +1,19 @@
+// Variant march: fixed-step ray marching with point-inside tests (see march.cpp).
+#pragma once
+
+#include "algorithms/ray_casting/ray_casting.hpp"
+#include "renderer/camera.hpp"
+
+namespace hsr::ray_casting {
+
+// The march's step in world units for this scene.
+double marchStepLength(const PreparedScene& scene, const Step& step);
+
+// The most samples one ray can take: the march box's diagonal over the step, plus one.
+double marchSamplesPerRay(const PreparedScene& scene, const Step& step);
+
+// Fills frame.ids and frame.depth; leaves frame.color alone.
+void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform& camera, int threads, Frame& frame,
+           Stats& stats);
+
+}  // namespace hsr::ray_casting
