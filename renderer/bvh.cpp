@@ -22,8 +22,8 @@ void storeBounds(const Aabb& box, BvhNode& node) {
     float lo = static_cast<float>(box.lo[axis]), hi = static_cast<float>(box.hi[axis]);
     if (double(lo) > box.lo[axis]) lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
     if (double(hi) < box.hi[axis]) hi = std::nextafter(hi, std::numeric_limits<float>::infinity());
-    node.lo[axis] = lo;
-    node.hi[axis] = hi;
+    node.bounds[0][axis] = lo;
+    node.bounds[1][axis] = hi;
   }
 }
 

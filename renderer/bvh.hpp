@@ -7,6 +7,8 @@
 // visit a node it did not need, never skip one it needed.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -29,7 +31,7 @@ struct Aabb {
 };
 
 struct BvhNode {
-  float lo[3], hi[3];    // bounds, rounded outward
+  float bounds[2][3];    // [0]: the low corner, [1]: the high corner, rounded outward
   std::uint32_t index;   // interior: first child (the second is index + 1); leaf: first slot in order()
   std::uint16_t count;   // primitives in a leaf; 0 for an interior node
   std::uint16_t axis;    // interior: the split axis, so traversal can visit the nearer child first
@@ -66,11 +68,14 @@ class Bvh {
 // covers the rounding of the subtraction and the multiplication.
 struct RayBoxTest {
   dvec3 origin, inverseDirection;
+  int nearSide[3];  // per axis, the corner (0 low, 1 high) whose slab plane the ray meets first
 
   // A direction component of 0 gives an infinite inverse; a slab whose plane holds the
   // origin then yields NaN, which the comparisons below ignore, so the ray counts as
   // inside that (closed) slab, as it is.
-  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : origin(rayOrigin), inverseDirection(1.0 / direction) {}
+  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : origin(rayOrigin), inverseDirection(1.0 / direction) {
+    for (int axis = 0; axis < 3; ++axis) nearSide[axis] = std::signbit(inverseDirection[axis]) ? 1 : 0;
+  }
 
   // The entry parameter of the ray into the node's box when the box is met within
   // [0, tMax]; +infinity otherwise.
@@ -78,14 +83,32 @@ struct RayBoxTest {
     constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
     double tEnter = 0, tExit = tMax;
     for (int axis = 0; axis < 3; ++axis) {
-      double tNear = (double(node.lo[axis]) - origin[axis]) * inverseDirection[axis];
-      double tFar = (double(node.hi[axis]) - origin[axis]) * inverseDirection[axis];
-      if (tNear > tFar) std::swap(tNear, tFar);
+      const double tNear = (double(node.bounds[nearSide[axis]][axis]) - origin[axis]) * inverseDirection[axis];
+      const double tFar = (double(node.bounds[1 - nearSide[axis]][axis]) - origin[axis]) * inverseDirection[axis];
       // Written so that a NaN (see the constructor) leaves tEnter and tExit as they are.
       tEnter = tNear > tEnter ? tNear : tEnter;
       tExit = tFar * widen < tExit ? tFar * widen : tExit;
     }
     return tEnter <= tExit ? tEnter : std::numeric_limits<double>::infinity();
+  }
+
+  // entry() for the two children of an interior node at once, one per lane of a
+  // two-double vector: the same operations in the same order, so the same results.
+  std::array<double, 2> childEntries(const BvhNode* children, double tMax) const {
+    using Pair = double __attribute__((vector_size(16)));
+    constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
+    Pair tEnter = {0, 0}, tExit = {tMax, tMax};
+    for (int axis = 0; axis < 3; ++axis) {
+      const int near = nearSide[axis], far = 1 - near;
+      const Pair nearPlane = {children[0].bounds[near][axis], children[1].bounds[near][axis]};
+      const Pair farPlane = {children[0].bounds[far][axis], children[1].bounds[far][axis]};
+      const Pair tNear = (nearPlane - origin[axis]) * inverseDirection[axis];
+      const Pair tFar = (farPlane - origin[axis]) * inverseDirection[axis] * widen;
+      tEnter = tNear > tEnter ? tNear : tEnter;
+      tExit = tFar < tExit ? tFar : tExit;
+    }
+    constexpr double miss = std::numeric_limits<double>::infinity();
+    return {tEnter[0] <= tExit[0] ? tEnter[0] : miss, tEnter[1] <= tExit[1] ? tEnter[1] : miss};
   }
 };
 

@@ -17,6 +17,8 @@ CameraTransform::CameraTransform(const Camera& camera, int width, int height)
     scaleY_ = 2.0 / camera.orthoHeight;
     scaleX_ = scaleY_ / aspect;
   }
+  inverseScaleX_ = 1.0 / scaleX_;
+  inverseScaleY_ = 1.0 / scaleY_;
 }
 
 dvec3 CameraTransform::viewFromWorld(const dvec3& p) const {
@@ -37,7 +39,7 @@ dvec2 CameraTransform::pixelFromClip(const ClipVertex& v) const {
 Ray CameraTransform::rayThroughPixel(double px, double py) const {
   const double ndcX = 2 * px / width_ - 1;
   const double ndcY = 1 - 2 * py / height_;
-  const dvec3 across = right_ * (ndcX / scaleX_) + up_ * (ndcY / scaleY_);
+  const dvec3 across = right_ * (ndcX * inverseScaleX_) + up_ * (ndcY * inverseScaleY_);
   if (perspective()) return {camera_.eye, forward_ + across};
   return {camera_.eye + across, forward_};
 }

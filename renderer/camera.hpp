@@ -50,6 +50,7 @@ class CameraTransform {
   int width_, height_;
   dvec3 right_, up_, forward_;  // world-space view basis
   double scaleX_, scaleY_;      // clip x = scaleX * view x (divided by d under perspective)
+  double inverseScaleX_, inverseScaleY_;  // so a ray per pixel costs no division
 };
 
 }  // namespace hsr

@@ -111,8 +111,18 @@ const Bvh& PreparedScene::triangleBvh(Stats& stats) const {
       for (std::uint32_t v : triangles_[i]) boxes[i].grow(positions_[v]);
     triangleBvh_ = Bvh(boxes);
     stats.add("bvh nodes built", static_cast<std::int64_t>(triangleBvh_.nodes().size()));
+    leafTriangles_.reserve(triangles_.size());
+    for (const std::uint32_t triangle : triangleBvh_.order()) {
+      const Triangle& t = triangles_[triangle];
+      leafTriangles_.push_back({positions_[t[0]], positions_[t[1]], positions_[t[2]], triangle + 1});
+    }
   });
   return triangleBvh_;
+}
+
+const std::vector<PreparedScene::LeafTriangle>& PreparedScene::leafTriangles(Stats& stats) const {
+  triangleBvh(stats);
+  return leafTriangles_;
 }
 
 }  // namespace hsr

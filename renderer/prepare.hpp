@@ -59,6 +59,14 @@ class PreparedScene {
   // (phase "bvh build", counter "bvh nodes built").
   const Bvh& triangleBvh(Stats& stats) const;
 
+  // The triangles' corners in the BVH's leaf order (slot i holds triangleBvh().order()[i]),
+  // so a ray tracer reads a leaf as one contiguous run; built with the BVH.
+  struct LeafTriangle {
+    dvec3 a, b, c;
+    std::uint32_t id;  // global triangle index + 1
+  };
+  const std::vector<LeafTriangle>& leafTriangles(Stats& stats) const;
+
  private:
   const Scene* scene_;
   int width_, height_;
@@ -69,6 +77,7 @@ class PreparedScene {
   mutable std::vector<std::array<dvec3, 3>> cornerNormals_;
   mutable std::once_flag bvhBuilt_;
   mutable Bvh triangleBvh_;
+  mutable std::vector<LeafTriangle> leafTriangles_;
 };
 
 }  // namespace hsr

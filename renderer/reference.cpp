@@ -193,13 +193,7 @@ class RayQuery {
 }  // namespace
 
 SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats)
-    : scene_(scene), bvh_(scene.triangleBvh(stats)) {
-  triangles_.reserve(bvh_.order().size());
-  for (std::uint32_t triangle : bvh_.order()) {
-    const Triangle& t = scene.triangles()[triangle];
-    triangles_.push_back({scene.positions()[t[0]], scene.positions()[t[1]], scene.positions()[t[2]], triangle + 1});
-  }
-}
+    : scene_(scene), bvh_(scene.triangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
 
 ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const {
   ReferenceHit result;

@@ -47,13 +47,10 @@ class SurfaceReference {
   ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
 
  private:
-  struct PackedTriangle {
-    dvec3 a, b, c;
-    std::uint32_t id;  // global triangle index + 1
-  };
+  using PackedTriangle = PreparedScene::LeafTriangle;
   const PreparedScene& scene_;
   const Bvh& bvh_;
-  std::vector<PackedTriangle> triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
+  const std::vector<PackedTriangle>& triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
 };
 
 struct ReferenceImage {

@@ -17,6 +17,7 @@ packages=(
   libgtest-dev libgmock-dev    # tests
   libbenchmark-dev             # bench/
   libosmesa6-dev               # the Mesa peer benchmark (bench/ only)
+  libembree-dev                # the Embree peer benchmark (bench/ only)
 )
 
 missing=()

@@ -24,9 +24,11 @@ struct PixelRay {
   PixelRay(const CameraTransform& camera, const Ray& pixelRay)
       : ray(pixelRay),
         startDistance(glm::dot(pixelRay.origin - camera.camera().eye, camera.forward())),
-        slope(glm::dot(pixelRay.direction, camera.forward())),
-        tNear((camera.camera().near - startDistance) / slope),
-        tFar((camera.camera().far - startDistance) / slope) {}
+        slope(glm::dot(pixelRay.direction, camera.forward())) {
+    const double perDistance = 1.0 / slope;
+    tNear = (camera.camera().near - startDistance) * perDistance;
+    tFar = (camera.camera().far - startDistance) * perDistance;
+  }
 
   dvec3 at(double t) const { return ray.origin + t * ray.direction; }
   double distance(double t) const { return startDistance + t * slope; }

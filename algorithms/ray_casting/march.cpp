@@ -208,7 +208,7 @@ class Marcher {
     const std::vector<BvhNode>& nodes = copyBvh_.nodes();
     const auto holds = [&](const BvhNode& node) {
       for (int axis = 0; axis < 3; ++axis)
-        if (point[axis] < node.lo[axis] || point[axis] > node.hi[axis]) return false;
+        if (point[axis] < node.bounds[0][axis] || point[axis] > node.bounds[1][axis]) return false;
       return true;
     };
     std::array<std::uint32_t, Bvh::kMaxDepth + 1> stack;

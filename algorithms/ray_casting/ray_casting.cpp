@@ -32,9 +32,9 @@ class WatertightRay {
     ky_ = (kx_ + 1) % 3;
     if (ray.direction[kz_] < 0) std::swap(kx_, ky_);
     // Step 2: the shear that takes the direction to (0, 0, 1).
-    shearX_ = ray.direction[kx_] / ray.direction[kz_];
-    shearY_ = ray.direction[ky_] / ray.direction[kz_];
     shearZ_ = 1.0 / ray.direction[kz_];
+    shearX_ = ray.direction[kx_] * shearZ_;
+    shearY_ = ray.direction[ky_] * shearZ_;
   }
 
   // The hit parameter when the ray meets the triangle in [tMin, tMax].
@@ -63,25 +63,16 @@ class WatertightRay {
   double shearX_, shearY_, shearZ_;
 };
 
-// A triangle's corners, copied out of the indexed mesh so a test reads one cache line
-// run, with its global id + 1.
-struct PackedTriangle {
-  dvec3 a, b, c;
-  std::uint32_t id;
-};
-
-PackedTriangle pack(const PreparedScene& scene, std::uint32_t triangle) {
-  const Triangle& t = scene.triangles()[triangle];
-  return {scene.positions()[t[0]], scene.positions()[t[1]], scene.positions()[t[2]], triangle + 1};
-}
+using PackedTriangle = PreparedScene::LeafTriangle;
 
 // Offers a triangle to the nearest hit so far. The nearest wins; at exactly equal t the
 // lower id does, so the answer does not depend on the order triangles are offered in
 // (which is why naive and bvh give identical images).
+// `nearest` starts as {background, tFar}: the first hit up to the far plane is taken.
 void offer(const WatertightRay& ray, const PackedTriangle& triangle, const PixelRay& pixel, Hit& nearest) {
   double t;
-  if (!ray.hit(triangle.a, triangle.b, triangle.c, pixel.tNear, std::min(nearest.t, pixel.tFar), t)) return;
-  if (t < nearest.t || triangle.id < nearest.id) nearest = {triangle.id, t};
+  if (!ray.hit(triangle.a, triangle.b, triangle.c, pixel.tNear, nearest.t, t)) return;
+  if (nearest.id == conventions::kBackgroundId || t < nearest.t || triangle.id < nearest.id) nearest = {triangle.id, t};
 }
 
 // Variant naive: every triangle, in id order.
@@ -95,21 +86,19 @@ class NaiveTracer {
     }
   };
 
-  explicit NaiveTracer(const PreparedScene& scene) {
-    triangles_.reserve(scene.triangleCount());
-    for (std::uint32_t triangle = 0; triangle < scene.triangleCount(); ++triangle) triangles_.push_back(pack(scene, triangle));
-  }
+  // The BVH's leaf order is as good an order as any: the answer does not depend on it.
+  NaiveTracer(const PreparedScene& scene, Stats& stats) : triangles_(scene.leafTriangles(stats)) {}
 
   Hit trace(const PixelRay& pixel, Counters& counters) const {
     const WatertightRay ray(pixel.ray);
-    Hit nearest;
+    Hit nearest{conventions::kBackgroundId, pixel.tFar};
     for (const PackedTriangle& triangle : triangles_) offer(ray, triangle, pixel, nearest);
     counters.triangleTests += static_cast<std::int64_t>(triangles_.size());
     return nearest;
   }
 
  private:
-  std::vector<PackedTriangle> triangles_;
+  const std::vector<PackedTriangle>& triangles_;
 };
 
 // Variant bvh: front-to-back traversal of the scene's triangle BVH.
@@ -124,21 +113,17 @@ class BvhTracer {
     }
   };
 
-  BvhTracer(const PreparedScene& scene, Stats& stats) : bvh_(scene.triangleBvh(stats)) {
-    // The triangles in the BVH's leaf order: a leaf's triangles are one contiguous run.
-    triangles_.reserve(bvh_.order().size());
-    for (const std::uint32_t triangle : bvh_.order()) triangles_.push_back(pack(scene, triangle));
-  }
+  BvhTracer(const PreparedScene& scene, Stats& stats) : bvh_(scene.triangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
 
   Hit trace(const PixelRay& pixel, Counters& counters) const {
-    Hit nearest;
+    Hit nearest{conventions::kBackgroundId, pixel.tFar};
     if (bvh_.empty()) return nearest;
     const WatertightRay ray(pixel.ray);
     const RayBoxTest boxes(pixel.ray.origin, pixel.ray.direction);
     const std::vector<BvhNode>& nodes = bvh_.nodes();
     // A node is worth entering only if its box starts before the nearest hit so far
     // (boxes.entry is conservative, so this never skips a nearer triangle).
-    const auto reach = [&] { return std::min(nearest.t, pixel.tFar); };
+    const auto reach = [&] { return nearest.t; };
 
     struct Pending {
       std::uint32_t node;
@@ -157,8 +142,9 @@ class BvhTracer {
           offer(ray, triangles_[slot], pixel, nearest);
       } else {
         // Ordered traversal: go on with the nearer child, keep the farther for later.
-        Pending first{node.index, boxes.entry(nodes[node.index], reach())};
-        Pending second{node.index + 1, boxes.entry(nodes[node.index + 1], reach())};
+        const auto [entry0, entry1] = boxes.childEntries(&nodes[node.index], reach());
+        Pending first{node.index, entry0};
+        Pending second{node.index + 1, entry1};
         if (second.entry < first.entry) std::swap(first, second);
         if (first.entry != kMiss) {
           if (second.entry != kMiss) stack[size++] = second;
@@ -177,7 +163,7 @@ class BvhTracer {
  private:
   static constexpr double kMiss = std::numeric_limits<double>::infinity();
   const Bvh& bvh_;
-  std::vector<PackedTriangle> triangles_;
+  const std::vector<PackedTriangle>& triangles_;
 };
 
 }  // namespace
@@ -199,14 +185,14 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
   return text;
 }
 
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
+Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
   if (const std::string reason = refusal(scene, knobs); !reason.empty()) throw InputError(reason);
   Frame frame(scene.width(), scene.height());
   const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
   stats.add("primary rays", static_cast<std::int64_t>(frame.pixelCount()));
   switch (knobs.variant) {
     case Variant::naive: {
-      const NaiveTracer tracer(scene);
+      const NaiveTracer tracer(scene, stats);
       PhaseTimer timer(stats, "ray casting");
       const auto counters = castRays(tracer, camera, threads, frame);
       stats.add("ray-triangle tests", counters.triangleTests);
@@ -224,7 +210,12 @@ Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& st
       march(scene, knobs, camera, threads, frame, stats);
       break;
   }
-  shadeFrame(scene, camera, frame, threads, stats);
+  return frame;
+}
+
+Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
+  Frame frame = castVisibility(scene, knobs, threads, stats);
+  shadeFrame(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), frame, threads, stats);
   return frame;
 }
 

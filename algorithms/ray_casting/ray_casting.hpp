@@ -53,4 +53,7 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 // Throws InputError when refusal() is not empty.
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
 
+// run's visibility pass alone: ids and depth; the color is left black.
+Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
+
 }  // namespace hsr::ray_casting

@@ -98,7 +98,7 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   expected.insert(expected.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
   expected.push_back("counters");
   EXPECT_EQ(header, expected);
-  ASSERT_EQ(rows.size(), 4u);  // per scene: the reference, then zbuffer at its defaults
+  ASSERT_EQ(rows.size(), 6u);  // per scene: the reference, then every surface algorithm at its defaults
   for (const Row& row : rows) {
     expectConsistentMeasurements(row);
     EXPECT_EQ(row.at("repeats"), "2");
@@ -108,7 +108,10 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_EQ(rows[1].at("algorithm"), "zbuffer");
   EXPECT_EQ(rows[1].at("knobs"), "defaults");
   EXPECT_NE(rows[1].at("counters").find("fragments tested="), std::string::npos);
-  EXPECT_GT(number(rows[3], "ambiguous_pixels"), 0);  // the coplanar tie
+  EXPECT_EQ(rows[2].at("algorithm"), "ray_casting");
+  EXPECT_NE(rows[2].at("counters").find("bvh nodes visited="), std::string::npos);
+  for (const std::size_t exact : {2u, 5u}) EXPECT_EQ(number(rows[exact], "pixel_error"), 0);  // bvh is exact
+  EXPECT_GT(number(rows[4], "ambiguous_pixels"), 0);  // the coplanar tie
 
   const test::JsonValue json = test::parseJson(readText(folder / "results.json"));
   ASSERT_EQ(json.array().size(), rows.size());
@@ -120,7 +123,7 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_GT(json.array()[1]["counters"]["fragments tested"].number(), 0);
 
   const Image sheet = readImage(folder / "contact_sheet.png");
-  EXPECT_EQ(sheet.width, 10 + 2 * (256 + 10));  // two columns: the reference and zbuffer
+  EXPECT_EQ(sheet.width, 10 + 3 * (256 + 10));  // three columns: the reference, zbuffer and ray_casting
   EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
 }
 

@@ -11,7 +11,7 @@ namespace {
 
 bool contains(const BvhNode& node, const Aabb& box) {
   for (int axis = 0; axis < 3; ++axis)
-    if (double(node.lo[axis]) > box.lo[axis] || double(node.hi[axis]) < box.hi[axis]) return false;
+    if (double(node.bounds[0][axis]) > box.lo[axis] || double(node.bounds[1][axis]) < box.hi[axis]) return false;
   return true;
 }
 
@@ -88,9 +88,10 @@ TEST(Bvh, BoxTestNeverMissesABoxTheRayMeets) {
     box.grow(dvec3(position(random), position(random), position(random)));
     box.grow(box.lo + dvec3(unit(random), unit(random), unit(random)) * (trial % 3 == 0 ? 0.0 : 2.0));
     BvhNode node{};
-    for (int axis = 0; axis < 3; ++axis) node.lo[axis] = float(box.lo[axis]), node.hi[axis] = float(box.hi[axis]);
+    for (int axis = 0; axis < 3; ++axis) node.bounds[0][axis] = float(box.lo[axis]), node.bounds[1][axis] = float(box.hi[axis]);
     // Keep the float box inside the double one: then a hit on the float box is certain.
-    const dvec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
+    const dvec3 lo(node.bounds[0][0], node.bounds[0][1], node.bounds[0][2]),
+        hi(node.bounds[1][0], node.bounds[1][1], node.bounds[1][2]);
     const dvec3 target = lo + (hi - lo) * dvec3(unit(random), unit(random), unit(random));
     dvec3 origin(position(random) * 3, position(random) * 3, position(random) * 3);
     if (trial % 2) origin[trial % 3] = target[trial % 3];  // an axis-parallel ray
