@@ -1,19 +1,28 @@
-// Golden images: every scene under scenes/ rendered with the z-buffer and compared with
-// images/golden/zbuffer/<scene>.png by OpenImageIO's ImageBufAlgo::compare.
+// Golden images: every scene under scenes/ rendered by each algorithm at its defaults
+// and compared with images/golden/<algorithm>/<scene>.png by OpenImageIO's
+// ImageBufAlgo::compare.
 //
 // Tolerance: a pixel fails when any channel differs by more than 2/255 (lighting
 // rounded differently by another libm), and an image fails when more than 0.05% of its
 // pixels fail (a few ids flipped by a one-ulp vertex difference). On the CI machine
 // kind the output is bit-identical; the slack is for other machines.
 //
-// HSR_UPDATE_GOLDEN=1 rewrites the goldens, but only for scenes where the independent
-// check agrees: the full-frame and one-scanline z-buffers must give identical ids.
+// HSR_UPDATE_GOLDEN=1 rewrites the goldens, but only where an independent check agrees:
+//   zbuffer: the full-frame and one-scanline z-buffers give identical ids;
+//   ray_casting (bvh): no wrong pixel against the exact reference;
+//   ray_casting march: the same bits on 1 and 3 threads (its error against the
+//     reference is the method's, tabled in algorithms/ray_casting/README.md).
+// ray_casting naive has no goldens of its own: it must reproduce bvh's.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <cstdlib>
+#include <functional>
 
+#include "algorithms/ray_casting/ray_casting.hpp"
+#include "renderer/metrics.hpp"
+#include "renderer/reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -39,53 +48,107 @@ OIIO::ImageBuf toImageBuf(const Frame& frame) {
   return image;
 }
 
-class Golden : public testing::TestWithParam<std::string> {};
+// One algorithm configuration with golden images: how it renders, where its goldens
+// live, and the check an update must pass (empty when it passes, else why not).
+struct GoldenCase {
+  std::string name;
+  std::string folder;  // under images/golden/
+  std::function<Frame(const PreparedScene&, int threads)> render;
+  std::function<std::string(const PreparedScene&, const Frame&)> updateCheck;  // none: the goldens are another case's
+};
 
-TEST_P(Golden, ZBufferMatchesTheGoldenImage) {
-  const std::string name = GetParam();
+Frame rayCast(const PreparedScene& scene, ray_casting::Variant variant, int threads) {
+  ray_casting::Knobs knobs;
+  knobs.variant = variant;
+  Stats stats;
+  return ray_casting::run(scene, knobs, threads, stats);
+}
+
+const std::vector<GoldenCase>& goldenCases() {
+  static const std::vector<GoldenCase> cases = {
+      {"zbuffer", "zbuffer",
+       [](const PreparedScene& scene, int threads) {
+         return test::renderZBuffer(scene, zbuffer::Variant::full, DepthFormat::float32, threads);
+       },
+       [](const PreparedScene& scene, const Frame& frame) {
+         const Frame scanline = test::renderZBuffer(scene, zbuffer::Variant::scanline, DepthFormat::float32, 2);
+         return frame.ids == scanline.ids ? std::string() : "full-frame and scanline disagree";
+       }},
+      {"ray_casting_bvh", "ray_casting",
+       [](const PreparedScene& scene, int threads) { return rayCast(scene, ray_casting::Variant::bvh, threads); },
+       [](const PreparedScene& scene, const Frame& frame) {
+         Stats stats;
+         const std::int64_t wrong = surfaceError(frame, traceReference(scene, 2, stats)).wrongPixels;
+         return wrong == 0 ? std::string() : std::to_string(wrong) + " pixels differ from the exact reference";
+       }},
+      {"ray_casting_naive", "ray_casting",
+       [](const PreparedScene& scene, int threads) { return rayCast(scene, ray_casting::Variant::naive, threads); },
+       nullptr},  // writes no goldens: it is checked against bvh's
+      {"ray_casting_march", "ray_casting-march",
+       [](const PreparedScene& scene, int threads) { return rayCast(scene, ray_casting::Variant::march, threads); },
+       [](const PreparedScene& scene, const Frame& frame) {
+         return rayCast(scene, ray_casting::Variant::march, 3).color == frame.color ? std::string()
+                                                                                    : "1 and 3 threads disagree";
+       }},
+  };
+  return cases;
+}
+
+class Golden : public testing::TestWithParam<std::tuple<std::size_t, std::string>> {};
+
+TEST_P(Golden, MatchesTheGoldenImage) {
+  const GoldenCase& golden = goldenCases()[std::get<0>(GetParam())];
+  const std::string name = std::get<1>(GetParam());
   const Scene scene = loadScene(test::sourcePath("scenes/" + name + ".toml"));
   PreparedScene prepared(scene);
   prepared.setSize(kGoldenWidth, std::max(1, kGoldenWidth * scene.height / scene.width));
-  const Frame frame = test::renderZBuffer(prepared, zbuffer::Variant::full, DepthFormat::float32, 2);
-  const std::filesystem::path golden = test::sourcePath("images/golden/zbuffer/" + name + ".png");
+  ray_casting::Knobs naive;
+  naive.variant = ray_casting::Variant::naive;
+  if (golden.name == "ray_casting_naive" && !ray_casting::refusal(prepared, naive).empty())
+    GTEST_SKIP() << "naive is over its default budget here: " << ray_casting::refusal(prepared, naive);
+  const Frame frame = golden.render(prepared, 1);
+  const std::filesystem::path path = test::sourcePath("images/golden/" + golden.folder + "/" + name + ".png");
 
   if (std::getenv("HSR_UPDATE_GOLDEN")) {
-    const Frame scanline = test::renderZBuffer(prepared, zbuffer::Variant::scanline, DepthFormat::float32, 2);
-    ASSERT_EQ(frame.ids, scanline.ids) << "refusing to update " << golden << ": full-frame and scanline disagree";
-    std::filesystem::create_directories(golden.parent_path());
+    if (!golden.updateCheck) GTEST_SKIP() << golden.name << " writes no goldens of its own";
+    const std::string refusal = golden.updateCheck(prepared, frame);
+    ASSERT_EQ(refusal, "") << "refusing to update " << path;
+    std::filesystem::create_directories(path.parent_path());
     OutputFiles outputs;
-    outputs.addColorPng(golden, frame);
+    outputs.addColorPng(path, frame);
     outputs.commit();
-    GTEST_SKIP() << "updated " << golden;
+    GTEST_SKIP() << "updated " << path;
   }
 
-  ASSERT_TRUE(std::filesystem::exists(golden)) << golden << " is missing (HSR_UPDATE_GOLDEN=1 creates it)";
-  const OIIO::ImageBuf expected(golden.string());
+  ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing (HSR_UPDATE_GOLDEN=1 creates it)";
+  const OIIO::ImageBuf expected(path.string());
   const OIIO::ImageBuf actual = toImageBuf(frame);
   const auto result = OIIO::ImageBufAlgo::compare(actual, expected, kChannelTolerance, kChannelTolerance);
-  ASSERT_FALSE(result.error) << "cannot compare with " << golden << ": " << OIIO::geterror();
+  ASSERT_FALSE(result.error) << "cannot compare with " << path << ": " << OIIO::geterror();
   const double failing = double(result.nfail) / double(frame.pixelCount());
   if (failing > kFailingPixelFraction) {
     // Leave the evidence where a person can look at it.
-    std::string flat = name;
+    std::string flat = golden.name + "-" + name;
     std::replace(flat.begin(), flat.end(), '/', '-');
     const auto actualPath = test::outputPath("golden-" + flat + ".actual.png");
     const auto diffPath = test::outputPath("golden-" + flat + ".diff.png");
     actual.write(actualPath.string());
     const OIIO::ImageBuf difference = OIIO::ImageBufAlgo::maxchan(OIIO::ImageBufAlgo::absdiff(actual, expected));
     OIIO::ImageBufAlgo::color_map(difference, 0, "inferno").write(diffPath.string());
-    ADD_FAILURE() << name << ": " << result.nfail << " pixels differ by more than 2/255 (" << 100 * failing
-                  << "%, allowed " << 100 * kFailingPixelFraction << "%), max error " << result.maxerror << " at ("
-                  << result.maxx << ", " << result.maxy << ")\n  actual: " << actualPath << "\n  diff heat map: " << diffPath;
+    ADD_FAILURE() << golden.name << " on " << name << ": " << result.nfail << " pixels differ by more than 2/255 ("
+                  << 100 * failing << "%, allowed " << 100 * kFailingPixelFraction << "%), max error " << result.maxerror
+                  << " at (" << result.maxx << ", " << result.maxy << ")\n  actual: " << actualPath
+                  << "\n  diff heat map: " << diffPath;
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, Golden, testing::ValuesIn(allScenes()), [](const testing::TestParamInfo<std::string>& param) {
-  std::string name = param.param;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
-});
+INSTANTIATE_TEST_SUITE_P(Scenes, Golden, testing::Combine(testing::Range<std::size_t>(0, goldenCases().size()), testing::ValuesIn(allScenes())),
+                         [](const testing::TestParamInfo<std::tuple<std::size_t, std::string>>& param) {
+                           std::string name = goldenCases()[std::get<0>(param.param)].name + "_" + std::get<1>(param.param);
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace hsr
