@@ -88,9 +88,9 @@ AlgorithmEntry rayCastingEntry() {
       {"refine", "march: bisection steps back to the surface once a sample is inside",
        {"0", "2", "4", "8"}, KnobSpec::Range{0, 52, true}, {"march"}},
   };
-  entry.keyCounters = {"primary rays", "bvh nodes visited", "ray-triangle tests", "march samples", "inside tests"};
-  entry.studyConfigurations = {{}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "4"}},
-                               {{"variant", "march"}, {"step", "0.1%"}, {"refine", "4"}}};
+  entry.keyCounters = {"primary rays", "bvh nodes visited", "ray-triangle tests", "march samples", "inside tests",
+                       "nearest-triangle voxels searched"};
+  entry.studyConfigurations = {{}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
   const auto typed = [](const KnobValues& values) {
     ray_casting::Knobs knobs;
     knobs.variant = values.at("variant") == "naive"   ? ray_casting::Variant::naive

@@ -3,7 +3,8 @@
 // depth-tested rasterization: what Mesa's peer run does too); "shaded" adds the
 // deferred Lambert shading of the whole render. "reference" traces the exact reference
 // (renderer/reference) over the same scenes, BVH already built, so the cost of ground
-// truth comes out as a ratio to the z-buffer from one run; "bvh_build" times the BVH.
+// truth comes out as a ratio to the z-buffer from one run (ray_casting_bench times the
+// BVH build).
 //
 // Protocol: one warm-up render, then Google Benchmark's repetitions; it reports
 // mean, median, min, max. Run: build/bench/zbuffer_bench --benchmark_repetitions=5
@@ -92,16 +93,6 @@ void reference(benchmark::State& state) {
   state.counters["rays/s"] = benchmark::Counter(double(scene.width()) * scene.height(), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void bvhBuild(benchmark::State& state) {
-  const hsr::Scene& scene = sceneNamed(kScenes[state.range(0)]).scene;
-  for (auto _ : state) {
-    const hsr::PreparedScene prepared(scene);
-    hsr::Stats stats;
-    benchmark::DoNotOptimize(prepared.triangleBvh(stats).nodes().data());
-  }
-  state.SetLabel(std::string(kScenes[state.range(0)]) + " flatten + SAH build");
-}
-
 void visibilityArguments(benchmark::internal::Benchmark* benchmark) {
   for (int scene = 0; scene < 2; ++scene)
     for (int variant = 0; variant < 2; ++variant)
@@ -118,7 +109,6 @@ BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(reference)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
-BENCHMARK(bvhBuild)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 

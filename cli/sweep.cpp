@@ -1,6 +1,7 @@
 // hsr sweep: one algorithm over the cross product of knob values (or, with --scale,
 // over growing triangle counts or resolutions), each configuration timed and measured
 // against the exact reference, written as CSV and JSON and plotted.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -32,26 +33,46 @@ KnobSettings fixedSettings(const SweepOptions& options) {
   return {{"variant", options.variant}};
 }
 
+const KnobSpec* knobNamed(const AlgorithmEntry& algorithm, const std::string& name) {
+  for (const KnobSpec& knob : algorithm.knobs)
+    if (knob.name == name) return &knob;
+  return nullptr;
+}
+
+bool appliesTo(const KnobSpec& knob, const std::string& variant) {
+  return knob.variants.empty() || std::find(knob.variants.begin(), knob.variants.end(), variant) != knob.variants.end();
+}
+
 std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const SweepOptions& options) {
   std::vector<Axis> axes;
   std::set<std::string> seen;
+  std::vector<std::string> sweptVariants;
   for (const std::string& text : options.knobs) {
     const auto [name, list] = parseKnobSetting(text, "--knob");
     if (!seen.insert(name).second) throw InputError("--knob " + text + ": " + name + " is swept twice; give one list");
     if (name == "variant" && !options.variant.empty())
       throw InputError("--knob " + text + ": the variant is already fixed by --variant " + options.variant);
-    Axis axis{name, splitList(list, "--knob " + name + "=")};
+    axes.push_back({name, splitList(list, "--knob " + name + "=")});
+    if (name == "variant") sweptVariants = axes.back().values;
+  }
+  for (const Axis& axis : axes)
     for (const std::string& value : axis.values) {
-      if (name == kSizeKnob) {
+      if (axis.name == kSizeKnob) {
         parseSize(value, "--knob size:");
         continue;
       }
+      // A knob of some variants is checked with one of them when the variant is swept
+      // (the other variants' configurations leave it out).
       KnobSettings settings = fixedSettings(options);
-      settings.emplace_back(name, value);
+      const KnobSpec* knob = knobNamed(algorithm, axis.name);
+      if (knob && axis.name != "variant" && !sweptVariants.empty()) {
+        const auto fitting = std::find_if(sweptVariants.begin(), sweptVariants.end(),
+                                          [&](const std::string& variant) { return appliesTo(*knob, variant); });
+        settings.emplace_back("variant", fitting != sweptVariants.end() ? *fitting : sweptVariants.front());
+      }
+      settings.emplace_back(axis.name, value);
       resolveKnobs(algorithm, settings);  // throws for an unknown knob or value
     }
-    axes.push_back(axis);
-  }
   return axes;
 }
 
@@ -103,32 +124,46 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     Configuration configuration;
     std::pair<int, int> size;
     std::string label;
+    std::vector<std::pair<std::string, std::string>> swept;  // "-" for a knob the variant does not have
   };
   std::vector<std::string> sweptKnobs;
   for (const Axis& axis : axes) sweptKnobs.push_back(axis.name);
-  const auto combinations = crossProduct(axes);
   std::vector<Planned> plan;
-  for (const auto& combination : combinations) {
+  for (const auto& combination : crossProduct(axes)) {
+    Planned planned;
+    planned.size = {defaultWidth, defaultHeight};
+    planned.swept = combination;
+    std::string variant = options.variant;
+    for (const auto& [name, value] : combination)
+      if (name == "variant") variant = value;
     KnobSettings settings = fixedSettings(options);
-    std::pair<int, int> size{defaultWidth, defaultHeight};
-    std::string label;
-    for (const auto& [name, value] : combination) {
-      label += (label.empty() ? "" : " ") + name + "=" + value;
-      if (name == kSizeKnob) size = parseSize(value, "--knob size:");
-      else settings.emplace_back(name, value);
+    for (auto& [name, value] : planned.swept) {
+      if (name == kSizeKnob) {
+        planned.size = parseSize(value, "--knob size:");
+      } else if (const KnobSpec* knob = knobNamed(algorithm, name); knob && !variant.empty() && !appliesTo(*knob, variant)) {
+        value = "-";  // swept for the other variants
+        continue;
+      } else {
+        settings.emplace_back(name, value);
+      }
+      planned.label += (planned.label.empty() ? "" : " ") + name + "=" + value;
     }
-    Planned planned{configurationOf(algorithm, settings), size, label};
-    scene.prepared->setSize(size.first, size.second);
-    checkRenders(algorithm, planned.configuration.knobs, scene.name + " (" + label + ")", *scene.prepared);
+    planned.configuration = configurationOf(algorithm, settings);
+    // A variant without some swept knobs recurs once per value of them: run it once.
+    if (std::any_of(plan.begin(), plan.end(), [&](const Planned& earlier) {
+          return earlier.size == planned.size && earlier.configuration.knobs == planned.configuration.knobs;
+        }))
+      continue;
+    scene.prepared->setSize(planned.size.first, planned.size.second);
+    checkRenders(algorithm, planned.configuration.knobs, scene.name + " (" + planned.label + ")", *scene.prepared);
     plan.push_back(std::move(planned));
   }
   makeFolder(options.out, "--out");
 
   std::map<std::pair<int, int>, ReferenceImage> references;  // one per resolution
   std::vector<ResultRow> rows;
-  Progress progress(combinations.size());
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    const auto& [configuration, size, label] = plan[i];
+  Progress progress(plan.size());
+  for (const auto& [configuration, size, label, swept] : plan) {
     progress.update(rows.size(), label);
     scene.prepared->setSize(size.first, size.second);
     if (!references.contains(size)) {
@@ -137,7 +172,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     }
     ResultRow row = measureConfiguration(scene.name, *scene.prepared, references.at(size), configuration, options.repeat,
                                          options.threads).row;
-    row.swept = combinations[i];
+    row.swept = swept;
     rows.push_back(std::move(row));
   }
   progress.update(rows.size(), "done");
@@ -157,7 +192,13 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ResultRow& row = rows[i];
     std::string label;
-    for (const auto& [name, value] : row.swept) label += (label.empty() ? "" : " ") + value;
+    // Values alone when one knob is swept (or for the variant), NAME=VALUE otherwise;
+    // a knob the row's variant does not have is left out.
+    for (const auto& [name, value] : row.swept) {
+      if (value == "-") continue;
+      label += label.empty() ? "" : " ";
+      label += name == "variant" || row.swept.size() == 1 ? value : name + "=" + value;
+    }
     if (row.error.pixelError == 0) label += " (error 0)";
     char line[256];
     // Labels alternate above and below their points, so neighbours do not overprint.

@@ -15,5 +15,22 @@ cp "$study/contact_sheet.png" images/figures/compare.png
 ./build/hsr sweep scenes/hard/coplanar.toml --algo zbuffer \
   --knob depth-format=unorm16,unorm24,float32,reversed-float32 --repeat 5 --out "$study" > /dev/null
 cp "$study/sweep.png" images/figures/sweep-coplanar-depth.png
+# Ray casting: the march's accuracy against time beside bvh, on trees and on the thin
+# sheet; naive's and bvh's time against the triangle count.
+mkdir -p images/figures/ray_casting
+./build/hsr sweep scenes/trees.toml --algo ray_casting --size 640x360 --knob variant=bvh,march \
+  --knob step=4%,1%,0.25% --knob refine=0,6 --repeat 3 --out "$study" > /dev/null
+cp "$study/sweep.png" images/figures/ray_casting/sweep-trees.png
+./build/hsr sweep scenes/hard/thin_sheet.toml --algo ray_casting --knob variant=bvh,march \
+  --knob step=5%,1%,0.1%,0.001 --knob refine=0,6 --repeat 3 --out "$study" > /dev/null
+cp "$study/sweep.png" images/figures/ray_casting/sweep-thin-sheet.png
+./build/hsr sweep scenes/bunny.toml --algo ray_casting --variant naive --knob budget=1e11 --scale triangles \
+  --size 64x48 --repeat 1 --out "$study" > /dev/null
+cp "$study/scale_triangles.png" images/figures/ray_casting/scale-naive.png
+./build/hsr sweep scenes/bunny.toml --algo ray_casting --scale triangles --size 64x48 --repeat 5 --out "$study" > /dev/null
+cp "$study/scale_triangles.png" images/figures/ray_casting/scale-bvh.png
+./build/hsr compare scenes/hard/thin_sheet.toml scenes/trees.toml --size 480x270 \
+  --algos "ray_casting,ray_casting:variant=march,ray_casting:variant=march:refine=6" --out "$study" > /dev/null
+cp "$study/contact_sheet.png" images/figures/ray_casting/compare.png
 rm -r "$study"
 echo "figures are in images/figures/"

@@ -99,11 +99,12 @@ Aabb solidBounds(const Solid& solid, double heightFieldTop, double floor) {
 class Marcher {
  public:
   struct Counters {
-    std::int64_t samples = 0, insideTests = 0, refinementSteps = 0;
+    std::int64_t samples = 0, insideTests = 0, refinementSteps = 0, voxelsSearched = 0;
     Counters& operator+=(const Counters& other) {
       samples += other.samples;
       insideTests += other.insideTests;
       refinementSteps += other.refinementSteps;
+      voxelsSearched += other.voxelsSearched;
       return *this;
     }
   };
@@ -165,11 +166,12 @@ class Marcher {
         if (!found || surface < entry || (surface == entry && copy < entered)) entered = copy, entry = surface, found = true;
       });
       if (!found) continue;
-      // Step 5: name the entered object's triangle nearest to the point found.
+      // Step 5: name the entered object's triangle nearest to the point found (a search
+      // that grows with how deep inside the point is: refinement makes it cheaper).
       const Copy& copy = copies_[entered];
       const ObjectGrid& object = objects_[copy.object];
       const dvec3 local = dvec3(copy.objectFromWorld * dvec4(pixel.at(entry), 1.0));
-      nearest.id = copy.firstTriangle + object.grid->nearestTriangle(*object.object->mesh, local) + 1;
+      nearest.id = copy.firstTriangle + object.grid->nearestTriangle(*object.object->mesh, local, counters.voxelsSearched) + 1;
       nearest.t = entry;
       return nearest;
     }
@@ -281,6 +283,7 @@ void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform
   stats.add("march samples", counters.samples);
   stats.add("inside tests", counters.insideTests);
   stats.add("refinement steps", counters.refinementSteps);
+  stats.add("nearest-triangle voxels searched", counters.voxelsSearched);
 }
 
 }  // namespace hsr::ray_casting

@@ -128,13 +128,12 @@ bool OccupancyGrid::occupied(const dvec3& point) const {
   return state_[indexOf(cellOf(point))] != kOutside;
 }
 
-std::uint32_t OccupancyGrid::nearestTriangle(const Mesh& mesh, const dvec3& point) const {
-  const glm::ivec3 center = cellOf(point);
-  // How far the point lies outside the grid: shells are measured from its clamped cell.
-  const double outside = glm::length(glm::max(glm::max(bounds_.lo - point, point - bounds_.hi), dvec3(0)));
+std::uint32_t OccupancyGrid::nearestTriangle(const Mesh& mesh, const dvec3& point, std::int64_t& voxelsSearched) const {
+  const glm::ivec3 center = cellOf(point);  // clamped into the grid when the point is outside it
   double best = std::numeric_limits<double>::infinity();
   std::uint32_t nearest = 0;
   const auto visit = [&](const glm::ivec3& cell) {
+    ++voxelsSearched;
     const auto found = std::lower_bound(surfaceVoxels_.begin(), surfaceVoxels_.end(), indexOf(cell));
     if (found == surfaceVoxels_.end() || *found != indexOf(cell)) return;
     const std::size_t row = std::size_t(found - surfaceVoxels_.begin());
@@ -146,7 +145,8 @@ std::uint32_t OccupancyGrid::nearestTriangle(const Mesh& mesh, const dvec3& poin
     }
   };
   // Shell r holds the cells at Chebyshev distance r from the point's cell; every cell
-  // beyond it lies at least r voxels (less the point's distance outside) from the point.
+  // beyond it lies at least r voxels from the point (along the axis where it is r + 1
+  // cells away; a point outside the grid is only farther from the cells inside).
   const int maxShell = std::max({dims_.x, dims_.y, dims_.z});
   for (int r = 0; r <= maxShell; ++r) {
     for (int z = std::max(0, center.z - r); z <= std::min(dims_.z - 1, center.z + r); ++z)
@@ -158,8 +158,8 @@ std::uint32_t OccupancyGrid::nearestTriangle(const Mesh& mesh, const dvec3& poin
         if (center.x - r >= 0) visit({center.x - r, y, z});
         if (center.x + r < dims_.x) visit({center.x + r, y, z});
       }
-    const double reach = r * voxel_ - outside;
-    if (best <= reach * reach && reach > 0) break;
+    const double reach = r * voxel_;
+    if (best <= reach * reach) break;
   }
   return nearest;
 }

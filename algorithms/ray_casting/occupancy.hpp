@@ -29,7 +29,8 @@ class OccupancyGrid {
 
   // The mesh triangle nearest to an object-space point (lowest index on a tie), found in
   // growing shells of voxels around it; the mesh must be the one the grid was built from.
-  std::uint32_t nearestTriangle(const Mesh& mesh, const dvec3& point) const;
+  // Adds the voxels it looked at to voxelsSearched: the deeper inside the point, the more.
+  std::uint32_t nearestTriangle(const Mesh& mesh, const dvec3& point, std::int64_t& voxelsSearched) const;
 
   // The occupied region, padded by one voxel.
   const Aabb& bounds() const { return bounds_; }

@@ -23,7 +23,8 @@ namespace {
 // between them: no cracks in a closed mesh, whatever the rounding.
 class WatertightRay {
  public:
-  explicit WatertightRay(const Ray& ray) : origin_(ray.origin) {
+  // inverseDirection: 1 / ray.direction, per axis (the slab test needs it too).
+  WatertightRay(const Ray& ray, const dvec3& inverseDirection) : origin_(ray.origin) {
     // Step 1: kz, the axis the direction is largest along; kx, ky the other two, swapped
     // when the ray runs down kz so the triangle's winding is kept.
     const dvec3 size = glm::abs(ray.direction);
@@ -32,7 +33,7 @@ class WatertightRay {
     ky_ = (kx_ + 1) % 3;
     if (ray.direction[kz_] < 0) std::swap(kx_, ky_);
     // Step 2: the shear that takes the direction to (0, 0, 1).
-    shearZ_ = 1.0 / ray.direction[kz_];
+    shearZ_ = inverseDirection[kz_];
     shearX_ = ray.direction[kx_] * shearZ_;
     shearY_ = ray.direction[ky_] * shearZ_;
   }
@@ -90,7 +91,7 @@ class NaiveTracer {
   NaiveTracer(const PreparedScene& scene, Stats& stats) : triangles_(scene.leafTriangles(stats)) {}
 
   Hit trace(const PixelRay& pixel, Counters& counters) const {
-    const WatertightRay ray(pixel.ray);
+    const WatertightRay ray(pixel.ray, 1.0 / pixel.ray.direction);
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
     for (const PackedTriangle& triangle : triangles_) offer(ray, triangle, pixel, nearest);
     counters.triangleTests += static_cast<std::int64_t>(triangles_.size());
@@ -118,8 +119,8 @@ class BvhTracer {
   Hit trace(const PixelRay& pixel, Counters& counters) const {
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
     if (bvh_.empty()) return nearest;
-    const WatertightRay ray(pixel.ray);
     const RayBoxTest boxes(pixel.ray.origin, pixel.ray.direction);
+    const WatertightRay ray(pixel.ray, boxes.inverseDirection);
     const std::vector<BvhNode>& nodes = bvh_.nodes();
     // A node is worth entering only if its box starts before the nearest hit so far.
     // The box's entry and a triangle's t are each rounded, so a triangle lying in its
