@@ -8,31 +8,15 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <map>
-#include <memory>
 
 #include "algorithms/ray_casting/ray_casting.hpp"
+#include "bench_scenes.hpp"
 #include "renderer/memory.hpp"
 
 namespace {
 
-struct LoadedScene {
-  hsr::Scene scene;
-  std::unique_ptr<hsr::PreparedScene> prepared;
-};
-
-const char* const kScenes[] = {"dragons", "counters"};
-
-const LoadedScene& sceneNamed(const std::string& name) {
-  static std::map<std::string, LoadedScene> loaded;
-  LoadedScene& entry = loaded[name];
-  if (!entry.prepared) {
-    entry.scene = hsr::loadScene(std::string(HSR_SOURCE_DIR) + "/scenes/" + name + ".toml");
-    entry.prepared = std::make_unique<hsr::PreparedScene>(entry.scene);
-    entry.prepared->setSize(1280, 720);
-  }
-  return entry;
-}
+using hsr::bench::kScenes;
+using hsr::bench::sceneNamed;
 
 // Arguments: scene, variant (0 bvh, 2 march), threads.
 void primaryRays(benchmark::State& state) {

@@ -14,29 +14,15 @@
 #include <memory>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "bench_scenes.hpp"
 #include "renderer/memory.hpp"
 #include "renderer/reference.hpp"
 #include "renderer/shading.hpp"
 
 namespace {
 
-struct LoadedScene {
-  hsr::Scene scene;
-  std::unique_ptr<hsr::PreparedScene> prepared;
-};
-
-const LoadedScene& sceneNamed(const std::string& name) {
-  static std::map<std::string, LoadedScene> loaded;
-  LoadedScene& entry = loaded[name];
-  if (!entry.prepared) {
-    entry.scene = hsr::loadScene(std::string(HSR_SOURCE_DIR) + "/scenes/" + name + ".toml");
-    entry.prepared = std::make_unique<hsr::PreparedScene>(entry.scene);
-    entry.prepared->setSize(1280, 720);
-  }
-  return entry;
-}
-
-const char* const kScenes[] = {"dragons", "counters"};
+using hsr::bench::kScenes;
+using hsr::bench::sceneNamed;
 
 void visibility(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
