@@ -13,13 +13,13 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "algorithms/ray_casting/ray_casting.hpp"
+#include "peer_timing.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/memory.hpp"
 #include "renderer/parallel.hpp"
@@ -28,17 +28,8 @@ namespace {
 
 constexpr int kWidth = 1280, kHeight = 720;
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
-template <typename Work>
-double millisecondsOf(Work&& work) {
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using hsr::bench::millisecondsOf;
+using hsr::bench::Timing;
 
 class EmbreeScene {
  public:
@@ -133,13 +124,13 @@ int main(int argc, char** argv) {
     hsr::Stats warmUp;
     ours = hsr::ray_casting::castVisibility(prepared, knobs, threads, warmUp);
     embree.trace(camera, threads, theirs);
-    std::vector<double> oursMs, theirsMs;
+    Timing oursMs, theirsMs;
     for (int run = 0; run < runs; ++run) {  // interleaved, so both see the same machine load
-      oursMs.push_back(millisecondsOf([&] {
+      oursMs.milliseconds.push_back(millisecondsOf([&] {
         hsr::Stats stats;
         ours = hsr::ray_casting::castVisibility(prepared, knobs, threads, stats);
       }));
-      theirsMs.push_back(millisecondsOf([&] { embree.trace(camera, threads, theirs); }));
+      theirsMs.milliseconds.push_back(millisecondsOf([&] { embree.trace(camera, threads, theirs); }));
     }
     std::int64_t agree = 0, covered = 0;
     for (std::size_t i = 0; i < theirs.size(); ++i) {
@@ -150,9 +141,9 @@ int main(int argc, char** argv) {
     const double rays = double(kWidth) * kHeight;
     std::printf("%s (%zu triangles; build: hsr SAH %.1f ms, %zu nodes; Embree %.1f ms)\n", name.c_str(),
                 prepared.triangleCount(), hsrBuild, prepared.triangleBvh(buildStats).nodes().size(), embree.buildMilliseconds());
-    std::printf("  hsr    median %7.2f ms  %6.2f Mrays/s\n", median(oursMs), rays / median(oursMs) / 1e3);
-    std::printf("  Embree median %7.2f ms  %6.2f Mrays/s\n", median(theirsMs), rays / median(theirsMs) / 1e3);
-    std::printf("  throughput ratio hsr/Embree %.2f\n", median(theirsMs) / median(oursMs));
+    std::printf("  hsr    median %7.2f ms  %6.2f Mrays/s\n", oursMs.median(), rays / oursMs.median() / 1e3);
+    std::printf("  Embree median %7.2f ms  %6.2f Mrays/s\n", theirsMs.median(), rays / theirsMs.median() / 1e3);
+    std::printf("  throughput ratio hsr/Embree %.2f\n", theirsMs.median() / oursMs.median());
     std::printf("  pixels hit by either: %lld, same triangle %.4f%%\n", static_cast<long long>(covered),
                 100.0 * double(agree) / double(std::max<std::int64_t>(1, covered)));
   }

@@ -25,28 +25,15 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "peer_timing.hpp"
 #include "renderer/memory.hpp"
 
 namespace {
 
 constexpr int kWidth = 1280, kHeight = 720;
 
-struct Timing {
-  std::vector<double> milliseconds;
-  double median() {
-    std::sort(milliseconds.begin(), milliseconds.end());
-    return milliseconds[milliseconds.size() / 2];
-  }
-  double min() { return *std::min_element(milliseconds.begin(), milliseconds.end()); }
-  double max() { return *std::max_element(milliseconds.begin(), milliseconds.end()); }
-};
-
-template <typename Work>
-double millisecondsOf(Work&& work) {
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using hsr::bench::millisecondsOf;
+using hsr::bench::Timing;
 
 // Mesa's side: a framebuffer object with RGBA8 colour and float32 depth, and the scene's
 // triangles unindexed in one vertex buffer, each corner carrying its triangle's id + 1.
