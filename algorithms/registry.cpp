@@ -91,11 +91,10 @@ AlgorithmEntry rayCastingEntry() {
   entry.keyCounters = {"primary rays", "bvh nodes visited", "ray-triangle tests", "march samples", "inside tests",
                        "nearest-triangle voxels searched"};
   entry.studyConfigurations = {{}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
-  const auto typed = [](const KnobValues& values) {
+  // The variant's choices are listed in the order of ray_casting::Variant.
+  const auto typed = [variant = entry.knobs[0]](const KnobValues& values) {
     ray_casting::Knobs knobs;
-    knobs.variant = values.at("variant") == "naive"   ? ray_casting::Variant::naive
-                    : values.at("variant") == "march" ? ray_casting::Variant::march
-                                                      : ray_casting::Variant::bvh;
+    knobs.variant = static_cast<ray_casting::Variant>(choiceIndex(variant, values.at("variant")));
     knobs.budget = knobNumber(values, "budget").value;
     const KnobNumber step = knobNumber(values, "step");
     knobs.step = {step.value, step.percent};
@@ -140,12 +139,18 @@ const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& 
   throw InputError(where + " " + name + ": unknown algorithm; expected one of " + joined(names));
 }
 
+const KnobSpec* findKnob(const AlgorithmEntry& algorithm, const std::string& name) {
+  for (const KnobSpec& knob : algorithm.knobs)
+    if (knob.name == name) return &knob;
+  return nullptr;
+}
+
 KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where) {
   KnobValues values;
   for (const auto& knob : algorithm.knobs) values[knob.name] = knob.choices.front();
   for (const auto& [name, value] : settings) {
-    const auto knob = std::find_if(algorithm.knobs.begin(), algorithm.knobs.end(), [&](const KnobSpec& k) { return k.name == name; });
-    if (knob == algorithm.knobs.end()) {
+    const KnobSpec* knob = findKnob(algorithm, name);
+    if (!knob) {
       std::vector<std::string> names;
       for (const auto& k : algorithm.knobs) names.push_back(k.name);
       throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " has no knob '" + name +
@@ -158,8 +163,8 @@ KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& set
   }
   // A knob of one variant given with another is a mistake, not something to ignore.
   for (const auto& [name, value] : settings) {
-    const auto& knob = *std::find_if(algorithm.knobs.begin(), algorithm.knobs.end(), [&](const KnobSpec& k) { return k.name == name; });
-    if (!knob.variants.empty() && std::find(knob.variants.begin(), knob.variants.end(), values.at("variant")) == knob.variants.end())
+    const KnobSpec& knob = *findKnob(algorithm, name);
+    if (!knob.appliesTo(values.at("variant")))
       throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " applies only to variant " +
                        joined(knob.variants) + ", not to variant " + values.at("variant"));
   }

@@ -2,6 +2,7 @@
 // the CLI, the tests and (later) sweeps discover algorithms instead of hard-coding them.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <optional>
@@ -29,6 +30,10 @@ struct KnobSpec {
   std::optional<Range> range = std::nullopt;
   // The values of the algorithm's "variant" knob this knob applies to; empty: all.
   std::vector<std::string> variants = {};
+
+  bool appliesTo(const std::string& variant) const {
+    return variants.empty() || std::find(variants.begin(), variants.end(), variant) != variants.end();
+  }
 };
 
 using KnobValues = std::map<std::string, std::string>;  // every knob of the algorithm, validated
@@ -59,6 +64,9 @@ const std::vector<AlgorithmEntry>& algorithms();
 // Throws InputError naming the unknown algorithm (after `where`, the option that gave
 // it) and listing the known ones.
 const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& where = "--algo");
+
+// The algorithm's knob of that name, or nullptr.
+const KnobSpec* findKnob(const AlgorithmEntry& algorithm, const std::string& name);
 
 // Fills in defaults and checks every setting; throws InputError for an unknown knob, a
 // value outside its choices or range, or a knob the chosen variant does not have,

@@ -33,16 +33,6 @@ KnobSettings fixedSettings(const SweepOptions& options) {
   return {{"variant", options.variant}};
 }
 
-const KnobSpec* knobNamed(const AlgorithmEntry& algorithm, const std::string& name) {
-  for (const KnobSpec& knob : algorithm.knobs)
-    if (knob.name == name) return &knob;
-  return nullptr;
-}
-
-bool appliesTo(const KnobSpec& knob, const std::string& variant) {
-  return knob.variants.empty() || std::find(knob.variants.begin(), knob.variants.end(), variant) != knob.variants.end();
-}
-
 std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const SweepOptions& options) {
   std::vector<Axis> axes;
   std::set<std::string> seen;
@@ -64,10 +54,10 @@ std::vector<Axis> parseAxes(const AlgorithmEntry& algorithm, const SweepOptions&
       // A knob of some variants is checked with one of them when the variant is swept
       // (the other variants' configurations leave it out).
       KnobSettings settings = fixedSettings(options);
-      const KnobSpec* knob = knobNamed(algorithm, axis.name);
+      const KnobSpec* knob = findKnob(algorithm, axis.name);
       if (knob && axis.name != "variant" && !sweptVariants.empty()) {
         const auto fitting = std::find_if(sweptVariants.begin(), sweptVariants.end(),
-                                          [&](const std::string& variant) { return appliesTo(*knob, variant); });
+                                          [&](const std::string& variant) { return knob->appliesTo(variant); });
         settings.emplace_back("variant", fitting != sweptVariants.end() ? *fitting : sweptVariants.front());
       }
       settings.emplace_back(axis.name, value);
@@ -140,7 +130,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     for (auto& [name, value] : planned.swept) {
       if (name == kSizeKnob) {
         planned.size = parseSize(value, "--knob size:");
-      } else if (const KnobSpec* knob = knobNamed(algorithm, name); knob && !variant.empty() && !appliesTo(*knob, variant)) {
+      } else if (const KnobSpec* knob = findKnob(algorithm, name); knob && !variant.empty() && !knob->appliesTo(variant)) {
         value = "-";  // swept for the other variants
         continue;
       } else {
