@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/prepare.hpp"
@@ -83,6 +84,17 @@ inline Frame renderZBuffer(const PreparedScene& scene, zbuffer::Variant variant 
                            DepthFormat format = DepthFormat::float32, int threads = 1) {
   Stats stats;
   return zbuffer::run(scene, {variant, format}, threads, stats);
+}
+
+inline ray_casting::Knobs rayCastingKnobs(ray_casting::Variant variant) {
+  ray_casting::Knobs knobs;
+  knobs.variant = variant;
+  return knobs;
+}
+
+inline Frame renderRayCasting(const PreparedScene& scene, const ray_casting::Knobs& knobs, int threads = 2) {
+  Stats stats;
+  return ray_casting::run(scene, knobs, threads, stats);
 }
 
 // Nearest hit of a ray among all triangles with a view distance in [near, far]

@@ -58,10 +58,7 @@ struct GoldenCase {
 };
 
 Frame rayCast(const PreparedScene& scene, ray_casting::Variant variant, int threads) {
-  ray_casting::Knobs knobs;
-  knobs.variant = variant;
-  Stats stats;
-  return ray_casting::run(scene, knobs, threads, stats);
+  return test::renderRayCasting(scene, test::rayCastingKnobs(variant), threads);
 }
 
 const std::vector<GoldenCase>& goldenCases() {
@@ -102,8 +99,7 @@ TEST_P(Golden, MatchesTheGoldenImage) {
   const Scene scene = loadScene(test::sourcePath("scenes/" + name + ".toml"));
   PreparedScene prepared(scene);
   prepared.setSize(kGoldenWidth, std::max(1, kGoldenWidth * scene.height / scene.width));
-  ray_casting::Knobs naive;
-  naive.variant = ray_casting::Variant::naive;
+  const ray_casting::Knobs naive = test::rayCastingKnobs(ray_casting::Variant::naive);
   if (golden.name == "ray_casting_naive" && !ray_casting::refusal(prepared, naive).empty())
     GTEST_SKIP() << "naive is over its default budget here: " << ray_casting::refusal(prepared, naive);
   const Frame frame = golden.render(prepared, 1);

@@ -13,17 +13,8 @@ namespace hsr {
 namespace {
 
 using ray_casting::Variant;
-
-Frame cast(const PreparedScene& scene, ray_casting::Knobs knobs) {
-  Stats stats;
-  return ray_casting::run(scene, knobs, 2, stats);
-}
-
-ray_casting::Knobs variant(Variant which) {
-  ray_casting::Knobs knobs;
-  knobs.variant = which;
-  return knobs;
-}
+using test::renderRayCasting;
+using test::rayCastingKnobs;
 
 // The convex hull of points, counter-clockwise in a y-up sense (Andrew's monotone chain).
 std::vector<dvec2> convexHull(std::vector<dvec2> points) {
@@ -63,7 +54,7 @@ TEST(RayCastingHardCase, NoRayPassesBetweenTrianglesThatShareAnEdge) {
   const PreparedScene prepared(scene);
   const CameraTransform camera(scene.camera, prepared.width(), prepared.height());
   for (const Variant which : {Variant::bvh, Variant::naive}) {
-    const Frame frame = cast(prepared, variant(which));
+    const Frame frame = renderRayCasting(prepared, rayCastingKnobs(which));
     for (const Instance& instance : prepared.instances()) {
       std::vector<dvec2> projected;
       for (std::uint32_t t = instance.firstTriangle; t < instance.firstTriangle + instance.triangleCount; ++t)
@@ -105,7 +96,7 @@ TEST(RayCastingHardCase, GrazingRaysAndAxisParallelRaysAgreeWithTheReference) {
   Stats stats;
   const ReferenceImage truth = traceReference(prepared, 2, stats);
   for (const Variant which : {Variant::bvh, Variant::naive}) {
-    const Frame frame = cast(prepared, variant(which));
+    const Frame frame = renderRayCasting(prepared, rayCastingKnobs(which));
     EXPECT_EQ(std::count_if(frame.depth.begin(), frame.depth.end(), [](float d) { return std::isnan(d); }), 0);
     const SurfaceError error = surfaceError(frame, truth);
     EXPECT_EQ(error.wrongPixels, 0) << int(which);
@@ -113,7 +104,7 @@ TEST(RayCastingHardCase, GrazingRaysAndAxisParallelRaysAgreeWithTheReference) {
   }
   // The row of rays in the floor's plane (pixel row 64, y = 0) sees the floor edge-on,
   // so it shows what lies beyond: the backdrop, or the boxes' faces that cross y = 0.
-  const Frame frame = cast(prepared, variant(Variant::bvh));
+  const Frame frame = renderRayCasting(prepared, rayCastingKnobs(Variant::bvh));
   const Instance& floor = prepared.instances()[0];
   for (int x = 0; x < frame.width; ++x) {
     const std::uint32_t id = frame.ids[64 * std::size_t(frame.width) + std::size_t(x)];
@@ -133,10 +124,10 @@ TEST(RayCastingHardCase, MarchSkipsASheetThinnerThanTheStep) {
   const long sheetPixels = std::count_if(truth.frame.ids.begin(), truth.frame.ids.end(), isSheet);
   ASSERT_GT(sheetPixels, 5000);
   const auto march = [&](double step, bool percent, int refine) {
-    ray_casting::Knobs knobs = variant(Variant::march);
+    ray_casting::Knobs knobs = rayCastingKnobs(Variant::march);
     knobs.step = {step, percent};
     knobs.refine = refine;
-    return cast(prepared, knobs);
+    return renderRayCasting(prepared, knobs);
   };
   const auto sheetFound = [&](const Frame& frame) {
     long found = 0;
@@ -160,14 +151,14 @@ TEST(RayCastingHardCase, MarchSkipsASheetThinnerThanTheStep) {
 // with it) changes no id.
 TEST(RayCastingHardCase, LargeCoordinatesGiveTheSameIdImage) {
   const Scene scene = loadScene(test::sourcePath("scenes/hard/large_coordinates.toml"));
-  const Frame original = cast(PreparedScene(scene), variant(Variant::bvh));
+  const Frame original = renderRayCasting(PreparedScene(scene), rayCastingKnobs(Variant::bvh));
   ASSERT_GT(std::count_if(original.ids.begin(), original.ids.end(), [](std::uint32_t id) { return id != 0; }), 20000);
   const struct {
     double scale;
     dvec3 offset;
   } variants[] = {{1, dvec3(1e5)}, {1e-3, dvec3(0)}, {1e-1, dvec3(0)}, {1e1, dvec3(0)}, {1e3, dvec3(0)}, {1e3, dvec3(-1e5, 1e5, 3e5)}};
   for (const auto& v : variants) {
-    const Frame frame = cast(PreparedScene(test::movedAndScaled(scene, v.scale, v.offset)), variant(Variant::bvh));
+    const Frame frame = renderRayCasting(PreparedScene(test::movedAndScaled(scene, v.scale, v.offset)), rayCastingKnobs(Variant::bvh));
     long differing = 0;
     for (std::size_t p = 0; p < frame.ids.size(); ++p) differing += frame.ids[p] != original.ids[p];
     EXPECT_EQ(differing, 0) << "scale " << v.scale << " offset " << v.offset.x;

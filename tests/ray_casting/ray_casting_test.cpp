@@ -17,6 +17,8 @@ namespace hsr {
 namespace {
 
 using ray_casting::Variant;
+using test::renderRayCasting;
+using test::rayCastingKnobs;
 
 std::vector<std::string> shippedScenes() {
   std::vector<std::string> scenes;
@@ -24,17 +26,6 @@ std::vector<std::string> shippedScenes() {
     if (entry.path().extension() == ".toml") scenes.push_back(entry.path().string());
   std::sort(scenes.begin(), scenes.end());
   return scenes;
-}
-
-Frame cast(const PreparedScene& scene, ray_casting::Knobs knobs, int threads = 2) {
-  Stats stats;
-  return ray_casting::run(scene, knobs, threads, stats);
-}
-
-ray_casting::Knobs variant(Variant which) {
-  ray_casting::Knobs knobs;
-  knobs.variant = which;
-  return knobs;
 }
 
 // 320 pixels wide, the scene's aspect: the size the goldens use.
@@ -49,7 +40,7 @@ TEST(RayCasting, BvhHasNoWrongPixelAgainstTheReferenceOnEveryShippedScene) {
     goldenSize(prepared);
     Stats stats;
     const ReferenceImage truth = traceReference(prepared, 2, stats);
-    const Frame frame = cast(prepared, variant(Variant::bvh));
+    const Frame frame = renderRayCasting(prepared, rayCastingKnobs(Variant::bvh));
     const SurfaceError error = surfaceError(frame, truth);
     EXPECT_EQ(error.wrongPixels, 0) << path;
     EXPECT_GT(error.comparedPixels, std::int64_t(frame.pixelCount()) / 2) << path;
@@ -66,8 +57,8 @@ TEST(RayCasting, NaiveGivesBvhsImageBitForBit) {
     const Scene scene = loadScene(path);
     PreparedScene prepared(scene);
     prepared.setSize(96, std::max(1, 96 * scene.height / scene.width));
-    const Frame naive = cast(prepared, variant(Variant::naive));
-    const Frame bvh = cast(prepared, variant(Variant::bvh));
+    const Frame naive = renderRayCasting(prepared, rayCastingKnobs(Variant::naive));
+    const Frame bvh = renderRayCasting(prepared, rayCastingKnobs(Variant::bvh));
     EXPECT_EQ(naive.ids, bvh.ids) << path;
     EXPECT_EQ(naive.depth, bvh.depth) << path;
     EXPECT_EQ(naive.color, bvh.color) << path;
@@ -80,9 +71,9 @@ TEST(RayCasting, EveryVariantGivesTheSameBitsOnAnyThreadCount) {
   for (const Variant which : {Variant::bvh, Variant::naive, Variant::march}) {
     PreparedScene prepared(which == Variant::naive ? bunny : trees);
     prepared.setSize(160, 90);
-    const Frame one = cast(prepared, variant(which), 1);
+    const Frame one = renderRayCasting(prepared, rayCastingKnobs(which), 1);
     for (const int threads : {2, 3, 5}) {
-      const Frame many = cast(prepared, variant(which), threads);
+      const Frame many = renderRayCasting(prepared, rayCastingKnobs(which), threads);
       EXPECT_EQ(one.ids, many.ids) << int(which) << " threads " << threads;
       EXPECT_EQ(one.depth, many.depth) << int(which) << " threads " << threads;
       EXPECT_EQ(one.color, many.color) << int(which) << " threads " << threads;
@@ -94,20 +85,20 @@ TEST(RayCasting, EveryVariantGivesTheSameBitsOnAnyThreadCount) {
 TEST(RayCasting, NaiveAndMarchRefuseRunsOverTheirBudget) {
   const Scene scene = loadScene(test::sourcePath("scenes/bunny.toml"));
   PreparedScene prepared(scene);  // 640 x 480 x 3,674 triangles = 1.13e9 tests
-  ray_casting::Knobs naive = variant(Variant::naive);
+  ray_casting::Knobs naive = rayCastingKnobs(Variant::naive);
   EXPECT_NE(ray_casting::refusal(prepared, naive).find("--knob budget="), std::string::npos);
-  EXPECT_THROW(cast(prepared, naive), InputError);
+  EXPECT_THROW(renderRayCasting(prepared, naive), InputError);
   naive.budget = 1.2e9;
   EXPECT_EQ(ray_casting::refusal(prepared, naive), "");
   prepared.setSize(64, 48);
-  EXPECT_EQ(ray_casting::refusal(prepared, variant(Variant::naive)), "");
+  EXPECT_EQ(ray_casting::refusal(prepared, rayCastingKnobs(Variant::naive)), "");
 
-  ray_casting::Knobs march = variant(Variant::march);
+  ray_casting::Knobs march = rayCastingKnobs(Variant::march);
   march.step = {1e-5, true};  // 1e-7 of the diagonal: 1e7 samples per ray
   const std::string reason = ray_casting::refusal(prepared, march);
   EXPECT_NE(reason.find("samples"), std::string::npos) << reason;
   EXPECT_NE(reason.find("--knob step"), std::string::npos) << reason;
-  EXPECT_EQ(ray_casting::refusal(prepared, variant(Variant::bvh)), "");
+  EXPECT_EQ(ray_casting::refusal(prepared, rayCastingKnobs(Variant::bvh)), "");
 }
 
 TEST(RayCasting, StepIsInWorldUnitsOrAPercentageOfTheSceneDiagonal) {
@@ -117,7 +108,7 @@ TEST(RayCasting, StepIsInWorldUnitsOrAPercentageOfTheSceneDiagonal) {
   Aabb bounds;
   for (const dvec3& p : prepared.positions()) bounds.grow(p);
   const double diagonal = glm::length(bounds.hi - bounds.lo);
-  ray_casting::Knobs percent = variant(Variant::march), world = variant(Variant::march);
+  ray_casting::Knobs percent = rayCastingKnobs(Variant::march), world = rayCastingKnobs(Variant::march);
   percent.step = {2, true};
   world.step = {0.02 * diagonal, false};
   Stats percentStats, worldStats;
@@ -156,11 +147,11 @@ TEST(RayCasting, MarchErrorFallsWithTheStepAndTheGrid) {
   Stats stats;
   const ReferenceImage truth = traceReference(prepared, 2, stats);
   const auto errorWith = [&](double stepPercent, int grid, int refine) {
-    ray_casting::Knobs knobs = variant(Variant::march);
+    ray_casting::Knobs knobs = rayCastingKnobs(Variant::march);
     knobs.step = {stepPercent, true};
     knobs.grid = grid;
     knobs.refine = refine;
-    return surfaceError(cast(prepared, knobs), truth).pixelError;
+    return surfaceError(renderRayCasting(prepared, knobs), truth).pixelError;
   };
   EXPECT_GT(errorWith(2, 64, 0), 1.3 * errorWith(0.25, 64, 0));
   const double coarseGrid = errorWith(0.25, 16, 8), fineGrid = errorWith(0.25, 64, 8);
