@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "algorithms/painter/painter.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/error.hpp"
@@ -49,6 +50,20 @@ std::string describeRange(const KnobSpec::Range& range) {
   return text;
 }
 
+// A scene with transparency needs its surfaces blended back to front; an algorithm that
+// keeps only the nearest surface per pixel would print a silently wrong image.
+std::string transparencyRefusal(const PreparedScene& scene, const std::string& algorithm) {
+  if (!scene.scene().transparency) return "";
+  return "the scene declares transparency, which needs the surfaces behind a pixel blended back to front; " + algorithm +
+         " keeps only the nearest (use --algo painter)";
+}
+
+// The index of a value among a knob's choices, as the enum listed in the same order.
+template <typename Enum>
+Enum choiceOf(const AlgorithmEntry& entry, const KnobValues& values, const std::string& name) {
+  return static_cast<Enum>(choiceIndex(*findKnob(entry, name), values.at(name)));
+}
+
 AlgorithmEntry zbufferEntry() {
   AlgorithmEntry entry;
   entry.name = "zbuffer";
@@ -61,6 +76,7 @@ AlgorithmEntry zbufferEntry() {
   };
   entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
   entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
+  entry.refusal = [](const PreparedScene& scene, const KnobValues&) { return transparencyRefusal(scene, "the z-buffer"); };
   entry.render = [knobs = entry.knobs](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
     zbuffer::Knobs typed;
     typed.variant = static_cast<zbuffer::Variant>(choiceIndex(knobs[0], values.at("variant")));
@@ -103,10 +119,64 @@ AlgorithmEntry rayCastingEntry() {
     return knobs;
   };
   entry.refusal = [typed](const PreparedScene& scene, const KnobValues& values) {
+    if (std::string transparency = transparencyRefusal(scene, "ray casting"); !transparency.empty()) return transparency;
     return ray_casting::refusal(scene, typed(values));
   };
   entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
     return ray_casting::run(scene, typed(values), threads, stats);
+  };
+  return entry;
+}
+
+AlgorithmEntry painterEntry() {
+  AlgorithmEntry entry;
+  entry.name = "painter";
+  entry.kind = "surface";
+  entry.summary = "far to near with no depth buffer: depth sort, Newell-Newell-Sancha with splitting, or a BSP tree";
+  entry.knobs = {
+      {"variant",
+       "bsp: BSP tree built once, walked far side first; newell: sort, then prove or repair each overlapping pair, "
+       "splitting cycles; sort: one depth key per triangle (wrong where triangles overlap in depth)",
+       {"bsp", "newell", "sort"}},
+      {"key", "sort: the depth that orders a triangle: its centroid's, its nearest corner's or its farthest corner's",
+       {"centroid", "nearest", "farthest"}, std::nullopt, {"sort"}},
+      {"split-cap", "newell: the most splits; past it, conflicts are painted unresolved and the image is labelled partial",
+       {"100000", "0", "10", "1000"}, KnobSpec::Range{0, 1e9, true}, {"newell"}},
+      {"budget", "newell: refuses scenes with more triangle pairs n(n-1)/2 than this", {"1e9", "1e10", "1e11"},
+       KnobSpec::Range{1, 1e15}, {"newell"}},
+      {"splitter", "bsp: each node's plane: the first triangle's, a random one's, or the fewest splits among candidates",
+       {"least-splits", "first", "random"}, std::nullopt, {"bsp"}},
+      {"seed", "bsp: seed of the random choices of random and least-splits", {"1", "2", "3"},
+       KnobSpec::Range{0, 9007199254740992.0, true}, {"bsp"}},
+      {"candidates", "bsp least-splits: planes tried per node", {"8", "1", "2", "4", "16", "32"},
+       KnobSpec::Range{1, 1024, true}, {"bsp"}},
+  };
+  entry.keyCounters = {"pieces painted", "fragments written", "newell pairs tested", "newell reorders", "newell splits",
+                       "bsp nodes", "bsp depth", "bsp splits"};
+  entry.studyConfigurations = {{},
+                               {{"variant", "newell"}},
+                               {{"variant", "sort"}},
+                               {{"variant", "sort"}, {"key", "nearest"}},
+                               {{"variant", "sort"}, {"key", "farthest"}},
+                               {{"variant", "bsp"}, {"splitter", "first"}}};
+  const auto typed = [entry](const KnobValues& values) {
+    painter::Knobs knobs;
+    const std::string& variant = values.at("variant");
+    knobs.variant = variant == "bsp" ? painter::Variant::bsp : variant == "newell" ? painter::Variant::newell : painter::Variant::sort;
+    knobs.key = choiceOf<painter::SortKey>(entry, values, "key");
+    knobs.splitCap = knobNumber(values, "split-cap").value;
+    knobs.budget = knobNumber(values, "budget").value;
+    const std::string& splitter = values.at("splitter");
+    knobs.splitter = splitter == "first" ? painter::Splitter::first
+                     : splitter == "random" ? painter::Splitter::random
+                                            : painter::Splitter::leastSplits;
+    knobs.seed = static_cast<std::uint64_t>(knobNumber(values, "seed").value);
+    knobs.candidates = static_cast<int>(knobNumber(values, "candidates").value);
+    return knobs;
+  };
+  entry.refusal = [typed](const PreparedScene& scene, const KnobValues& values) { return painter::refusal(scene, typed(values)); };
+  entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
+    return painter::run(scene, typed(values), threads, stats);
   };
   return entry;
 }
@@ -126,7 +196,7 @@ AlgorithmEntry referenceEntry() {
 }  // namespace
 
 const std::vector<AlgorithmEntry>& algorithms() {
-  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry()};
+  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry(), painterEntry()};
   return all;
 }
 

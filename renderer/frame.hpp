@@ -15,6 +15,9 @@ struct Frame {
   std::vector<std::uint8_t> color;  // RGBA8, row 0 at the top
   std::vector<float> depth;         // distance along the view axis; +infinity = background
   std::vector<std::uint32_t> ids;   // global triangle index + 1; 0 = background
+  // Why the image is known to be wrong in places (an algorithm stopped at a limit), or
+  // "" when it is not: hsr render warns and records it in the PNG's description.
+  std::string partial;
 
   Frame() = default;
   Frame(int w, int h);

@@ -29,6 +29,7 @@ PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& scene
         instance.firstTriangle = static_cast<std::uint32_t>(triangles_.size());
         instance.triangleCount = static_cast<std::uint32_t>(object.mesh->triangles.size());
         instance.color = object.color;
+        instance.opacity = object.opacity;
         instance.worldFromObject = worldFromObject;
         instances_.push_back(instance);
         for (const Triangle& t : object.mesh->triangles)

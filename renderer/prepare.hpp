@@ -20,6 +20,7 @@ struct Instance {
   std::uint32_t firstTriangle = 0;  // global index of its first triangle
   std::uint32_t triangleCount = 0;
   vec3 color{0.8f};
+  double opacity = 1;
   dmat4 worldFromObject{1.0};  // the copy's placement: its triangles are the object's mesh moved by it
 };
 

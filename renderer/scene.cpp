@@ -330,10 +330,13 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
 void readObject(TableReader& object, Scene& scene,
                 std::map<std::filesystem::path, std::shared_ptr<const Mesh>>& meshCache) {
   SceneObject result;
-  std::vector<std::string> keys = {"name", "shape", "color", "translate", "rotate", "scale", "copies"};
+  std::vector<std::string> keys = {"name", "shape", "color", "opacity", "translate", "rotate", "scale", "copies"};
   result.name = object.has("name") ? object.string("name") : "object" + std::to_string(scene.objects.size());
   result.mesh = readShape(object, keys, meshCache, result.solid);
   result.color = object.color("color", vec3(0.8f));
+  result.opacity = object.number("opacity", 1.0, 0.0, 1.0);
+  if (result.opacity < 1 && !scene.transparency)
+    object.fail(object.find("opacity"), "opacity", "an opacity below 1 needs \"transparency\" in the scene's effects");
   result.transform.translate = object.vector3("translate", dvec3(0), -kHuge, kHuge);
   result.transform.rotateDegrees = object.vector3("rotate", dvec3(0), -36000, 36000);
   result.transform.scale = object.vector3("scale", dvec3(1), 1e-9, kHuge, true);
@@ -454,7 +457,7 @@ Scene loadScene(const std::filesystem::path& file) {
   readCamera(cameraReader, scene);
 
   if (const toml::array* effects = reader.array("effects")) {
-    const std::vector<std::string> known = {"none", "flat", "lambert"};
+    const std::vector<std::string> known = {"none", "flat", "lambert", "transparency"};
     int shadingEffects = 0;
     for (std::size_t i = 0; i < effects->size(); ++i) {
       const auto name = effects->get(i)->value<std::string>();
@@ -462,6 +465,10 @@ Scene loadScene(const std::filesystem::path& file) {
       if (!name || std::find(known.begin(), known.end(), *name) == known.end())
         reader.fail(effects->get(i), key, "expected one of " + TableReader::join(known) + ", got " +
                                               TableReader::describe(*effects->get(i)));
+      if (*name == "transparency") {
+        scene.transparency = true;
+        continue;
+      }
       if (++shadingEffects > 1) reader.fail(effects->get(i), key, "only one shading effect (none, flat, lambert) may be listed");
       scene.shading = *name == "flat" ? Shading::flat : *name == "lambert" ? Shading::lambert : Shading::none;
     }

@@ -71,6 +71,7 @@ struct SceneObject {
   Solid solid;
   Transform transform;
   vec3 color{0.8f};
+  double opacity = 1;  // below 1 only in scenes that declare transparency
   Instancing instancing;
 };
 
@@ -90,6 +91,9 @@ struct Scene {
   vec3 background{0};
   Camera camera;
   Shading shading = Shading::none;
+  // Objects with opacity below 1 blend over what lies behind them, which only a
+  // back-to-front order can do (algorithms/painter); the others refuse such scenes.
+  bool transparency = false;
   double ambient = 0.15;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;

@@ -13,19 +13,29 @@ struct Counts {
   std::int64_t outside = 0, clipped = 0, empty = 0;
 };
 
+// One chunk's output; corners stays empty unless they were asked for.
+struct Part {
+  std::vector<ScreenTriangle> triangles;
+  std::vector<std::array<dvec3, 3>> corners;
+  bool keepCorners = false;
+};
+
 // Sets up one screen triangle and keeps it, or counts it when it covers no pixel center.
 void emitTriangle(const dvec2 pixel[3], const double t[3], const CameraTransform& camera, std::uint32_t triangle,
-                  std::vector<ScreenTriangle>& out, Counts& counts) {
+                  Part& out, Counts& counts) {
   ScreenTriangle screen;
-  if (setupScreenTriangle(pixel, t, camera.width(), camera.height(), triangle, screen))
-    out.push_back(screen);
-  else
+  if (!setupScreenTriangle(pixel, t, camera.width(), camera.height(), triangle, screen)) {
     ++counts.empty;
+    return;
+  }
+  out.triangles.push_back(screen);
+  if (out.keepCorners)
+    out.corners.push_back({dvec3(pixel[0], t[0]), dvec3(pixel[1], t[1]), dvec3(pixel[2], t[2])});
 }
 
 // Projects a convex clip-space polygon and emits it as a fan of screen triangles.
-void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std::uint32_t triangle,
-                 std::vector<ScreenTriangle>& out, Counts& counts) {
+void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std::uint32_t triangle, Part& out,
+                 Counts& counts) {
   dvec2 pixel[9];
   double t[9];
   for (int i = 0; i < polygon.count; ++i) {
@@ -41,9 +51,10 @@ void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std:
 
 }  // namespace
 
-ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats) {
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
+                                    bool keepCorners) {
   PhaseTimer timer(stats, "geometry");
-  ScreenGeometry geometry{CameraTransform(scene.scene().camera, scene.width(), scene.height()), {}};
+  ScreenGeometry geometry{CameraTransform(scene.scene().camera, scene.width(), scene.height()), {}, {}};
   const CameraTransform& camera = geometry.camera;
   const ClipVolume volume(camera, clipFar);
 
@@ -79,13 +90,14 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
   const std::vector<Triangle>& triangles = scene.triangles();
   constexpr std::size_t kChunkSize = 4096;
   const std::size_t chunks = (triangles.size() + kChunkSize - 1) / kChunkSize;
-  std::vector<std::vector<ScreenTriangle>> parts(chunks);
+  std::vector<Part> parts(chunks);
   std::vector<Counts> counts(chunks);
   PhaseTimer triangleTimer(stats, "geometry: triangles");
   parallelFor(chunks, workers, [&](std::size_t part, int) {
     const std::size_t begin = part * kChunkSize, end = std::min(begin + kChunkSize, triangles.size());
-    std::vector<ScreenTriangle>& out = parts[part];
-    out.reserve(end - begin);  // one triangle in, at most one out unless clipped: no regrowth in the common case
+    Part& out = parts[part];
+    out.keepCorners = keepCorners;
+    out.triangles.reserve(end - begin);  // one triangle in, at most one out unless clipped: no regrowth in the common case
     for (std::size_t i = begin; i < end; ++i) {
       const Triangle& t = triangles[i];
       const std::uint32_t codes[3] = {outcodes[t[0]], outcodes[t[1]], outcodes[t[2]]};
@@ -109,10 +121,13 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
 
   // Concatenate the parts in order, each copied by its own thread to its final place.
   std::vector<std::size_t> offsets(parts.size() + 1, 0);
-  for (std::size_t part = 0; part < parts.size(); ++part) offsets[part + 1] = offsets[part] + parts[part].size();
+  for (std::size_t part = 0; part < parts.size(); ++part) offsets[part + 1] = offsets[part] + parts[part].triangles.size();
   geometry.triangles.resize(offsets.back());
+  if (keepCorners) geometry.corners.resize(offsets.back());
   parallelFor(parts.size(), workers, [&](std::size_t part, int) {
-    std::copy(parts[part].begin(), parts[part].end(), geometry.triangles.begin() + std::ptrdiff_t(offsets[part]));
+    const auto at = std::ptrdiff_t(offsets[part]);
+    std::copy(parts[part].triangles.begin(), parts[part].triangles.end(), geometry.triangles.begin() + at);
+    std::copy(parts[part].corners.begin(), parts[part].corners.end(), geometry.corners.begin() + at);
   });
   Counts sum;
   for (std::size_t part = 0; part < parts.size(); ++part) {

@@ -3,6 +3,7 @@
 // (and far) plane and the guard band, project and snap to fixed point.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "renderer/camera.hpp"
@@ -18,11 +19,16 @@ struct ScreenGeometry {
   // In submission order: by global triangle index, and a clipped triangle's pieces
   // in fan order. Ties between equal depths go to the earlier entry.
   std::vector<ScreenTriangle> triangles;
+  // Only when asked for (the painter's geometric tests need them; the z-buffer does
+  // not): each screen triangle's corners as (pixel x, pixel y, t), unsnapped, in the
+  // order the triangle was given (before the rasterizer's reordering).
+  std::vector<std::array<dvec3, 3>> corners;
 };
 
 // Counts in stats: "triangles in", "triangles outside view" (rejected whole),
 // "triangles clipped", "triangles between pixel centers" (zero area or no center
 // inside), "screen triangles" (what the rasterizer receives).
-ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats);
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
+                                    bool keepCorners = false);
 
 }  // namespace hsr

@@ -6,28 +6,17 @@
 
 #include "renderer/parallel.hpp"
 #include "renderer/shading.hpp"
+#include "renderer/tiles.hpp"
 
 namespace hsr::zbuffer {
-namespace {
-
-constexpr int kTileSize = 64;  // pixels per side of a screen tile: one thread owns a tile at a time
-
-}  // namespace
-
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats) {
-  const int tilesX = (frame.width + kTileSize - 1) / kTileSize;
-  const int tilesY = (frame.height + kTileSize - 1) / kTileSize;
-
   // Binning: each tile gets the triangles whose pixel box overlaps it, in submission
   // order, so that within a tile triangles are drawn in the same order as on one thread.
-  std::vector<std::vector<std::uint32_t>> bins(std::size_t(tilesX) * std::size_t(tilesY));
+  const TileGrid tiles(frame.width, frame.height);
+  std::vector<std::vector<std::uint32_t>> bins;
   {
     PhaseTimer timer(stats, "binning");
-    for (std::uint32_t i = 0; i < geometry.triangles.size(); ++i) {
-      const ScreenTriangle& tri = geometry.triangles[i];
-      for (int ty = tri.minY / kTileSize; ty <= tri.maxY / kTileSize; ++ty)
-        for (int tx = tri.minX / kTileSize; tx <= tri.maxX / kTileSize; ++tx) bins[std::size_t(ty * tilesX + tx)].push_back(i);
-    }
+    bins = tiles.bin(geometry.triangles.size(), [&](std::uint32_t i) -> const ScreenTriangle& { return geometry.triangles[i]; });
   }
 
   PhaseTimer timer(stats, "rasterization");
@@ -37,8 +26,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(frame.pixelCount());
     std::vector<DepthTest<Format>> tileResults(bins.size());
     parallelFor(bins.size(), threads, [&](std::size_t tile, int) {
-      const int tileX0 = int(tile % std::size_t(tilesX)) * kTileSize, tileY0 = int(tile / std::size_t(tilesX)) * kTileSize;
-      const int tileX1 = std::min(tileX0 + kTileSize, frame.width), tileY1 = std::min(tileY0 + kTileSize, frame.height);
+      const auto [tileX0, tileY0, tileX1, tileY1] = tiles.rect(tile);
       const auto pixel = [&](int x, int y) { return std::size_t(y) * std::size_t(frame.width) + std::size_t(x); };
       DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other tiles
       // Step 1: clear the depth buffer to the far end of the format, and the ids to background.

@@ -1,0 +1,257 @@
+// Building and walking the BSP tree (bsp.hpp).
+//
+// Build, for a list of polygons (at first the scene's triangles):
+//   1. choose a splitting plane among the list's triangles (knob `splitter`);
+//   2. put each polygon in the plane's node (coplanar), the positive list, the negative
+//      list, or, when it straddles the plane, split it and put one piece in each;
+//   3. build each non-empty list into a subtree the same way.
+// An explicit stack replaces recursion: a poor splitter on a large scene makes a tree
+// as deep as the scene has triangles.
+//
+// The side tests are exact (renderer/predicates). The one tolerance: a polygon whose
+// every vertex lies within kCoplanarTolerance of the plane (relative to the coordinates)
+// is coplanar with it, because faces coplanar in the model are coplanar only up to the
+// rounding of the scene's transforms.
+#include "algorithms/painter/bsp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace hsr::painter {
+namespace {
+
+constexpr double kCoplanarTolerance = 1e-10;
+
+struct BuildPolygon {
+  std::uint32_t triangle;
+  std::vector<dvec3> vertices;
+  std::vector<Cut> cuts;
+};
+
+enum class Side { positive, negative, straddles, coplanar };
+
+// splitmix64: the same choices on every platform.
+struct Random {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+};
+
+class Builder {
+ public:
+  Builder(const PreparedScene& scene, const Knobs& knobs) : scene_(scene), knobs_(knobs), random_{knobs.seed} {}
+
+  const dvec3& corner(std::uint32_t triangle, int k) const { return scene_.positions()[scene_.triangles()[triangle][k]]; }
+
+  // A triangle whose corners are exactly collinear has no plane to split by.
+  bool hasPlane(std::uint32_t triangle) {
+    const dvec3 &a = corner(triangle, 0), &b = corner(triangle, 1), &c = corner(triangle, 2);
+    const auto xz = [](const dvec3& p) { return dvec3(p.x, p.z, 0); };
+    const auto yz = [](const dvec3& p) { return dvec3(p.y, p.z, 0); };
+    return predicates.orient2d(a, b, c) != 0 || predicates.orient2d(xz(a), xz(b), xz(c)) != 0 ||
+           predicates.orient2d(yz(a), yz(b), yz(c)) != 0;
+  }
+
+  // Step 2's test: the exact side of each vertex, with the coplanar tolerance applied
+  // to the polygon as a whole. Fills sides and heights for a split.
+  Side classify(const BuildPolygon& polygon, std::uint32_t plane, std::vector<int>* sides = nullptr,
+                std::vector<double>* heights = nullptr) {
+    ++classifications;
+    if (polygon.triangle == plane) return Side::coplanar;
+    const dvec3 &a = corner(plane, 0), &b = corner(plane, 1), &c = corner(plane, 2);
+    const dvec3 normal = glm::cross(b - a, c - a);
+    const double normalLength = glm::length(normal);
+    const double planeScale = std::max({glm::length(a), glm::length(b), glm::length(c)});
+    bool anyPositive = false, anyNegative = false, withinTolerance = true;
+    for (const dvec3& v : polygon.vertices) {
+      const int s = predicates.orient3d(a, b, c, v);
+      const double height = glm::dot(normal, v - a);
+      anyPositive |= s > 0;
+      anyNegative |= s < 0;
+      withinTolerance &= std::abs(height) <= kCoplanarTolerance * normalLength * std::max(planeScale, glm::length(v));
+      if (sides) sides->push_back(s);
+      if (heights) heights->push_back(height);
+    }
+    if (withinTolerance) return Side::coplanar;
+    if (anyPositive && anyNegative) return Side::straddles;
+    return anyNegative ? Side::negative : Side::positive;
+  }
+
+  // Step 1: the splitting plane for a list (an index into it), or none when no triangle
+  // in it has a plane.
+  std::optional<std::size_t> chooseSplitter(const std::vector<std::uint32_t>& list) {
+    std::vector<std::size_t> candidates;
+    const std::size_t wanted = knobs_.splitter == Splitter::leastSplits ? std::size_t(knobs_.candidates) : 1;
+    for (std::size_t attempt = 0; attempt < list.size() && candidates.size() < wanted; ++attempt) {
+      // first: the list's first triangle with a plane; random, least-splits: random ones.
+      const std::size_t at = knobs_.splitter == Splitter::first ? attempt : std::size_t(random_.next() % list.size());
+      if (hasPlane(polygons[list[at]].triangle)) candidates.push_back(at);
+    }
+    if (candidates.empty()) {
+      for (std::size_t at = 0; at < list.size(); ++at)
+        if (hasPlane(polygons[list[at]].triangle)) return at;
+      return std::nullopt;
+    }
+    if (candidates.size() == 1) return candidates.front();
+    // least-splits: the candidate whose plane straddles the fewest polygons of the list.
+    std::size_t best = candidates.front(), fewest = list.size() + 1;
+    for (const std::size_t candidate : candidates) {
+      const std::uint32_t plane = polygons[list[candidate]].triangle;
+      std::size_t straddling = 0;
+      for (std::size_t i = 0; i < list.size() && straddling < fewest; ++i)
+        straddling += classify(polygons[list[i]], plane) == Side::straddles;
+      if (straddling < fewest) best = candidate, fewest = straddling;
+    }
+    return best;
+  }
+
+  std::vector<BuildPolygon> polygons;
+  ExactPredicates predicates;
+  std::int64_t classifications = 0, splits = 0;
+
+ private:
+  const PreparedScene& scene_;
+  const Knobs& knobs_;
+  Random random_;
+};
+
+}  // namespace
+
+BspTree::BspTree(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
+  PhaseTimer timer(stats, "bsp build");
+  Builder builder(scene, knobs);
+  std::vector<std::uint32_t> all;
+  for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) {
+    const auto& corners = scene.triangles()[t];
+    builder.polygons.push_back({t, {scene.positions()[corners[0]], scene.positions()[corners[1]], scene.positions()[corners[2]]}, {}});
+    all.push_back(t);
+  }
+  struct Task {
+    std::vector<std::uint32_t> list;
+    std::int32_t parent;  // -1: the root
+    bool positiveSide;    // which of the parent's subtrees this is
+    int depth;
+  };
+  std::vector<Task> stack;
+  if (!all.empty()) stack.push_back({std::move(all), -1, false, 1});
+  while (!stack.empty()) {
+    Task task = std::move(stack.back());
+    stack.pop_back();
+    const auto index = static_cast<std::int32_t>(nodes_.size());
+    nodes_.emplace_back();
+    if (task.parent >= 0) {
+      Node& parent = nodes_[std::size_t(task.parent)];
+      (task.positiveSide ? parent.positive : parent.negative) = index;
+    }
+    depth_ = std::max(depth_, task.depth);
+    Node node;
+    node.firstFragment = static_cast<std::uint32_t>(fragments_.size());
+    std::vector<std::uint32_t> positive, negative;
+    const auto keep = [&](std::uint32_t polygon) {
+      const BuildPolygon& p = builder.polygons[polygon];
+      fragments_.push_back({p.triangle, static_cast<std::uint32_t>(cuts_.size()), static_cast<std::uint32_t>(p.cuts.size())});
+      cuts_.insert(cuts_.end(), p.cuts.begin(), p.cuts.end());
+    };
+    const std::optional<std::size_t> splitter = builder.chooseSplitter(task.list);
+    if (!splitter) {
+      // Only zero-area triangles: they cover no area, so any order is right.
+      for (const std::uint32_t polygon : task.list) keep(polygon);
+    } else {
+      node.plane = builder.polygons[task.list[*splitter]].triangle;
+      // Step 2: distribute the list.
+      for (const std::uint32_t polygon : task.list) {
+        std::vector<int> sides;
+        std::vector<double> heights;
+        switch (builder.classify(builder.polygons[polygon], node.plane, &sides, &heights)) {
+          case Side::coplanar: keep(polygon); break;
+          case Side::positive: positive.push_back(polygon); break;
+          case Side::negative: negative.push_back(polygon); break;
+          case Side::straddles: {
+            ++builder.splits;
+            BuildPolygon& source = builder.polygons[polygon];
+            SplitPolygon pieces = splitPolygon(source.vertices, sides, heights);
+            BuildPolygon below{source.triangle, std::move(pieces.negative), source.cuts};
+            below.cuts.push_back({node.plane, false});
+            source.vertices = std::move(pieces.positive);
+            source.cuts.push_back({node.plane, true});
+            positive.push_back(polygon);
+            negative.push_back(static_cast<std::uint32_t>(builder.polygons.size()));
+            builder.polygons.push_back(std::move(below));
+            break;
+          }
+        }
+      }
+    }
+    node.fragmentCount = static_cast<std::uint32_t>(fragments_.size()) - node.firstFragment;
+    nodes_[std::size_t(index)] = node;
+    // Step 3: the subtrees, built when popped.
+    if (!negative.empty()) stack.push_back({std::move(negative), index, false, task.depth + 1});
+    if (!positive.empty()) stack.push_back({std::move(positive), index, true, task.depth + 1});
+  }
+  stats.add("bsp nodes", static_cast<std::int64_t>(nodes_.size()));
+  stats.add("bsp depth", depth_);
+  stats.add("bsp splits", builder.splits);
+  stats.add("bsp fragments", static_cast<std::int64_t>(fragments_.size()));
+  stats.add("bsp classifications", builder.classifications);
+  stats.add("predicate evaluations", builder.predicates.evaluations);
+  stats.add("predicate exact fall-backs", builder.predicates.exactFallbacks);
+}
+
+}  // namespace hsr::painter
+
+namespace hsr::painter {
+
+PaintOrder BspTree::backToFront(const PreparedScene& scene, const ScreenGeometry& geometry, Stats& stats) const {
+  PhaseTimer timer(stats, "bsp traversal");
+  // Each triangle's screen triangles (several when clipping cut it into a fan) are a
+  // run in the geometry, which is in triangle order.
+  std::vector<std::uint32_t> firstScreen(scene.triangleCount() + 1, 0);
+  for (const ScreenTriangle& tri : geometry.triangles) ++firstScreen[tri.triangle + 1];
+  for (std::size_t t = 0; t < scene.triangleCount(); ++t) firstScreen[t + 1] += firstScreen[t];
+
+  ExactPredicates predicates;
+  PaintOrder order;
+  std::vector<Cut> cuts;
+  // Far side, node, near side: pushed in reverse. `expanded` marks a node whose
+  // subtrees are already on the stack, so popping it again draws its own fragments.
+  struct Visit {
+    std::int32_t node;
+    bool expanded;
+  };
+  std::vector<Visit> stack;
+  if (!nodes_.empty()) stack.push_back({0, false});
+  std::int64_t visited = 0;
+  while (!stack.empty()) {
+    const Visit visit = stack.back();
+    stack.pop_back();
+    const Node& node = nodes_[std::size_t(visit.node)];
+    if (visit.expanded) {
+      for (std::uint32_t f = node.firstFragment; f < node.firstFragment + node.fragmentCount; ++f) {
+        const Fragment& fragment = fragments_[f];
+        cuts.assign(cuts_.begin() + fragment.firstCut, cuts_.begin() + fragment.firstCut + fragment.cutCount);
+        for (std::uint32_t s = firstScreen[fragment.triangle]; s < firstScreen[fragment.triangle + 1]; ++s) order.add(s, cuts);
+      }
+      continue;
+    }
+    ++visited;
+    // The eye's side is the near side. On the plane itself the node's fragments are
+    // seen edge-on, and either order of the subtrees is right.
+    const bool eyePositive = node.plane == kNoPlane || eyeSide(scene, geometry.camera, node.plane, predicates) >= 0;
+    const std::int32_t nearSide = eyePositive ? node.positive : node.negative;
+    const std::int32_t farSide = eyePositive ? node.negative : node.positive;
+    if (nearSide >= 0) stack.push_back({nearSide, false});
+    stack.push_back({visit.node, true});
+    if (farSide >= 0) stack.push_back({farSide, false});
+  }
+  stats.add("bsp nodes visited", visited);
+  stats.add("predicate evaluations", predicates.evaluations);
+  stats.add("predicate exact fall-backs", predicates.exactFallbacks);
+  return order;
+}
+
+}  // namespace hsr::painter

@@ -1,0 +1,35 @@
+// Exact orientation predicates for double-precision points (Shewchuk 1997's filter,
+// GMP's rationals behind it). Every double is a rational number, so the sign of a
+// determinant of doubles has one right answer; these return it.
+//
+// Each predicate first evaluates the determinant in double precision together with a
+// forward error bound (Shewchuk's "A" bounds); when the value's magnitude exceeds the
+// bound its sign is certain. Otherwise it evaluates again in exact rational arithmetic.
+// The fall-back is rare (points within a few ulps of a line or plane) and counted.
+#pragma once
+
+#include <cstdint>
+
+#include "renderer/math.hpp"
+
+namespace hsr {
+
+class ExactPredicates {
+ public:
+  // Sign of (b - a) x (c - a) over x and y: +1, 0 or -1.
+  int orient2d(const dvec3& a, const dvec3& b, const dvec3& c);
+  // Sign of det[b - a, c - a, d - a] = ((b - a) x (c - a)) . (d - a): which side of the
+  // plane through a, b, c the point d lies on (0: on it).
+  int orient3d(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d);
+  // Sign of det[b - a, c - a, direction]: which way the plane through a, b, c faces
+  // relative to a direction (0: the plane is parallel to it).
+  int facing(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& direction);
+
+  std::int64_t evaluations = 0;     // predicate calls
+  std::int64_t exactFallbacks = 0;  // calls the double filter could not decide
+
+ private:
+  int orient3dOfVectors(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint);
+};
+
+}  // namespace hsr

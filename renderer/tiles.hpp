@@ -1,0 +1,46 @@
+// Screen tiles: the unit of parallel work of the tile-parallel rasterizing algorithms.
+// One thread owns a tile at a time, and within a tile the items are drawn in their
+// submission order, so the image is the same for any thread count.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "renderer/raster.hpp"
+
+namespace hsr {
+
+struct TileGrid {
+  static constexpr int kTileSize = 64;  // pixels per side of a tile
+  int width, height, tilesX, tilesY;
+
+  TileGrid(int imageWidth, int imageHeight)
+      : width(imageWidth), height(imageHeight), tilesX((imageWidth + kTileSize - 1) / kTileSize),
+        tilesY((imageHeight + kTileSize - 1) / kTileSize) {}
+  std::size_t count() const { return std::size_t(tilesX) * std::size_t(tilesY); }
+
+  // A tile's pixels: [x0, x1) x [y0, y1).
+  struct Rect {
+    int x0, y0, x1, y1;
+  };
+  Rect rect(std::size_t tile) const {
+    const int x0 = int(tile % std::size_t(tilesX)) * kTileSize, y0 = int(tile / std::size_t(tilesX)) * kTileSize;
+    return {x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height)};
+  }
+
+  // Binning: for each tile, the indices of the items whose screen triangle's pixel box
+  // overlaps it, in submission order. triangleOf(i) is item i's ScreenTriangle.
+  template <typename TriangleOf>
+  std::vector<std::vector<std::uint32_t>> bin(std::size_t items, TriangleOf&& triangleOf) const {
+    std::vector<std::vector<std::uint32_t>> bins(count());
+    for (std::uint32_t i = 0; i < items; ++i) {
+      const ScreenTriangle& tri = triangleOf(i);
+      for (int ty = tri.minY / kTileSize; ty <= tri.maxY / kTileSize; ++ty)
+        for (int tx = tri.minX / kTileSize; tx <= tri.maxX / kTileSize; ++tx) bins[std::size_t(ty * tilesX + tx)].push_back(i);
+    }
+    return bins;
+  }
+};
+
+}  // namespace hsr
