@@ -144,6 +144,8 @@ AlgorithmEntry painterEntry() {
        {"100000", "0", "10", "1000"}, KnobSpec::Range{0, 1e9, true}, {"newell"}},
       {"budget", "newell: refuses scenes with more triangle pairs n(n-1)/2 than this", {"1e9", "1e10", "1e11"},
        KnobSpec::Range{1, 1e15}, {"newell"}},
+      {"build-budget", "bsp: refuses scenes whose tree build is estimated (n log2(n)^2) above this many plane-side tests",
+       {"1e8", "1e9", "1e10"}, KnobSpec::Range{1, 1e15}, {"bsp"}},
       {"splitter", "bsp: each node's plane: the first triangle's, a random one's, or the fewest splits among candidates",
        {"least-splits", "first", "random"}, std::nullopt, {"bsp"}},
       {"seed", "bsp: seed of the random choices of random and least-splits", {"1", "2", "3"},
@@ -166,6 +168,7 @@ AlgorithmEntry painterEntry() {
     knobs.key = choiceOf<painter::SortKey>(entry, values, "key");
     knobs.splitCap = knobNumber(values, "split-cap").value;
     knobs.budget = knobNumber(values, "budget").value;
+    knobs.buildBudget = knobNumber(values, "build-budget").value;
     const std::string& splitter = values.at("splitter");
     knobs.splitter = splitter == "first" ? painter::Splitter::first
                      : splitter == "random" ? painter::Splitter::random

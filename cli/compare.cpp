@@ -90,7 +90,10 @@ int compare(const CompareOptions& options) {
       }
       const auto [row, frame] = measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
       sceneRows.push_back(row);
-      std::snprintf(line, sizeof line, "%.1f ms, error %.4f%%", row.time.median * 1e3, row.error.pixelError * 100);
+      std::snprintf(line, sizeof line, "%.1f ms, error %.4f%%%s", row.time.median * 1e3, row.error.pixelError * 100,
+                    frame.partial.empty() ? "" : " (partial)");
+      if (!frame.partial.empty())
+        std::printf("  %s %s: the image is partial: %s\n", algorithm.name.c_str(), row.knobs.c_str(), frame.partial.c_str());
       section.images.push_back({prepared.width(), prepared.height(), frame.color,
                                 {algorithm.name + (row.knobs == "defaults" ? "" : " " + row.knobs), line}});
       section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(frame, truth),

@@ -25,6 +25,7 @@ int render(const RenderOptions& options) {
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
+  if (!frame.partial.empty()) std::fprintf(stderr, "hsr: warning: the image is partial: %s\n", frame.partial.c_str());
   if (options.stats) std::printf("%s", stats.report().c_str());
   return 0;
 }

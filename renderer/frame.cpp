@@ -55,7 +55,12 @@ std::filesystem::path OutputFiles::stage(const std::filesystem::path& path, cons
 }
 
 void OutputFiles::addColorPng(const std::filesystem::path& path, const Frame& frame) {
-  addRgbaPng(path, frame.width, frame.height, frame.color);
+  HSR_CHECK(frame.color.size() == frame.pixelCount() * 4);
+  const auto temporary = stage(path, ".png");
+  OIIO::ImageSpec spec(frame.width, frame.height, 4, OIIO::TypeDesc::UINT8);
+  // A partial image says so in the file itself, not only on the terminal.
+  if (!frame.partial.empty()) spec.attribute("ImageDescription", "partial image: " + frame.partial);
+  writeImage(temporary, spec, frame.color.data());
 }
 
 void OutputFiles::addRgbaPng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {

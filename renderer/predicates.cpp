@@ -16,6 +16,50 @@ constexpr double kOrient3dBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 
 int signOf(const mpq_class& value) { return sgn(value); }
 
+// The second stage, exact in double precision when the coordinate differences are
+// (always so when the points are close, or on a grid, as modelled coplanar faces often
+// are): a - b, if the subtraction rounded nothing.
+bool exactDifference(double a, double b, double& difference) {
+  difference = a - b;
+  // Knuth's two-sum, for a difference: the rounding error is zero exactly when nothing was lost.
+  const double bVirtual = a - difference, aVirtual = difference + bVirtual;
+  return (a - aVirtual) + (bVirtual - b) == 0;
+}
+
+// The exact sign of a sum of products of three doubles, sum over i of sign_i * x_i y_i z_i:
+// each product is split exactly into four doubles with fused multiply-adds, and the
+// terms are accumulated into a nonoverlapping expansion (Shewchuk's grow-expansion),
+// whose sign is that of its largest nonzero component.
+class ExactSum {
+ public:
+  void addProduct(double x, double y, double z) {
+    const double xy = x * y, xyError = std::fma(x, y, -xy);
+    for (const double factor : {xy, xyError}) {
+      const double product = factor * z;
+      add(product);
+      add(std::fma(factor, z, -product));
+    }
+  }
+  int sign() const {
+    for (int i = count_ - 1; i >= 0; --i)
+      if (terms_[i] != 0) return terms_[i] > 0 ? 1 : -1;
+    return 0;
+  }
+
+ private:
+  void add(double value) {
+    for (int i = 0; i < count_; ++i) {
+      const double sum = value + terms_[i];
+      const double bVirtual = sum - value, aVirtual = sum - bVirtual;
+      terms_[i] = (value - aVirtual) + (terms_[i] - bVirtual);
+      value = sum;
+    }
+    terms_[count_++] = value;
+  }
+  double terms_[24] = {};
+  int count_ = 0;
+};
+
 }  // namespace
 
 int ExactPredicates::orient2d(const dvec3& a, const dvec3& b, const dvec3& c) {
@@ -23,12 +67,26 @@ int ExactPredicates::orient2d(const dvec3& a, const dvec3& b, const dvec3& c) {
   const double left = (b.x - a.x) * (c.y - a.y), right = (b.y - a.y) * (c.x - a.x);
   const double det = left - right;
   if (std::abs(det) > kOrient2dBound * (std::abs(left) + std::abs(right))) return det > 0 ? 1 : -1;
+  double bx, by, cx, cy;
+  if (exactDifference(b.x, a.x, bx) && exactDifference(b.y, a.y, by) && exactDifference(c.x, a.x, cx) &&
+      exactDifference(c.y, a.y, cy)) {
+    ExactSum sum;
+    sum.addProduct(bx, cy, 1);
+    sum.addProduct(-by, cx, 1);
+    return sum.sign();
+  }
   ++exactFallbacks;
   const mpq_class exact = (mpq_class(b.x) - a.x) * (mpq_class(c.y) - a.y) - (mpq_class(b.y) - a.y) * (mpq_class(c.x) - a.x);
   return signOf(exact);
 }
 
 int ExactPredicates::orient3d(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d) {
+  // A corner of the plane's own triangle (a mesh's shared vertices make this common):
+  // the determinant is exactly zero, which no error bound can certify.
+  if (d == a || d == b || d == c) {
+    ++evaluations;
+    return 0;
+  }
   return orient3dOfVectors(a, b, c, d, true);
 }
 
@@ -46,16 +104,32 @@ int ExactPredicates::orient3dOfVectors(const dvec3& a, const dvec3& b, const dve
   const double permanent = std::abs(u.x) * (std::abs(m0) + std::abs(m1)) + std::abs(u.y) * (std::abs(m2) + std::abs(m3)) +
                            std::abs(u.z) * (std::abs(m4) + std::abs(m5));
   if (std::abs(det) > kOrient3dBound * permanent) return det > 0 ? 1 : -1;
-  ++exactFallbacks;
-  mpq_class eu[3], ev[3], ew[3];
+  dvec3 eu(0), ev(0), ew = d;
+  bool exact = true;
   for (int i = 0; i < 3; ++i) {
-    eu[i] = mpq_class(b[i]) - a[i];
-    ev[i] = mpq_class(c[i]) - a[i];
-    ew[i] = dIsPoint ? mpq_class(d[i]) - a[i] : mpq_class(d[i]);
+    exact &= exactDifference(b[i], a[i], eu[i]) && exactDifference(c[i], a[i], ev[i]);
+    if (dIsPoint) exact &= exactDifference(d[i], a[i], ew[i]);
   }
-  const mpq_class exact = eu[0] * (ev[1] * ew[2] - ev[2] * ew[1]) - eu[1] * (ev[0] * ew[2] - ev[2] * ew[0]) +
-                          eu[2] * (ev[0] * ew[1] - ev[1] * ew[0]);
-  return signOf(exact);
+  if (exact) {
+    ExactSum sum;
+    sum.addProduct(eu.x, ev.y, ew.z);
+    sum.addProduct(-eu.x, ev.z, ew.y);
+    sum.addProduct(-eu.y, ev.x, ew.z);
+    sum.addProduct(eu.y, ev.z, ew.x);
+    sum.addProduct(eu.z, ev.x, ew.y);
+    sum.addProduct(-eu.z, ev.y, ew.x);
+    return sum.sign();
+  }
+  ++exactFallbacks;
+  mpq_class qu[3], qv[3], qw[3];
+  for (int i = 0; i < 3; ++i) {
+    qu[i] = mpq_class(b[i]) - a[i];
+    qv[i] = mpq_class(c[i]) - a[i];
+    qw[i] = dIsPoint ? mpq_class(d[i]) - a[i] : mpq_class(d[i]);
+  }
+  const mpq_class value = qu[0] * (qv[1] * qw[2] - qv[2] * qw[1]) - qu[1] * (qv[0] * qw[2] - qv[2] * qw[0]) +
+                          qu[2] * (qv[0] * qw[1] - qv[1] * qw[0]);
+  return signOf(value);
 }
 
 }  // namespace hsr

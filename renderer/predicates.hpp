@@ -4,8 +4,10 @@
 //
 // Each predicate first evaluates the determinant in double precision together with a
 // forward error bound (Shewchuk's "A" bounds); when the value's magnitude exceeds the
-// bound its sign is certain. Otherwise it evaluates again in exact rational arithmetic.
-// The fall-back is rare (points within a few ulps of a line or plane) and counted.
+// bound its sign is certain. Otherwise, if the coordinate differences were exact, it
+// sums the products exactly in double-precision expansions (fused multiply-add); else it
+// evaluates again in exact rational arithmetic (GMP), which is slow, rare and counted.
+// (The expansions assume no product underflows: coordinates above about 1e-90.)
 #pragma once
 
 #include <cstdint>
@@ -26,7 +28,7 @@ class ExactPredicates {
   int facing(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& direction);
 
   std::int64_t evaluations = 0;     // predicate calls
-  std::int64_t exactFallbacks = 0;  // calls the double filter could not decide
+  std::int64_t exactFallbacks = 0;  // calls that needed rational arithmetic
 
  private:
   int orient3dOfVectors(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint);

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <initializer_list>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/painter/painter.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/camera.hpp"
@@ -97,6 +100,17 @@ inline Frame renderRayCasting(const PreparedScene& scene, const ray_casting::Kno
   return ray_casting::run(scene, knobs, threads, stats);
 }
 
+inline painter::Knobs painterKnobs(painter::Variant variant) {
+  painter::Knobs knobs;
+  knobs.variant = variant;
+  return knobs;
+}
+
+inline Frame renderPainter(const PreparedScene& scene, const painter::Knobs& knobs, int threads = 2) {
+  Stats stats;
+  return painter::run(scene, knobs, threads, stats);
+}
+
 // Nearest hit of a ray among all triangles with a view distance in [near, far]
 // (Möller–Trumbore, double precision): returns triangle index + 1, or 0 for none.
 inline std::uint32_t nearestHit(const PreparedScene& scene, const CameraTransform& camera, const Ray& ray) {
@@ -154,6 +168,34 @@ inline double distanceToProjectedEdges(const PreparedScene& scene, const CameraT
   if (!c) return std::numeric_limits<double>::infinity();
   return std::min({distanceToSegment(point, (*c)[0], (*c)[1]), distanceToSegment(point, (*c)[1], (*c)[2]),
                    distanceToSegment(point, (*c)[2], (*c)[0])});
+}
+
+// Snapping vertices to 1/256 pixel moves an edge by at most sqrt(2)/512 pixel: a pixel
+// center nearer than this to a triangle's projected boundary may be covered or not.
+inline constexpr double kSnapDistance = 1.0 / 256;
+
+// The smallest distance from a point to the projected boundary of any of the triangles
+// with these ids (global index + 1; 0 is skipped).
+inline double nearestProjectedEdge(const PreparedScene& scene, const CameraTransform& camera,
+                                   std::initializer_list<std::uint32_t> ids, const dvec2& point) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const std::uint32_t id : ids)
+    if (id != 0) nearest = std::min(nearest, distanceToProjectedEdges(scene, camera, id - 1, point));
+  return nearest;
+}
+
+// The view distance at which a ray meets a triangle, or NaN when it misses it
+// (Moller-Trumbore in double; for classifying the few pixels where algorithms differ).
+inline double hitDistance(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, const Ray& ray) {
+  const Triangle& t = scene.triangles()[triangle];
+  const dvec3 a = scene.positions()[t[0]], e1 = scene.positions()[t[1]] - a, e2 = scene.positions()[t[2]] - a;
+  const dvec3 p = glm::cross(ray.direction, e2);
+  const double det = glm::dot(e1, p);
+  const dvec3 s = ray.origin - a;
+  const double u = glm::dot(s, p) / det, v = glm::dot(ray.direction, glm::cross(s, e1)) / det;
+  if (!(u >= 0 && v >= 0 && u + v <= 1)) return NAN;
+  const double along = glm::dot(e2, glm::cross(s, e1)) / det;
+  return glm::dot(ray.origin + along * ray.direction - camera.camera().eye, camera.forward());
 }
 
 // Compares a frame's ids with brute-force rays. Snapping moves vertices by at most

@@ -22,6 +22,7 @@ namespace hsr::painter {
 namespace {
 
 constexpr double kCoplanarTolerance = 1e-10;
+constexpr std::size_t kSplitSample = 256;  // least-splits: polygons a candidate plane is tried on
 
 struct BuildPolygon {
   std::uint32_t triangle;
@@ -98,12 +99,15 @@ class Builder {
       return std::nullopt;
     }
     if (candidates.size() == 1) return candidates.front();
-    // least-splits: the candidate whose plane straddles the fewest polygons of the list.
+    // least-splits: the candidate whose plane straddles the fewest polygons of the list,
+    // counted over at most kSplitSample of them, evenly spaced (near the root, counting
+    // the whole list for every candidate would cost candidates x triangles per node).
+    const std::size_t stride = (list.size() + kSplitSample - 1) / kSplitSample;
     std::size_t best = candidates.front(), fewest = list.size() + 1;
     for (const std::size_t candidate : candidates) {
       const std::uint32_t plane = polygons[list[candidate]].triangle;
       std::size_t straddling = 0;
-      for (std::size_t i = 0; i < list.size() && straddling < fewest; ++i)
+      for (std::size_t i = 0; i < list.size() && straddling < fewest; i += stride)
         straddling += classify(polygons[list[i]], plane) == Side::straddles;
       if (straddling < fewest) best = candidate, fewest = straddling;
     }

@@ -42,6 +42,7 @@ struct Knobs {
   SortKey key = SortKey::centroid;  // sort: which depth of a triangle orders it
   double splitCap = 100000;         // newell: no more splits than this (the image is then labelled partial)
   double budget = 1e9;              // newell: refuses scenes with more triangle pairs than this
+  double buildBudget = 1e8;         // bsp: refuses scenes whose build is estimated above this many plane-side tests
   Splitter splitter = Splitter::leastSplits;  // bsp: how each node's plane is chosen
   std::uint64_t seed = 1;           // bsp: the random choices of `random` and `least-splits`
   int candidates = 8;               // bsp least-splits: planes tried per node

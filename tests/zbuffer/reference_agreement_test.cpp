@@ -19,22 +19,6 @@
 namespace hsr {
 namespace {
 
-constexpr double kSnapDistance = 1.0 / 256;
-
-// The view distance at which a ray meets a triangle, or NaN when it misses it
-// (Moller-Trumbore in double; only called on pixels the rules look at).
-double hitDistance(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, const Ray& ray) {
-  const Triangle& t = scene.triangles()[triangle];
-  const dvec3 a = scene.positions()[t[0]], e1 = scene.positions()[t[1]] - a, e2 = scene.positions()[t[2]] - a;
-  const dvec3 p = glm::cross(ray.direction, e2);
-  const double det = glm::dot(e1, p);
-  const dvec3 s = ray.origin - a;
-  const double u = glm::dot(s, p) / det, v = glm::dot(ray.direction, glm::cross(s, e1)) / det;
-  if (!(u >= 0 && v >= 0 && u + v <= 1)) return NAN;
-  const double along = glm::dot(e2, glm::cross(s, e1)) / det;
-  return glm::dot(ray.origin + along * ray.direction - camera.camera().eye, camera.forward());
-}
-
 struct Explained {
   long snapping = 0, depthResolution = 0, unexplained = 0;
 };
@@ -46,17 +30,15 @@ Explained classify(const PreparedScene& scene, const Frame& frame, const Referen
   for (std::size_t p = 0; p < frame.pixelCount(); ++p) {
     if (truth.ambiguous[p] || frame.ids[p] == truth.frame.ids[p]) continue;
     const dvec2 center(double(p % std::size_t(frame.width)) + 0.5, double(p / std::size_t(frame.width)) + 0.5);
-    double nearestEdge = std::numeric_limits<double>::infinity();
-    for (const std::uint32_t id : {frame.ids[p], truth.frame.ids[p]})
-      if (id != 0) nearestEdge = std::min(nearestEdge, test::distanceToProjectedEdges(scene, camera, id - 1, center));
-    if (nearestEdge < kSnapDistance) {
+    const double nearestEdge = test::nearestProjectedEdge(scene, camera, {frame.ids[p], truth.frame.ids[p]}, center);
+    if (nearestEdge < test::kSnapDistance) {
       ++result.snapping;
       continue;
     }
     if (frame.ids[p] != 0 && truth.frame.ids[p] != 0) {
       const Ray ray = camera.rayThroughPixel(center.x, center.y);
-      const double shown = hitDistance(scene, camera, frame.ids[p] - 1, ray);
-      const double exact = hitDistance(scene, camera, truth.frame.ids[p] - 1, ray);
+      const double shown = test::hitDistance(scene, camera, frame.ids[p] - 1, ray);
+      const double exact = test::hitDistance(scene, camera, truth.frame.ids[p] - 1, ray);
       const auto stored = [&](double d) { return float(encoding.z(camera.screenAffineDepth(d))); };
       const float larger = std::max(stored(shown), stored(exact));
       const float step = std::nextafter(larger, 2.0f) - larger;  // one float32 step at that depth
