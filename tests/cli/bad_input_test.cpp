@@ -91,6 +91,27 @@ INSTANTIATE_TEST_SUITE_P(
              "ray-triangle tests, over its budget of 1e+09 (raise it with --knob budget=N"},
         Case{"march-over-budget", kCube + " --algo ray_casting --variant march --knob step=1e-5% -o OUT",
              "march ray casting would run 640 x 480 pixels x"},
+        Case{"opacity-without-transparency",
+             write("opacity.toml", kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") + " --algo painter -o OUT",
+             "opacity.toml:6:11: objects[0].opacity: an opacity below 1 needs \"transparency\" in the scene's effects"},
+        Case{"opacity-out-of-range",
+             write("opacity-range.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 1.5\n") +
+                 " --algo painter -o OUT",
+             "opacity-range.toml:7:11: objects[0].opacity: expected a finite number in [0, 1], got 1.5"},
+        Case{"zbuffer-on-transparency",
+             write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") + " -o OUT",
+             "zbuffer cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back to "
+             "front; the z-buffer keeps only the nearest (use --algo painter)"},
+        Case{"painter-knob-of-another-variant", kCube + " --algo painter --knob key=nearest -o OUT",
+             "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
+        Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",
+             "painter split-cap must be an integer in [0, 1e+09]"},
+        Case{"newell-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/trees.toml --algo painter --variant newell -o OUT",
+             "painter cannot render it: newell may test 1.64e+09 triangle pairs (57242 triangles), more than --knob "
+             "budget=1e+09"},
+        Case{"bsp-over-build-budget", std::string(HSR_SOURCE_DIR) + "/scenes/dragons.toml --algo painter -o OUT",
+             "painter cannot render it: building the bsp tree of 399136 triangles takes about 1.38e+08 plane-side tests, "
+             "more than --knob build-budget=1e+08"},
         Case{"unknown-scene-key", write("key.toml", kCamera + "[[objects]]\nshape = \"box\"\nsise = 2\n") + " -o OUT",
              "key.toml:6:1: objects[0].sise: unknown key"},
         Case{"output-folder-missing", kCube + " -o /no/such/folder/out.png", "the folder /no/such/folder does not exist"},

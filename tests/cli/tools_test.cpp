@@ -98,7 +98,7 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   expected.insert(expected.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
   expected.push_back("counters");
   EXPECT_EQ(header, expected);
-  ASSERT_EQ(rows.size(), 6u);  // per scene: the reference, then every surface algorithm at its defaults
+  ASSERT_EQ(rows.size(), 8u);  // per scene: the reference, then every surface algorithm at its defaults
   for (const Row& row : rows) {
     expectConsistentMeasurements(row);
     EXPECT_EQ(row.at("repeats"), "2");
@@ -110,8 +110,10 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_NE(rows[1].at("counters").find("fragments tested="), std::string::npos);
   EXPECT_EQ(rows[2].at("algorithm"), "ray_casting");
   EXPECT_NE(rows[2].at("counters").find("bvh nodes visited="), std::string::npos);
-  for (const std::size_t exact : {2u, 5u}) EXPECT_EQ(number(rows[exact], "pixel_error"), 0);  // bvh is exact
-  EXPECT_GT(number(rows[4], "ambiguous_pixels"), 0);  // the coplanar tie
+  EXPECT_EQ(rows[3].at("algorithm"), "painter");
+  EXPECT_NE(rows[3].at("counters").find("bsp nodes="), std::string::npos);
+  for (const std::size_t exact : {2u, 6u}) EXPECT_EQ(number(rows[exact], "pixel_error"), 0);  // bvh is exact
+  EXPECT_GT(number(rows[5], "ambiguous_pixels"), 0);  // the coplanar tie
 
   const test::JsonValue json = test::parseJson(readText(folder / "results.json"));
   ASSERT_EQ(json.array().size(), rows.size());
@@ -123,7 +125,7 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_GT(json.array()[1]["counters"]["fragments tested"].number(), 0);
 
   const Image sheet = readImage(folder / "contact_sheet.png");
-  EXPECT_EQ(sheet.width, 10 + 3 * (256 + 10));  // three columns: the reference, zbuffer and ray_casting
+  EXPECT_EQ(sheet.width, 10 + 4 * (256 + 10));  // four columns: the reference, zbuffer, ray_casting and painter
   EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
 }
 

@@ -96,7 +96,7 @@ TEST(Scene, BadInputNamesFileLineKeyAndExpectation) {
       {kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"nowhere.obj\"\n",
        "objects[0].file: " + test::outputPath("nowhere.obj").string() + ": cannot open the OBJ file"},
       {"effects = [\"lambert\"]\n" + kCamera + kBox, "effects: lambert shading needs at least one [[lights]] table"},
-      {"effects = [\"phong\"]\n" + kCamera + kBox, ":1:12: effects[0]: expected one of none, flat, lambert, got 'phong'"},
+      {"effects = [\"phong\"]\n" + kCamera + kBox, ":1:12: effects[0]: expected one of none, flat, lambert, transparency, got 'phong'"},
       {"[image]\nwidth = 0\n" + kCamera + kBox, ":2:9: image.width: expected an integer in [1, 16384], got 0"},
       {"[image]\nwidth = 16384\nheight = 16385\n" + kCamera + kBox, "image.height: expected an integer in [1, 16384]"},
       {kCamera + "[[objects]]\nshape = \"sphere\"\nsegments = 2\n", "objects[0].segments: expected an integer in [3, 4096], got 2"},
