@@ -11,8 +11,13 @@
 //   zbuffer: the full-frame and one-scanline z-buffers give identical ids;
 //   ray_casting (bvh): no wrong pixel against the exact reference;
 //   ray_casting march: the same bits on 1 and 3 threads (its error against the
-//     reference is the method's, tabled in algorithms/ray_casting/README.md).
+//     reference is the method's, tabled in algorithms/ray_casting/README.md);
+//   painter bsp and newell: every pixel that differs from the exact reference is
+//     explained by snapping or coplanarity (tests/painter/painter_support.hpp);
+//   painter sort: the same bits on 1 and 3 threads (its error is the lesson).
 // ray_casting naive has no goldens of its own: it must reproduce bvh's.
+// A configuration the registry refuses on a scene (over a budget, or a transparent
+// scene for an algorithm that cannot blend) is skipped there, with the reason.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imagebufalgo.h>
@@ -20,7 +25,8 @@
 #include <cstdlib>
 #include <functional>
 
-#include "algorithms/ray_casting/ray_casting.hpp"
+#include "algorithms/registry.hpp"
+#include "painter/painter_support.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/reference.hpp"
 #include "test_support.hpp"
@@ -48,45 +54,52 @@ OIIO::ImageBuf toImageBuf(const Frame& frame) {
   return image;
 }
 
-// One algorithm configuration with golden images: how it renders, where its goldens
-// live, and the check an update must pass (empty when it passes, else why not).
+// One algorithm configuration with golden images: what renders it (a registry entry and
+// knob settings), where its goldens live, and the check an update must pass (empty when
+// it passes, else why not).
 struct GoldenCase {
   std::string name;
   std::string folder;  // under images/golden/
-  std::function<Frame(const PreparedScene&, int threads)> render;
-  std::function<std::string(const PreparedScene&, const Frame&)> updateCheck;  // none: the goldens are another case's
+  std::string algorithm;
+  KnobSettings knobs;
+  std::function<std::string(const GoldenCase&, const PreparedScene&, const Frame&)> updateCheck;  // none: another case's goldens
+
+  const AlgorithmEntry& entry() const { return findAlgorithm(algorithm); }
+  KnobValues values() const { return resolveKnobs(entry(), knobs); }
+  Frame render(const PreparedScene& scene, int threads) const {
+    Stats stats;
+    return entry().render(scene, values(), threads, stats);
+  }
 };
 
-Frame rayCast(const PreparedScene& scene, ray_casting::Variant variant, int threads) {
-  return test::renderRayCasting(scene, test::rayCastingKnobs(variant), threads);
+std::string sameBitsOnThreeThreads(const GoldenCase& golden, const PreparedScene& scene, const Frame& frame) {
+  return golden.render(scene, 3).color == frame.color ? std::string() : "1 and 3 threads disagree";
+}
+
+std::string everyWrongPixelExplained(const GoldenCase&, const PreparedScene& scene, const Frame& frame) {
+  Stats stats;
+  const long unexplained = test::classifyWrongPixels(scene, frame, traceReference(scene, 2, stats)).unexplained;
+  return unexplained == 0 ? std::string() : std::to_string(unexplained) + " wrong pixels are neither snapping nor coplanarity";
 }
 
 const std::vector<GoldenCase>& goldenCases() {
   static const std::vector<GoldenCase> cases = {
-      {"zbuffer", "zbuffer",
-       [](const PreparedScene& scene, int threads) {
-         return test::renderZBuffer(scene, zbuffer::Variant::full, DepthFormat::float32, threads);
-       },
-       [](const PreparedScene& scene, const Frame& frame) {
-         const Frame scanline = test::renderZBuffer(scene, zbuffer::Variant::scanline, DepthFormat::float32, 2);
-         return frame.ids == scanline.ids ? std::string() : "full-frame and scanline disagree";
-       }},
-      {"ray_casting_bvh", "ray_casting",
-       [](const PreparedScene& scene, int threads) { return rayCast(scene, ray_casting::Variant::bvh, threads); },
-       [](const PreparedScene& scene, const Frame& frame) {
-         Stats stats;
-         const std::int64_t wrong = surfaceError(frame, traceReference(scene, 2, stats)).wrongPixels;
-         return wrong == 0 ? std::string() : std::to_string(wrong) + " pixels differ from the exact reference";
-       }},
-      {"ray_casting_naive", "ray_casting",
-       [](const PreparedScene& scene, int threads) { return rayCast(scene, ray_casting::Variant::naive, threads); },
-       nullptr},  // writes no goldens: it is checked against bvh's
-      {"ray_casting_march", "ray_casting-march",
-       [](const PreparedScene& scene, int threads) { return rayCast(scene, ray_casting::Variant::march, threads); },
-       [](const PreparedScene& scene, const Frame& frame) {
-         return rayCast(scene, ray_casting::Variant::march, 3).color == frame.color ? std::string()
-                                                                                    : "1 and 3 threads disagree";
-       }},
+        {"zbuffer", "zbuffer", "zbuffer", {},
+         [](const GoldenCase&, const PreparedScene& scene, const Frame& frame) {
+           const Frame scanline = test::renderZBuffer(scene, zbuffer::Variant::scanline, DepthFormat::float32, 2);
+           return frame.ids == scanline.ids ? std::string() : "full-frame and scanline disagree";
+         }},
+        {"ray_casting_bvh", "ray_casting", "ray_casting", {},
+         [](const GoldenCase&, const PreparedScene& scene, const Frame& frame) {
+           Stats stats;
+           const std::int64_t wrong = surfaceError(frame, traceReference(scene, 2, stats)).wrongPixels;
+           return wrong == 0 ? std::string() : std::to_string(wrong) + " pixels differ from the exact reference";
+         }},
+        {"ray_casting_naive", "ray_casting", "ray_casting", {{"variant", "naive"}}, nullptr},  // checked against bvh's
+        {"ray_casting_march", "ray_casting-march", "ray_casting", {{"variant", "march"}}, sameBitsOnThreeThreads},
+        {"painter_bsp", "painter", "painter", {}, everyWrongPixelExplained},
+        {"painter_newell", "painter-newell", "painter", {{"variant", "newell"}}, everyWrongPixelExplained},
+        {"painter_sort", "painter-sort", "painter", {{"variant", "sort"}}, sameBitsOnThreeThreads},
   };
   return cases;
 }
@@ -99,15 +112,14 @@ TEST_P(Golden, MatchesTheGoldenImage) {
   const Scene scene = loadScene(test::sourcePath("scenes/" + name + ".toml"));
   PreparedScene prepared(scene);
   prepared.setSize(kGoldenWidth, std::max(1, kGoldenWidth * scene.height / scene.width));
-  const ray_casting::Knobs naive = test::rayCastingKnobs(ray_casting::Variant::naive);
-  if (golden.name == "ray_casting_naive" && !ray_casting::refusal(prepared, naive).empty())
-    GTEST_SKIP() << "naive is over its default budget here: " << ray_casting::refusal(prepared, naive);
+  if (const std::string refusal = golden.entry().refusal(prepared, golden.values()); !refusal.empty())
+    GTEST_SKIP() << golden.name << " refuses this scene: " << refusal;
   const Frame frame = golden.render(prepared, 1);
   const std::filesystem::path path = test::sourcePath("images/golden/" + golden.folder + "/" + name + ".png");
 
   if (std::getenv("HSR_UPDATE_GOLDEN")) {
     if (!golden.updateCheck) GTEST_SKIP() << golden.name << " writes no goldens of its own";
-    const std::string refusal = golden.updateCheck(prepared, frame);
+    const std::string refusal = golden.updateCheck(golden, prepared, frame);
     ASSERT_EQ(refusal, "") << "refusing to update " << path;
     std::filesystem::create_directories(path.parent_path());
     OutputFiles outputs;
