@@ -291,6 +291,12 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
       prepared = grown.get();
       value = std::to_string(prepared->triangleCount());
     }
+    // The first size the algorithm refuses (a budget) ends the sweep: where it stops
+    // being practical is part of the answer. The first size must render.
+    if (const std::string refusal = algorithm.refusal(*prepared, configuration.knobs); !refusal.empty() && !rows.empty()) {
+      std::printf("stopping at %s %s: %s\n", options.scale.c_str(), value.c_str(), refusal.c_str());
+      break;
+    }
     checkRenders(algorithm, configuration.knobs, scene.name + " (" + options.scale + " " + value + ")", *prepared);
     progress.update(rows.size(), options.scale + " " + value);
     Stats ignored;
@@ -302,6 +308,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     rows.push_back(std::move(row));
   }
   progress.update(rows.size(), "done");
+  if (rows.size() < 2) throw InputError(options.scene + ": " + algorithm.name + " renders only one size; no exponent to fit");
   const auto [exponent, intercept] = powerFit(sizes, times);
   std::printf("%s on %s, growing %s\n%s  fit: time ~ %s^%.3f\n", algorithm.name.c_str(), options.scene.c_str(),
               options.scale.c_str(), resultsTable(rows, {options.scale}).c_str(), options.scale.c_str(), exponent);
