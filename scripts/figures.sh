@@ -32,5 +32,18 @@ cp "$study/scale_triangles.png" images/figures/ray_casting/scale-bvh.png
 ./build/hsr compare scenes/hard/thin_sheet.toml scenes/trees.toml --size 480x270 \
   --algos "ray_casting,ray_casting:variant=march,ray_casting:variant=march:refine=6" --out "$study" > /dev/null
 cp "$study/contact_sheet.png" images/figures/ray_casting/compare.png
+# The painter: the cyclic overlap and the interpenetrating pair for each variant, and
+# each variant's time against the triangle count (up to its budget).
+mkdir -p images/figures/painter
+./build/hsr compare scenes/hard/cyclic_overlap.toml scenes/hard/interpenetrating.toml \
+  --algos "painter:variant=sort,painter:variant=newell,painter:variant=bsp" --out "$study" > /dev/null
+cp "$study/contact_sheet.png" images/figures/painter/hard-cases.png
+./build/hsr sweep scenes/bunny.toml --algo painter --variant sort --scale triangles --repeat 1 --threads 1 --out "$study" > /dev/null
+cp "$study/scale_triangles.png" images/figures/painter/scale-sort.png
+./build/hsr sweep scenes/bunny.toml --algo painter --variant newell --knob budget=1e10 --scale triangles --repeat 1 \
+  --threads 1 --out "$study" > /dev/null
+cp "$study/scale_triangles.png" images/figures/painter/scale-newell.png
+./build/hsr sweep scenes/bunny.toml --algo painter --variant bsp --scale triangles --repeat 1 --threads 1 --out "$study" > /dev/null
+cp "$study/scale_triangles.png" images/figures/painter/scale-bsp.png
 rm -r "$study"
 echo "figures are in images/figures/"
