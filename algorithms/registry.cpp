@@ -155,12 +155,7 @@ AlgorithmEntry painterEntry() {
   };
   entry.keyCounters = {"pieces painted", "fragments written", "newell pairs tested", "newell reorders", "newell splits",
                        "bsp nodes", "bsp depth", "bsp splits"};
-  entry.studyConfigurations = {{},
-                               {{"variant", "newell"}},
-                               {{"variant", "sort"}},
-                               {{"variant", "sort"}, {"key", "nearest"}},
-                               {{"variant", "sort"}, {"key", "farthest"}},
-                               {{"variant", "bsp"}, {"splitter", "first"}}};
+  entry.studyConfigurations = {{}, {{"variant", "newell"}}, {{"variant", "sort"}}, {{"variant", "sort"}, {"key", "nearest"}}};
   const auto typed = [entry](const KnobValues& values) {
     painter::Knobs knobs;
     const std::string& variant = values.at("variant");
