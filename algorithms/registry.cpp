@@ -77,10 +77,10 @@ AlgorithmEntry zbufferEntry() {
   entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
   entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
   entry.refusal = [](const PreparedScene& scene, const KnobValues&) { return transparencyRefusal(scene, "the z-buffer"); };
-  entry.render = [knobs = entry.knobs](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
+  entry.render = [entry](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
     zbuffer::Knobs typed;
-    typed.variant = static_cast<zbuffer::Variant>(choiceIndex(knobs[0], values.at("variant")));
-    typed.depthFormat = static_cast<DepthFormat>(choiceIndex(knobs[1], values.at("depth-format")));
+    typed.variant = choiceOf<zbuffer::Variant>(entry, values, "variant");
+    typed.depthFormat = choiceOf<DepthFormat>(entry, values, "depth-format");
     return zbuffer::run(scene, typed, threads, stats);
   };
   return entry;
@@ -108,9 +108,9 @@ AlgorithmEntry rayCastingEntry() {
                        "nearest-triangle voxels searched"};
   entry.studyConfigurations = {{}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
   // The variant's choices are listed in the order of ray_casting::Variant.
-  const auto typed = [variant = entry.knobs[0]](const KnobValues& values) {
+  const auto typed = [entry](const KnobValues& values) {
     ray_casting::Knobs knobs;
-    knobs.variant = static_cast<ray_casting::Variant>(choiceIndex(variant, values.at("variant")));
+    knobs.variant = choiceOf<ray_casting::Variant>(entry, values, "variant");
     knobs.budget = knobNumber(values, "budget").value;
     const KnobNumber step = knobNumber(values, "step");
     knobs.step = {step.value, step.percent};
@@ -158,16 +158,12 @@ AlgorithmEntry painterEntry() {
   entry.studyConfigurations = {{}, {{"variant", "newell"}}, {{"variant", "sort"}}, {{"variant", "sort"}, {"key", "nearest"}}};
   const auto typed = [entry](const KnobValues& values) {
     painter::Knobs knobs;
-    const std::string& variant = values.at("variant");
-    knobs.variant = variant == "bsp" ? painter::Variant::bsp : variant == "newell" ? painter::Variant::newell : painter::Variant::sort;
+    knobs.variant = choiceOf<painter::Variant>(entry, values, "variant");
     knobs.key = choiceOf<painter::SortKey>(entry, values, "key");
     knobs.splitCap = knobNumber(values, "split-cap").value;
     knobs.budget = knobNumber(values, "budget").value;
     knobs.buildBudget = knobNumber(values, "build-budget").value;
-    const std::string& splitter = values.at("splitter");
-    knobs.splitter = splitter == "first" ? painter::Splitter::first
-                     : splitter == "random" ? painter::Splitter::random
-                                            : painter::Splitter::leastSplits;
+    knobs.splitter = choiceOf<painter::Splitter>(entry, values, "splitter");
     knobs.seed = static_cast<std::uint64_t>(knobNumber(values, "seed").value);
     knobs.candidates = static_cast<int>(knobNumber(values, "candidates").value);
     return knobs;

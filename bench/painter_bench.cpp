@@ -25,7 +25,7 @@ hsr::painter::Knobs knobsFor(Variant variant) {
   return knobs;
 }
 
-// Arguments: variant (0 sort, 1 newell).
+// Arguments: variant (as painter::Variant).
 void orderAndPaint(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed("counters").prepared;
   const hsr::painter::Knobs knobs = knobsFor(static_cast<Variant>(state.range(0)));
@@ -33,7 +33,7 @@ void orderAndPaint(benchmark::State& state) {
     hsr::Stats stats;
     benchmark::DoNotOptimize(hsr::painter::run(scene, knobs, 1, stats).ids.data());
   }
-  state.SetLabel(state.range(0) == 0 ? "counters sort" : "counters newell");
+  state.SetLabel(knobs.variant == Variant::sort ? "counters sort" : "counters newell");
 }
 
 void bspBuild(benchmark::State& state) {
@@ -105,7 +105,7 @@ void newellWorstCase(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(orderAndPaint)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(orderAndPaint)->Arg(int(Variant::sort))->Arg(int(Variant::newell))->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bspBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bspWalkAndPaint)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(newellWorstCase)->RangeMultiplier(2)->Range(16, 128)->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity();

@@ -33,12 +33,13 @@
 
 namespace hsr::painter {
 
-enum class Variant { sort, newell, bsp };
+// Each enum lists its values in the order of the knob's choices in the registry.
+enum class Variant { bsp, newell, sort };
 enum class SortKey { centroid, nearest, farthest };
-enum class Splitter { first, random, leastSplits };
+enum class Splitter { leastSplits, first, random };
 
 struct Knobs {
-  Variant variant = Variant::newell;
+  Variant variant = Variant::bsp;
   SortKey key = SortKey::centroid;  // sort: which depth of a triangle orders it
   double splitCap = 100000;         // newell: no more splits than this (the image is then labelled partial)
   double budget = 1e9;              // newell: refuses scenes with more triangle pairs than this
