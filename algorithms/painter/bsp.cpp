@@ -58,23 +58,31 @@ class Builder {
            predicates.orient2d(yz(a), yz(b), yz(c)) != 0;
   }
 
+  // A triangle's plane, with what its tests need computed once.
+  struct SplittingPlane {
+    std::uint32_t triangle;
+    dvec3 a, b, c, normal;            // corners, and (b - a) x (c - a) in double precision
+    double normalLength, scale;       // |normal|, and the corners' largest distance from the origin
+  };
+  SplittingPlane splittingPlane(std::uint32_t triangle) const {
+    const dvec3 &a = corner(triangle, 0), &b = corner(triangle, 1), &c = corner(triangle, 2);
+    const dvec3 normal = glm::cross(b - a, c - a);
+    return {triangle, a, b, c, normal, glm::length(normal), std::max({glm::length(a), glm::length(b), glm::length(c)})};
+  }
+
   // Step 2's test: the exact side of each vertex, with the coplanar tolerance applied
   // to the polygon as a whole. Fills sides and heights for a split.
-  Side classify(const BuildPolygon& polygon, std::uint32_t plane, std::vector<int>* sides = nullptr,
+  Side classify(const BuildPolygon& polygon, const SplittingPlane& plane, std::vector<int>* sides = nullptr,
                 std::vector<double>* heights = nullptr) {
     ++classifications;
-    if (polygon.triangle == plane) return Side::coplanar;
-    const dvec3 &a = corner(plane, 0), &b = corner(plane, 1), &c = corner(plane, 2);
-    const dvec3 normal = glm::cross(b - a, c - a);
-    const double normalLength = glm::length(normal);
-    const double planeScale = std::max({glm::length(a), glm::length(b), glm::length(c)});
+    if (polygon.triangle == plane.triangle) return Side::coplanar;
     bool anyPositive = false, anyNegative = false, withinTolerance = true;
     for (const dvec3& v : polygon.vertices) {
-      const int s = predicates.orient3d(a, b, c, v);
-      const double height = glm::dot(normal, v - a);
+      const int s = predicates.orient3d(plane.a, plane.b, plane.c, v);
+      const double height = glm::dot(plane.normal, v - plane.a);
       anyPositive |= s > 0;
       anyNegative |= s < 0;
-      withinTolerance &= std::abs(height) <= kCoplanarTolerance * normalLength * std::max(planeScale, glm::length(v));
+      withinTolerance &= std::abs(height) <= kCoplanarTolerance * plane.normalLength * std::max(plane.scale, glm::length(v));
       if (sides) sides->push_back(s);
       if (heights) heights->push_back(height);
     }
@@ -105,7 +113,7 @@ class Builder {
     const std::size_t stride = (list.size() + kSplitSample - 1) / kSplitSample;
     std::size_t best = candidates.front(), fewest = list.size() + 1;
     for (const std::size_t candidate : candidates) {
-      const std::uint32_t plane = polygons[list[candidate]].triangle;
+      const SplittingPlane plane = splittingPlane(polygons[list[candidate]].triangle);
       std::size_t straddling = 0;
       for (std::size_t i = 0; i < list.size() && straddling < fewest; i += stride)
         straddling += classify(polygons[list[i]], plane) == Side::straddles;
@@ -167,11 +175,12 @@ BspTree::BspTree(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
       for (const std::uint32_t polygon : task.list) keep(polygon);
     } else {
       node.plane = builder.polygons[task.list[*splitter]].triangle;
+      const auto plane = builder.splittingPlane(node.plane);
       // Step 2: distribute the list.
       for (const std::uint32_t polygon : task.list) {
         std::vector<int> sides;
         std::vector<double> heights;
-        switch (builder.classify(builder.polygons[polygon], node.plane, &sides, &heights)) {
+        switch (builder.classify(builder.polygons[polygon], plane, &sides, &heights)) {
           case Side::coplanar: keep(polygon); break;
           case Side::positive: positive.push_back(polygon); break;
           case Side::negative: negative.push_back(polygon); break;

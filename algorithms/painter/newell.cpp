@@ -67,9 +67,11 @@ class Newell {
       : scene_(scene), geometry_(geometry), knobs_(knobs), stats_(stats) {
     const std::size_t count = geometry.triangles.size();
     planes_.resize(count);
+    normals_.resize(count);
     winding_.resize(count);
     for (std::uint32_t s = 0; s < count; ++s) {
       for (int k = 0; k < 3; ++k) planes_[s][k] = screenPoint(geometry.corners[s][k]);
+      normals_[s] = glm::cross(planes_[s][1] - planes_[s][0], planes_[s][2] - planes_[s][0]);
       winding_[s] = predicates_.orient2d(planes_[s][0], planes_[s][1], planes_[s][2]);
       Polygon polygon;
       polygon.screenTriangle = s;
@@ -181,9 +183,8 @@ class Newell {
   // v.z minus the plane's z at (v.x, v.y), in double precision: for the tolerance and
   // for placing split points, never for a sign that decides anything.
   double depthAbovePlane(std::uint32_t plane, const dvec3& v) const {
-    const auto& c = planes_[plane];
-    const dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
-    return glm::dot(n, v - c[0]) / n.z;
+    const dvec3& n = normals_[plane];
+    return glm::dot(n, v - planes_[plane][0]) / n.z;
   }
 
   Side side(const Polygon& polygon, std::uint32_t plane) {
@@ -320,6 +321,7 @@ class Newell {
   Stats& stats_;
   ExactPredicates predicates_;
   std::vector<std::array<dvec3, 3>> planes_;  // each screen triangle's corners in (x, y, z)
+  std::vector<dvec3> normals_;                // (b - a) x (c - a) of those corners, in double precision
   std::vector<int> winding_;                  // orient2d of those corners: 0 = no area on screen
   std::map<std::uint32_t, int> eyeSides_;     // by global triangle, computed when first needed
   std::vector<Polygon> pool_;
