@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "algorithms/appel/appel.hpp"
 #include "algorithms/painter/painter.hpp"
+#include "algorithms/roberts/roberts.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/error.hpp"
@@ -175,6 +177,76 @@ AlgorithmEntry painterEntry() {
   return entry;
 }
 
+// The knob every line algorithm has: which mesh edges are drawn besides contours and boundaries.
+KnobSpec creaseKnob() {
+  return {"crease", "feature edges: draw the edges whose two faces' normals differ by more than this many degrees",
+          {"30", "0", "10", "60"}, KnobSpec::Range{0, 180}};
+}
+
+// A line algorithm's entry draws with `draw`; its image is the drawing rasterized,
+// visible lines only.
+void setDrawing(AlgorithmEntry& entry, std::function<LineSet(const PreparedScene&, const KnobValues&, int, Stats&)> draw) {
+  entry.kind = "line";
+  entry.drawLines = draw;
+  entry.render = [draw](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
+    return lineSetFrame(draw(scene, values, threads, stats), LineStyle::visible);
+  };
+}
+
+AlgorithmEntry appelEntry() {
+  AlgorithmEntry entry;
+  entry.name = "appel";
+  entry.summary = "quantitative invisibility: walk the edges of closed meshes, counting the faces in front (Appel 1967)";
+  entry.knobs = {
+      {"surfaces",
+       "closed: count front faces (Appel's QI; needs closed, consistently oriented meshes); any: count every face, "
+       "so open, non-manifold and double-sided meshes are drawn right",
+       {"closed", "any"}},
+      {"cell", "side in pixels of the image-plane grid that lists the contour edges each edge may cross",
+       {"16", "4", "64", "256"}, KnobSpec::Range{1, 65536}},
+      creaseKnob(),
+  };
+  entry.keyCounters = {"feature edges", "contour edges", "crossings tested", "QI changes", "start-vertex ray casts",
+                       "QI mismatches"};
+  const auto typed = [entry](const KnobValues& values) {
+    appel::Knobs knobs;
+    knobs.surfaces = choiceOf<appel::Surfaces>(entry, values, "surfaces");
+    knobs.cellPixels = knobNumber(values, "cell").value;
+    knobs.creaseDegrees = knobNumber(values, "crease").value;
+    return knobs;
+  };
+  entry.refusal = [typed](const PreparedScene& scene, const KnobValues& values) { return appel::refusal(scene, typed(values)); };
+  setDrawing(entry, [typed](const PreparedScene& scene, const KnobValues& values, int, Stats& stats) {
+    return appel::run(scene, typed(values), stats);
+  });
+  return entry;
+}
+
+AlgorithmEntry robertsEntry() {
+  AlgorithmEntry entry;
+  entry.name = "roberts";
+  entry.summary = "every edge against every convex body by linear inequalities along the sight lines (Roberts 1963)";
+  entry.knobs = {
+      {"grid", "on: only the bodies listed in the screen-grid cells an edge crosses are tested; off: every body",
+       {"on", "off"}},
+      {"cell", "side in pixels of the screen grid's cells", {"32", "8", "128", "512"}, KnobSpec::Range{1, 65536}},
+      creaseKnob(),
+  };
+  entry.keyCounters = {"feature edges", "junction lines", "back-face edges", "edge-body pairs", "body tests", "hidden intervals"};
+  const auto typed = [](const KnobValues& values) {
+    roberts::Knobs knobs;
+    knobs.grid = values.at("grid") == "on";
+    knobs.cellPixels = knobNumber(values, "cell").value;
+    knobs.creaseDegrees = knobNumber(values, "crease").value;
+    return knobs;
+  };
+  entry.refusal = [](const PreparedScene& scene, const KnobValues&) { return roberts::refusal(scene); };
+  setDrawing(entry, [typed](const PreparedScene& scene, const KnobValues& values, int, Stats& stats) {
+    return roberts::run(scene, typed(values), stats);
+  });
+  return entry;
+}
+
 AlgorithmEntry referenceEntry() {
   AlgorithmEntry entry;
   entry.name = "reference";
@@ -190,7 +262,7 @@ AlgorithmEntry referenceEntry() {
 }  // namespace
 
 const std::vector<AlgorithmEntry>& algorithms() {
-  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry(), painterEntry()};
+  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry(), painterEntry(), robertsEntry(), appelEntry()};
   return all;
 }
 
@@ -228,7 +300,7 @@ KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& set
   // A knob of one variant given with another is a mistake, not something to ignore.
   for (const auto& [name, value] : settings) {
     const KnobSpec& knob = *findKnob(algorithm, name);
-    if (!knob.appliesTo(values.at("variant")))
+    if (!knob.variants.empty() && !knob.appliesTo(values.at("variant")))
       throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " applies only to variant " +
                        joined(knob.variants) + ", not to variant " + values.at("variant"));
   }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "renderer/frame.hpp"
+#include "renderer/lines.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
 
@@ -42,7 +43,9 @@ using KnobSettings = std::vector<std::pair<std::string, std::string>>;  // NAME=
 
 struct AlgorithmEntry {
   std::string name;
-  std::string kind;  // "surface", or "reference" for the exact reference every surface algorithm is judged by
+  // "surface"; "line" for a hidden-line algorithm, judged by the line reference; or
+  // "reference" for the exact reference every surface algorithm is judged by.
+  std::string kind;
   std::string summary;
   std::vector<KnobSpec> knobs;
   // The counters hsr compare prints for this algorithm, in this order.
@@ -55,8 +58,10 @@ struct AlgorithmEntry {
   std::function<std::string(const PreparedScene&, const KnobValues&)> refusal = [](const PreparedScene&, const KnobValues&) {
     return std::string();
   };
-  // threads: 0 = all cores.
+  // threads: 0 = all cores. A line algorithm's frame is its drawing rasterized.
   std::function<Frame(const PreparedScene&, const KnobValues&, int threads, Stats&)> render;
+  // Line algorithms: the drawing itself.
+  std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&)> drawLines;
 };
 
 const std::vector<AlgorithmEntry>& algorithms();

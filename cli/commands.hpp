@@ -15,6 +15,7 @@ struct RenderOptions {
   std::vector<std::string> knobs;
   int threads = 0;
   std::string output, depth, ids;
+  std::string lineStyle;  // line algorithms: visible | hidden | qi (default visible)
   bool stats = false;
 };
 int render(const RenderOptions& options);

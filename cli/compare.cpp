@@ -46,8 +46,10 @@ int compare(const CompareOptions& options) {
         throw InputError("--algos " + item + ": the reference is always run; name the algorithms to compare with it");
     }
   } else {
+    // The default study is of the surface algorithms on the shipped surface scenes; named
+    // scenes get every algorithm, line algorithms included, that accepts them.
     for (const AlgorithmEntry& algorithm : algorithms()) {
-      if (algorithm.kind != "surface") continue;
+      if (algorithm.kind == "reference" || (study && algorithm.kind != "surface")) continue;
       if (!study) configurations.push_back(configurationOf(algorithm, {}));
       else
         for (const KnobSettings& settings : algorithm.studyConfigurations) configurations.push_back(configurationOf(algorithm, settings));
@@ -88,16 +90,23 @@ int compare(const CompareOptions& options) {
                     refusal.c_str());
         continue;
       }
-      const auto [row, frame] = measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
+      const auto [row, frame, lineErrors] =
+          measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
       sceneRows.push_back(row);
-      std::snprintf(line, sizeof line, "%.1f ms, error %.4f%%%s", row.time.median * 1e3, row.error.pixelError * 100,
-                    frame.partial.empty() ? "" : " (partial)");
+      std::snprintf(line, sizeof line, "%.1f ms, %s error %.4f%%%s", row.time.median * 1e3, row.lines ? "line" : "pixel",
+                    row.errorValue() * 100, frame.partial.empty() ? "" : " (partial)");
       if (!frame.partial.empty())
         std::printf("  %s %s: the image is partial: %s\n", algorithm.name.c_str(), row.knobs.c_str(), frame.partial.c_str());
       section.images.push_back({prepared.width(), prepared.height(), frame.color,
                                 {algorithm.name + (row.knobs == "defaults" ? "" : " " + row.knobs), line}});
-      section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(frame, truth),
-                                  {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
+      if (row.lines) {
+        std::snprintf(line, sizeof line, "%.1f px wrong (red), %.1f px missing (blue)", row.lineError.wronglyDrawn,
+                      row.lineError.wronglyHidden);
+        section.heatMaps.push_back({prepared.width(), prepared.height(), lineErrors, {line}});
+      } else {
+        section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(frame, truth),
+                                    {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
+      }
     }
     std::printf("%s\n", resultsTable(sceneRows, {}).c_str());
     rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());

@@ -26,7 +26,9 @@ int main(int argc, char** argv) {
   renderCommand->add_option("--knob", render.knobs, "NAME=VALUE, any knob `hsr list` shows (repeatable)");
   renderCommand->add_option("--size", render.size, "WIDTHxHEIGHT, overrides the scene's image size");
   threadsOption(renderCommand, render.threads);
-  renderCommand->add_option("-o,--output", render.output, "color image (.png)")->required();
+  renderCommand->add_option("-o,--output", render.output, "color image (.png), or for a line algorithm a drawing (.svg)")->required();
+  renderCommand->add_option("--line-style", render.lineStyle,
+                            "line algorithms: visible (default), hidden (hidden parts dashed grey), qi (shade by quantitative invisibility)");
   renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
   renderCommand->add_flag("--stats", render.stats, "print counters and phase times");

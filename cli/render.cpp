@@ -3,9 +3,23 @@
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "renderer/error.hpp"
 #include "renderer/frame.hpp"
+#include "renderer/lines.hpp"
 
 namespace hsr::cli {
+namespace {
+
+LineStyle lineStyleOf(const std::string& name, bool lineAlgorithm) {
+  if (name.empty()) return LineStyle::visible;
+  if (!lineAlgorithm) throw InputError("--line-style " + name + ": applies only to line algorithms (appel, roberts)");
+  if (name == "visible") return LineStyle::visible;
+  if (name == "hidden") return LineStyle::hidden;
+  if (name == "qi") return LineStyle::qi;
+  throw InputError("--line-style " + name + ": expected visible, hidden or qi");
+}
+
+}  // namespace
 
 int render(const RenderOptions& options) {
   const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
@@ -15,13 +29,29 @@ int render(const RenderOptions& options) {
   for (const std::string& knob : options.knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
   const KnobValues knobs = resolveKnobs(algorithm, settings);
 
+  const bool lines = algorithm.kind == "line";
+  const std::filesystem::path output = options.output;
+  const LineStyle style = lineStyleOf(options.lineStyle, lines);
+  if (output.extension() == ".svg" && !lines)
+    throw InputError("-o " + options.output + ": SVG is for line drawings, and " + algorithm.name +
+                     " draws surfaces; expected a .png file");
+  if (lines && (!options.depth.empty() || !options.ids.empty()))
+    throw InputError(std::string(options.depth.empty() ? "--ids" : "--depth") + ": " + algorithm.name +
+                     " draws lines, which have no depth or id image");
+
   const LoadedScene scene = loadPrepared(options.scene, options.size);
   checkRenders(algorithm, knobs, scene.name, *scene.prepared);
   Stats stats;
-  const Frame frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
-
   OutputFiles outputs;
-  outputs.addColorPng(options.output, frame);
+  Frame frame;
+  if (lines) {
+    const LineSet drawing = algorithm.drawLines(*scene.prepared, knobs, options.threads, stats);
+    if (output.extension() == ".svg") outputs.addText(output, lineSetSvg(drawing, style));
+    else outputs.addColorPng(output, lineSetFrame(drawing, style));
+  } else {
+    frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
+    outputs.addColorPng(output, frame);
+  }
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "renderer/line_reference.hpp"
+#include "renderer/lines.hpp"
+
 namespace hsr::cli {
 namespace {
 
@@ -42,8 +45,11 @@ std::string jsonString(const std::string& text) {
   return quoted + "\"";
 }
 
-// The measured fields, in column order, shared by the CSV and the JSON.
+// The measured fields, in column order, shared by the CSV and the JSON; "" where a
+// field does not apply (CSV: empty, JSON: null).
 std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow& row) {
+  const auto surface = [&](std::string value) { return row.lines ? std::string() : value; };
+  const auto line = [&](double value) { return row.lines ? number(value) : std::string(); };
   return {
       {"width", std::to_string(row.width)},
       {"height", std::to_string(row.height)},
@@ -53,12 +59,16 @@ std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow&
       {"time_median_ms", milliseconds(row.time.median)},
       {"time_min_ms", milliseconds(row.time.min)},
       {"time_max_ms", milliseconds(row.time.max)},
-      {"pixel_error", number(row.error.pixelError)},
-      {"wrong_pixels", std::to_string(row.error.wrongPixels)},
-      {"compared_pixels", std::to_string(row.error.comparedPixels)},
-      {"ambiguous_pixels", std::to_string(row.error.ambiguousPixels)},
-      {"depth_error_mean", number(row.error.depthErrorMean)},
-      {"depth_error_max", number(row.error.depthErrorMax)},
+      {"pixel_error", surface(number(row.error.pixelError))},
+      {"wrong_pixels", surface(std::to_string(row.error.wrongPixels))},
+      {"compared_pixels", surface(std::to_string(row.error.comparedPixels))},
+      {"ambiguous_pixels", surface(std::to_string(row.error.ambiguousPixels))},
+      {"depth_error_mean", surface(number(row.error.depthErrorMean))},
+      {"depth_error_max", surface(number(row.error.depthErrorMax))},
+      {"line_error", line(row.lineError.error)},
+      {"visible_length_px", line(row.lineError.visibleLength)},
+      {"wrongly_drawn_px", line(row.lineError.wronglyDrawn)},
+      {"wrongly_hidden_px", line(row.lineError.wronglyHidden)},
       {"peak_memory_bytes", std::to_string(row.peakBytes)},
   };
 }
@@ -80,10 +90,20 @@ std::string joinedCounters(const ResultRow& row, const char* between, const char
 MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
                                            const Configuration& configuration, int repeats, int threads) {
   const AlgorithmEntry& algorithm = *configuration.algorithm;
+  const std::string knobs = describeKnobs(algorithm, configuration.knobs);
+  if (algorithm.kind == "line") {
+    auto measured = measure(repeats, [&](Stats& stats) { return algorithm.drawLines(prepared, configuration.knobs, threads, stats); });
+    ResultRow row = measuredRow(scene, prepared, algorithm, knobs, measured, threads);
+    Stats referenceStats;
+    const std::vector<EdgeVisibility> exact = traceLineReference(prepared, measured.result.edges, threads, referenceStats);
+    row.lines = true;
+    row.lineError = lineError(edgeVisibility(measured.result), exact);
+    return {std::move(row), lineSetFrame(measured.result, LineStyle::visible), lineErrorMap(measured.result, exact)};
+  }
   auto measured = measure(repeats, [&](Stats& stats) { return algorithm.render(prepared, configuration.knobs, threads, stats); });
-  ResultRow row = measuredRow(scene, prepared, algorithm, describeKnobs(algorithm, configuration.knobs), measured, threads);
+  ResultRow row = measuredRow(scene, prepared, algorithm, knobs, measured, threads);
   row.error = surfaceError(measured.result, truth);
-  return {std::move(row), std::move(measured.result)};
+  return {std::move(row), std::move(measured.result), {}};
 }
 
 std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
@@ -127,7 +147,7 @@ std::string resultsJson(const std::vector<ResultRow>& rows) {
       }
       json += "}, \"pareto\": " + std::string(row.pareto ? "true" : "false");
     }
-    for (const auto& [name, value] : measuredFields(row)) json += ", \"" + name + "\": " + value;
+    for (const auto& [name, value] : measuredFields(row)) json += ", \"" + name + "\": " + (value.empty() ? "null" : value);
     json += ", \"counters\": {";
     for (std::size_t k = 0; k < row.counters.size(); ++k) {
       if (k) json += ", ";
@@ -142,7 +162,7 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
   std::vector<std::vector<std::string>> cells;
   std::vector<std::string> heading = {"algorithm", "knobs"};
   heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
-  for (const char* name : {"time ms: median [min-max]", "pixel error", "wrong px", "depth error mean / max", "peak MB", "counters"})
+  for (const char* name : {"time ms: median [min-max]", "error", "wrong px", "depth error mean / max", "peak MB", "counters"})
     heading.push_back(name);
   cells.push_back(heading);
   for (const ResultRow& row : rows) {
@@ -151,11 +171,19 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
     char text[160];
     std::snprintf(text, sizeof text, "%.2f [%.2f-%.2f]", row.time.median * 1e3, row.time.min * 1e3, row.time.max * 1e3);
     line.push_back(text);
-    std::snprintf(text, sizeof text, "%.4f%%", row.error.pixelError * 100);
-    line.push_back(text);
-    line.push_back(std::to_string(row.error.wrongPixels));
-    std::snprintf(text, sizeof text, "%.2g / %.2g", row.error.depthErrorMean, row.error.depthErrorMax);
-    line.push_back(text);
+    if (row.lines) {
+      std::snprintf(text, sizeof text, "%.4f%% of lines", row.lineError.error * 100);
+      line.push_back(text);
+      std::snprintf(text, sizeof text, "%.1f of line", row.lineError.wronglyDrawn + row.lineError.wronglyHidden);
+      line.push_back(text);
+      line.push_back("-");
+    } else {
+      std::snprintf(text, sizeof text, "%.4f%%", row.error.pixelError * 100);
+      line.push_back(text);
+      line.push_back(std::to_string(row.error.wrongPixels));
+      std::snprintf(text, sizeof text, "%.2g / %.2g", row.error.depthErrorMean, row.error.depthErrorMax);
+      line.push_back(text);
+    }
     std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
     line.push_back(text);
     line.push_back(joinedCounters(row, " ", ", "));
@@ -177,8 +205,8 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
 void markParetoFront(std::vector<ResultRow>& rows) {
   for (ResultRow& row : rows) {
     row.pareto = std::none_of(rows.begin(), rows.end(), [&](const ResultRow& other) {
-      const bool noWorse = other.time.median <= row.time.median && other.error.pixelError <= row.error.pixelError;
-      const bool better = other.time.median < row.time.median || other.error.pixelError < row.error.pixelError;
+      const bool noWorse = other.time.median <= row.time.median && other.errorValue() <= row.errorValue();
+      const bool better = other.time.median < row.time.median || other.errorValue() < row.errorValue();
       return noWorse && better;
     });
   }

@@ -23,7 +23,11 @@ struct ResultRow {
   int repeats = 0, threads = 0;
   Timing time;
   std::int64_t peakBytes = 0;
-  SurfaceError error;
+  SurfaceError error;    // surface algorithms
+  bool lines = false;    // a line algorithm: lineError holds its error, `error` is unused
+  LineError lineError;
+  // The error hsr sweep plots and ranks by: pixel error, or line error for a line algorithm.
+  double errorValue() const { return lines ? lineError.error : error.pixelError; }
   std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
   bool pareto = false;  // hsr sweep: on the front of (time, pixel error)
 };
@@ -49,10 +53,13 @@ ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, c
 }
 
 // Measures one configuration on the prepared scene (at its current size) and its error
-// against the reference; also returns the last run's frame.
+// against the reference (for a line algorithm, the line reference of the edges it drew);
+// also returns the last run's frame (a line algorithm's drawing, rasterized) and, for a
+// line algorithm, a picture of where the drawing is wrong.
 struct MeasuredConfiguration {
   ResultRow row;
   Frame frame;
+  std::vector<std::uint8_t> lineErrorMap;  // RGBA8
 };
 MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
                                            const Configuration& configuration, int repeats, int threads);
@@ -65,7 +72,7 @@ std::string resultsJson(const std::vector<ResultRow>& rows);
 // The terminal table: one line per row.
 std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
 
-// Marks the rows no other row beats in both time (median) and pixel error.
+// Marks the rows no other row beats in both time (median) and error (errorValue).
 void markParetoFront(std::vector<ResultRow>& rows);
 
 }  // namespace hsr::cli

@@ -156,27 +156,30 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   for (const auto& [configuration, size, label, swept] : plan) {
     progress.update(rows.size(), label);
     scene.prepared->setSize(size.first, size.second);
-    if (!references.contains(size)) {
+    // A line algorithm is judged by the line reference of the edges it draws instead.
+    if (!references.contains(size) && algorithm.kind != "line") {
       Stats ignored;
       references.emplace(size, renderReference(*scene.prepared, options.threads, ignored));
     }
-    ResultRow row = measureConfiguration(scene.name, *scene.prepared, references.at(size), configuration, options.repeat,
+    ResultRow row = measureConfiguration(scene.name, *scene.prepared, references[size], configuration, options.repeat,
                                          options.threads).row;
     row.swept = swept;
     rows.push_back(std::move(row));
   }
   progress.update(rows.size(), "done");
   markParetoFront(rows);
-  std::printf("%s on %s (* = on the Pareto front of time and pixel error)\n%s", algorithm.name.c_str(), options.scene.c_str(),
-              resultsTable(rows, sweptKnobs).c_str());
+  const bool lines = algorithm.kind == "line";
+  const std::string errorName = lines ? "line error" : "pixel error";
+  std::printf("%s on %s (* = on the Pareto front of time and %s)\n%s", algorithm.name.c_str(), options.scene.c_str(),
+              errorName.c_str(), resultsTable(rows, sweptKnobs).c_str());
 
-  // Pixel error on a log axis, where a tenfold gain in accuracy reads as one step; an
+  // The error on a log axis, where a tenfold gain in accuracy reads as one step; an
   // error of exactly 0 is drawn on the floor below the smallest non-zero one.
   double smallest = 1;
   for (const ResultRow& row : rows)
-    if (row.error.pixelError > 0) smallest = std::min(smallest, row.error.pixelError);
+    if (row.errorValue() > 0) smallest = std::min(smallest, row.errorValue());
   const double floor = smallest / 10;
-  const auto plotted = [&](const ResultRow& row) { return std::max(row.error.pixelError, floor) * 100; };
+  const auto plotted = [&](const ResultRow& row) { return std::max(row.errorValue(), floor) * 100; };
   std::vector<std::string> points, front;
   std::vector<const ResultRow*> frontRows;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -189,7 +192,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       label += label.empty() ? "" : " ";
       label += name == "variant" || row.swept.size() == 1 ? value : name + "=" + value;
     }
-    if (row.error.pixelError == 0) label += " (error 0)";
+    if (row.errorValue() == 0) label += " (error 0)";
     char line[256];
     // Labels alternate above and below their points, so neighbours do not overprint.
     std::snprintf(line, sizeof line, "%.6g %.6g %s %d", row.time.median * 1e3, plotted(row), quotedLabel(label).c_str(),
@@ -206,9 +209,10 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   const std::string sceneFile = std::filesystem::path(options.scene).filename().string();
   const std::string body =
       dataBlock("points", points) + dataBlock("front", front) + "set title " +
-      quotedLabel(algorithm.name + " on " + sceneFile + ": pixel error against time") +
-      "\nset xlabel 'time per frame, median of " + std::to_string(options.repeat) +
-      " runs (ms)'\nset ylabel 'pixel error (% of non-ambiguous pixels, log scale)'\nset logscale y\nset format y '%g'\nset grid\n"
+      quotedLabel(algorithm.name + " on " + sceneFile + ": " + errorName + " against time") +
+      "\nset xlabel 'time per frame, median of " + std::to_string(options.repeat) + " runs (ms)'\nset ylabel '" +
+      (lines ? "line error (% of the visible length, log scale)" : "pixel error (% of non-ambiguous pixels, log scale)") +
+      "'\nset logscale y\nset format y '%g'\nset grid\n"
       "set offsets graph 0.1, graph 0.35, graph 0.3, graph 0.3\nset key top right\n"
       "plot $front using 1:2 with linespoints lw 2 pt 6 ps 2 lc rgb '#d95f02' title 'Pareto front', \\\n"
       "     $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'configurations', \\\n"

@@ -75,14 +75,7 @@ const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& sta
         cornerAngle[f][k] = std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
       }
     }
-    // The faces around each vertex (compressed rows: facesAt[first[v] .. first[v+1])).
-    std::vector<std::uint32_t> first(positions_.size() + 1, 0), facesAt(3 * faces);
-    for (const Triangle& t : triangles_)
-      for (std::uint32_t v : t) ++first[v + 1];
-    for (std::size_t v = 0; v < positions_.size(); ++v) first[v + 1] += first[v];
-    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-    for (std::uint32_t f = 0; f < faces; ++f)
-      for (std::uint32_t v : triangles_[f]) facesAt[fill[v]++] = f;
+    const VertexTriangles around = buildVertexTriangles(positions_.size(), triangles_);
 
     const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180);
     cornerNormals_.resize(faces);
@@ -90,8 +83,7 @@ const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& sta
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = triangles_[f][k];
         dvec3 sum(0);
-        for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
-          const std::uint32_t other = facesAt[i];
+        for (const std::uint32_t other : around.around(v)) {
           if (glm::dot(unitNormal[other], unitNormal[f]) < creaseCosine) continue;
           const int corner = triangles_[other][0] == v ? 0 : triangles_[other][1] == v ? 1 : 2;
           sum += unitNormal[other] * cornerAngle[other][corner];
@@ -119,6 +111,15 @@ const Bvh& PreparedScene::triangleBvh(Stats& stats) const {
     }
   });
   return triangleBvh_;
+}
+
+const EdgeAdjacency& PreparedScene::edgeAdjacency(Stats& stats) const {
+  std::call_once(adjacencyBuilt_, [&] {
+    PhaseTimer timer(stats, "edge adjacency");
+    edgeAdjacency_ = buildEdgeAdjacency(positions_.size(), triangles_);
+    stats.add("mesh edges built", static_cast<std::int64_t>(edgeAdjacency_.edges.size()));
+  });
+  return edgeAdjacency_;
 }
 
 const std::vector<PreparedScene::LeafTriangle>& PreparedScene::leafTriangles(Stats& stats) const {

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <vector>
 
+#include "renderer/adjacency.hpp"
 #include "renderer/bvh.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/stats.hpp"
@@ -68,6 +69,10 @@ class PreparedScene {
   };
   const std::vector<LeafTriangle>& leafTriangles(Stats& stats) const;
 
+  // Edge and vertex adjacency for the line algorithms, built on first use (phase
+  // "edge adjacency", counter "mesh edges built").
+  const EdgeAdjacency& edgeAdjacency(Stats& stats) const;
+
  private:
   const Scene* scene_;
   int width_, height_;
@@ -79,6 +84,8 @@ class PreparedScene {
   mutable std::once_flag bvhBuilt_;
   mutable Bvh triangleBvh_;
   mutable std::vector<LeafTriangle> leafTriangles_;
+  mutable std::once_flag adjacencyBuilt_;
+  mutable EdgeAdjacency edgeAdjacency_;
 };
 
 }  // namespace hsr

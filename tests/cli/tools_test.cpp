@@ -64,17 +64,24 @@ double number(const Row& row, const std::string& column) {
 const std::vector<std::string> kMeasuredColumns = {
     "width", "height", "triangles", "threads", "repeats", "time_median_ms", "time_min_ms", "time_max_ms",
     "pixel_error", "wrong_pixels", "compared_pixels", "ambiguous_pixels", "depth_error_mean", "depth_error_max",
-    "peak_memory_bytes"};
+    "line_error", "visible_length_px", "wrongly_drawn_px", "wrongly_hidden_px", "peak_memory_bytes"};
 
 void expectConsistentMeasurements(const Row& row) {
   EXPECT_LE(number(row, "time_min_ms"), number(row, "time_median_ms"));
   EXPECT_LE(number(row, "time_median_ms"), number(row, "time_max_ms"));
   EXPECT_GT(number(row, "time_min_ms"), 0);
+  EXPECT_GT(number(row, "peak_memory_bytes"), 0);
+  if (!row.at("line_error").empty()) {  // a line algorithm: line error only
+    EXPECT_EQ(row.at("pixel_error"), "");
+    const double wrong = number(row, "wrongly_drawn_px") + number(row, "wrongly_hidden_px");
+    EXPECT_NEAR(number(row, "line_error"), wrong / number(row, "visible_length_px"), 1e-9);
+    return;
+  }
+  EXPECT_EQ(row.at("visible_length_px"), "");
   const double wrong = number(row, "wrong_pixels"), compared = number(row, "compared_pixels");
   EXPECT_NEAR(number(row, "pixel_error"), wrong / compared, 1e-9);
   EXPECT_EQ(compared + number(row, "ambiguous_pixels"), number(row, "width") * number(row, "height"));
   EXPECT_LE(number(row, "depth_error_mean"), number(row, "depth_error_max"));
-  EXPECT_GT(number(row, "peak_memory_bytes"), 0);
 }
 
 std::filesystem::path freshFolder(const std::string& name) {
@@ -98,7 +105,12 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   expected.insert(expected.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
   expected.push_back("counters");
   EXPECT_EQ(header, expected);
-  ASSERT_EQ(rows.size(), 8u);  // per scene: the reference, then every surface algorithm at its defaults
+  // Per scene: the reference, then every algorithm that accepts it at its defaults: the
+  // three surface algorithms on both, the line algorithms (roberts, appel) on the closed
+  // cube but not on coplanar's open quads.
+  ASSERT_EQ(rows.size(), 10u);
+  for (const char* line : {"roberts", "appel"})
+    EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [&](const Row& row) { return row.at("algorithm") == line; }), 1) << line;
   for (const Row& row : rows) {
     expectConsistentMeasurements(row);
     EXPECT_EQ(row.at("repeats"), "2");

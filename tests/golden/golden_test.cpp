@@ -27,6 +27,7 @@
 
 #include "algorithms/registry.hpp"
 #include "painter/painter_support.hpp"
+#include "renderer/line_reference.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/reference.hpp"
 #include "test_support.hpp"
@@ -82,6 +83,15 @@ std::string everyWrongPixelExplained(const GoldenCase&, const PreparedScene& sce
   return unexplained == 0 ? std::string() : std::to_string(unexplained) + " wrong pixels are neither snapping nor coplanarity";
 }
 
+// A line algorithm's drawing agrees with the exact line reference within the documented
+// 0.1% of the visible length.
+std::string lineErrorWithinATenthOfAPercent(const GoldenCase& golden, const PreparedScene& scene, const Frame&) {
+  Stats stats;
+  const LineSet lines = golden.entry().drawLines(scene, golden.values(), 1, stats);
+  const LineError error = lineError(edgeVisibility(lines), traceLineReference(scene, lines.edges, 2, stats));
+  return error.error <= 1e-3 ? std::string() : "line error " + std::to_string(error.error * 100) + "% of the visible length";
+}
+
 const std::vector<GoldenCase>& goldenCases() {
   static const std::vector<GoldenCase> cases = {
         {"zbuffer", "zbuffer", "zbuffer", {},
@@ -100,6 +110,8 @@ const std::vector<GoldenCase>& goldenCases() {
         {"painter_bsp", "painter", "painter", {}, everyWrongPixelExplained},
         {"painter_newell", "painter-newell", "painter", {{"variant", "newell"}}, everyWrongPixelExplained},
         {"painter_sort", "painter-sort", "painter", {{"variant", "sort"}}, sameBitsOnThreeThreads},
+        {"roberts", "roberts", "roberts", {}, lineErrorWithinATenthOfAPercent},
+        {"appel", "appel", "appel", {}, lineErrorWithinATenthOfAPercent},
   };
   return cases;
 }

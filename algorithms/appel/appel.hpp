@@ -1,0 +1,63 @@
+// Appel's quantitative invisibility (1967): the hidden-line algorithm for closed
+// polyhedral surfaces that walks along edges instead of testing each against every face.
+//
+// The quantitative invisibility (QI) of a point is how many front-facing faces lie
+// between it and the eye; a point is visible when its QI is 0. Along an edge the QI is
+// constant except where the edge passes behind a contour (silhouette) edge, where it
+// changes by exactly one, and at vertices on the contour, where the faces around the
+// vertex can start or stop hiding the next edge. So:
+//   1. Facing and contours: classify every triangle as front or back for this view; the
+//      contour edges separate front from back.
+//   2. Start: in each connected set of feature edges, the QI of one vertex is found by
+//      counting the front faces its eye ray crosses (a BVH ray cast).
+//   3. Propagate: walk edge by edge; along each edge, find where its projection crosses a
+//      contour edge that lies in front of it (an image-plane grid of contour edges keeps
+//      the search short) and add +1 entering the region behind that contour's front face,
+//      -1 leaving it; at each vertex, correct for the faces around the vertex that hide one
+//      edge's end or the next edge's start.
+// Every decision is an exact predicate on the scene's doubles (renderer/predicates), so
+// the QI is exact wherever it is defined; where an edge's projection runs exactly along a
+// contour, or through a contour vertex, the rules below settle it the way the line
+// reference does (renderer/line_reference).
+//
+// Input: closed, consistently oriented meshes (every edge in exactly two triangles that
+// run it in opposite directions), all beyond the near plane; anything else is refused
+// with the first edge that breaks the assumption, unless surfaces=any (below) is asked
+// for. The contours are then every edge where the counted faces around it do not
+// balance: a rim, a non-manifold fan. Bodies must not interpenetrate (an
+// edge passing into another body changes its QI at no contour, which the walk cannot
+// see): a scene where an edge passes through another object's triangle is refused. A
+// mesh passing through itself is not detected; the line reference's error shows it.
+// Output: a LineSet of the feature edges (renderer/lines) with each piece's QI.
+#pragma once
+
+#include <string>
+
+#include "renderer/lines.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr::appel {
+
+// Which faces the QI counts. Appel's own: the front faces, on closed, consistently oriented
+// meshes. `any` counts every face not seen edge-on, which stays right on open,
+// non-manifold or double-sided meshes (a point is visible when nothing at all is in front
+// of it); QI is then the number of surfaces in front, twice Appel's on a closed mesh.
+enum class Surfaces { closed, any };
+
+struct Knobs {
+  Surfaces surfaces = Surfaces::closed;
+  double cellPixels = 16;                      // the contour grid's cell side, in pixels
+  double creaseDegrees = kDefaultCreaseDegrees;  // feature edges: creases sharper than this
+};
+
+// Why Appel's algorithm cannot draw this scene, or "" when it can.
+std::string refusal(const PreparedScene& scene, const Knobs& knobs);
+
+// Stats: "contour edges", "grid cells", "crossings tested", "QI changes", "vertex
+// corrections", "start-vertex ray casts", "QI mismatches" (an edge's end disagreeing with
+// the QI its vertex already has: 0 unless a degenerate start ray was used),
+// "degenerate start rays", "negative QI".
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats);
+
+}  // namespace hsr::appel

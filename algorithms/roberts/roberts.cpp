@@ -1,0 +1,355 @@
+#include "algorithms/roberts/roberts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "renderer/camera.hpp"
+#include "renderer/image_grid.hpp"
+#include "renderer/metrics.hpp"
+
+namespace hsr::roberts {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Insideness and coplanarity are decided to this fraction of a body's size.
+constexpr double kRelativeTolerance = 1e-9;
+
+// A plane n . x = offset; the body lies on the side n . x <= offset.
+struct Plane {
+  dvec3 normal;
+  double offset;
+  double height(const dvec3& x) const { return glm::dot(normal, x) - offset; }
+};
+
+double sizeOf(const Aabb& box) { return glm::length(box.hi - box.lo); }
+
+// The body's face planes: its triangles' planes, coplanar ones merged (Roberts' volume
+// matrix, one column per face). `faceOf` gets each triangle's face.
+std::vector<Plane> facePlanes(const PreparedScene& scene, const Instance& body, double tolerance, std::vector<std::uint32_t>* faceOf) {
+  std::vector<Plane> planes;
+  for (std::uint32_t t = body.firstTriangle; t < body.firstTriangle + body.triangleCount; ++t) {
+    const dvec3 normal = scene.faceNormal(t);
+    const Plane plane{normal, glm::dot(normal, scene.positions()[scene.triangles()[t][0]])};
+    std::size_t face = 0;
+    while (face < planes.size() &&
+           !(glm::length(planes[face].normal - normal) <= 1e-9 && std::abs(planes[face].offset - plane.offset) <= tolerance))
+      ++face;
+    if (face == planes.size()) planes.push_back(plane);
+    if (faceOf) faceOf->push_back(static_cast<std::uint32_t>(face));
+  }
+  return planes;
+}
+
+Aabb boxOf(const PreparedScene& scene, const Instance& body) {
+  Aabb box;
+  for (std::uint32_t t = body.firstTriangle; t < body.firstTriangle + body.triangleCount; ++t)
+    for (std::uint32_t v : scene.triangles()[t]) box.grow(scene.positions()[v]);
+  return box;
+}
+
+}  // namespace
+
+std::string refusal(const PreparedScene& scene) {
+  if (std::string nearPlane = nearPlaneRefusal(scene); !nearPlane.empty()) return nearPlane;
+  Stats ignored;
+  const EdgeAdjacency& adjacency = scene.edgeAdjacency(ignored);
+  for (const MeshEdge& edge : adjacency.edges) {
+    if (edge.faceCount == 2 && edge.consistent) continue;
+    const Instance& body = scene.instanceOf(edge.faces[0]);
+    return "object '" + scene.scene().objects[body.object].name +
+           "' is not a closed, consistently oriented surface; Roberts draws convex solids only";
+  }
+  for (const Instance& body : scene.instances()) {
+    const Aabb box = boxOf(scene, body);
+    const double tolerance = kRelativeTolerance * sizeOf(box);
+    for (const Plane& plane : facePlanes(scene, body, tolerance, nullptr))
+      for (std::uint32_t t = body.firstTriangle; t < body.firstTriangle + body.triangleCount; ++t)
+        for (std::uint32_t v : scene.triangles()[t]) {
+          const double outside = plane.height(scene.positions()[v]);
+          if (outside <= tolerance) continue;
+          char amount[32];
+          std::snprintf(amount, sizeof amount, "%.3g", outside);
+          return "object '" + scene.scene().objects[body.object].name + "' is not convex: a vertex lies " + amount +
+                 " outside one of its face planes; Roberts draws convex solids only";
+        }
+  }
+  return "";
+}
+
+namespace {
+
+// A body in Roberts' screen space (x, y in pixels, z the nearness), where sight lines
+// are parallel to z.
+struct Body {
+  std::vector<Plane> worldPlanes;
+  std::vector<std::int8_t> frontFace;  // per world plane: does it face the viewer
+  std::vector<Plane> screenPlanes;     // the same faces, outward, pulled in by the tolerance
+  std::vector<std::uint32_t> faceOfTriangle;
+  Aabb worldBox;
+  dvec2 lo{kInfinity}, hi{-kInfinity};  // projected box
+  double nearest = -kInfinity;         // largest nearness of a vertex
+};
+
+class Roberts {
+ public:
+  Roberts(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
+      : scene_(scene), knobs_(knobs), camera_(scene.scene().camera, scene.width(), scene.height()), stats_(stats) {}
+
+  LineSet run() {
+    const std::vector<std::int8_t> facing = viewFacing(scene_, camera_, stats_);
+    for (const Instance& instance : scene_.instances()) bodies_.push_back(makeBody(instance));
+    stats_.add("bodies", static_cast<std::int64_t>(bodies_.size()));
+
+    LineSet lines;
+    lines.width = scene_.width();
+    lines.height = scene_.height();
+    lines.edges = featureEdges(scene_, camera_, facing, knobs_.creaseDegrees, stats_);
+    // The owner body of each edge, and whether both its faces are back faces (step 1).
+    std::vector<std::uint32_t> owner;
+    std::vector<std::uint8_t> selfHidden;
+    const EdgeAdjacency& adjacency = scene_.edgeAdjacency(stats_);
+    for (const FeatureEdge& edge : lines.edges) {
+      const MeshEdge& mesh = adjacency.edges[edge.meshEdge];
+      owner.push_back(bodyOf(mesh.faces[0]));
+      selfHidden.push_back(facing[mesh.faces[0]] <= 0 && facing[mesh.faces[1]] <= 0);
+    }
+    // Step 3's lines join the list, owned by both bodies they lie on.
+    std::vector<std::uint32_t> secondOwner(lines.edges.size(), kNoBody);
+    addJunctions(lines, owner, secondOwner, selfHidden);
+
+    buildGrid();
+    for (std::uint32_t e = 0; e < lines.edges.size(); ++e) {
+      const FeatureEdge& edge = lines.edges[e];
+      std::vector<Interval> hidden;
+      if (selfHidden[e]) {
+        stats_.add("back-face edges");
+        hidden.push_back({0, 1});
+      } else {
+        // Step 2: the other bodies.
+        const dvec3 s0 = screenPoint(edge.from), s1 = screenPoint(edge.to);
+        forEachCandidate(edge, [&](std::uint32_t b) {
+          if (b == owner[e] || b == secondOwner[e]) return;
+          if (const std::optional<Interval> part = hiddenBy(bodies_[b], s0, s1)) hidden.push_back(*part);
+        });
+      }
+      appendPieces(e, std::move(hidden), lines.segments);
+    }
+    stats_.add("edge-body pairs", pairs_);
+    stats_.add("minimax rejections", minimaxRejections_);
+    stats_.add("body tests", bodyTests_);
+    stats_.add("hidden intervals", hiddenIntervals_);
+    return lines;
+  }
+
+ private:
+  static constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
+  // A face plane along the edge: its height h(u) = h0 + u h1 above S(u), and alpha's coefficient g.
+  struct Row {
+    double h0, h1, g;
+  };
+
+  std::uint32_t bodyOf(std::uint32_t triangle) const {
+    return static_cast<std::uint32_t>(&scene_.instanceOf(triangle) - scene_.instances().data());
+  }
+
+  double nearness(const dvec3& p) const {
+    const double d = camera_.clipFromWorld(p).d;
+    return camera_.perspective() ? 1 / d : -d;
+  }
+  dvec3 screenPoint(const dvec3& p) const { return dvec3(camera_.pixelFromClip(camera_.clipFromWorld(p)), nearness(p)); }
+
+  Body makeBody(const Instance& instance) {
+    Body body;
+    body.worldBox = boxOf(scene_, instance);
+    const double tolerance = kRelativeTolerance * sizeOf(body.worldBox);
+    body.worldPlanes = facePlanes(scene_, instance, tolerance, &body.faceOfTriangle);
+    stats_.add("body faces", static_cast<std::int64_t>(body.worldPlanes.size()));
+    // Screen-space planes through each face's largest triangle, turned so the image of
+    // the body's centroid (inside a convex body, and the map keeps insides inside) is below.
+    dvec3 centroid(0), screenLo(kInfinity), screenHi(-kInfinity);
+    std::size_t corners = 0;
+    for (std::uint32_t t = instance.firstTriangle; t < instance.firstTriangle + instance.triangleCount; ++t)
+      for (std::uint32_t v : scene_.triangles()[t]) {
+        centroid += scene_.positions()[v];
+        ++corners;
+        const dvec3 s = screenPoint(scene_.positions()[v]);
+        screenLo = glm::min(screenLo, s);
+        screenHi = glm::max(screenHi, s);
+      }
+    body.lo = dvec2(screenLo);
+    body.hi = dvec2(screenHi);
+    body.nearest = screenHi.z;
+    const dvec3 inside = screenPoint(centroid / double(corners));
+    const dvec3 extent = screenHi - screenLo;
+    std::vector<double> largestArea(body.worldPlanes.size(), -1);
+    body.screenPlanes.resize(body.worldPlanes.size());
+    body.frontFace.resize(body.worldPlanes.size());
+    for (std::uint32_t k = 0; k < instance.triangleCount; ++k) {
+      const Triangle& t = scene_.triangles()[instance.firstTriangle + k];
+      const dvec3 a = screenPoint(scene_.positions()[t[0]]), b = screenPoint(scene_.positions()[t[1]]), c = screenPoint(scene_.positions()[t[2]]);
+      const dvec3 normal = glm::cross(b - a, c - a);
+      const double area = glm::length(glm::cross(b - a, c - a) / (extent + 1e-300));
+      const std::uint32_t face = body.faceOfTriangle[k];
+      if (area <= largestArea[face]) continue;
+      largestArea[face] = area;
+      Plane plane{normal, glm::dot(normal, a)};
+      if (plane.height(inside) > 0) plane = {-plane.normal, -plane.offset};
+      plane.offset -= kRelativeTolerance * glm::dot(glm::abs(plane.normal), extent);
+      body.screenPlanes[face] = plane;
+      body.frontFace[face] = plane.normal.z > 0;  // the outward normal points toward the viewer
+    }
+    return body;
+  }
+
+  // Step 2's linear program: the open interval of u in (0, 1) over which S(u) + alpha z
+  // is strictly inside the body for some alpha > 0, or nothing.
+  std::optional<Interval> hiddenBy(const Body& body, const dvec3& s0, const dvec3& s1) {
+    ++pairs_;
+    // The minimax test: projections apart, or the body wholly behind the edge.
+    const dvec2 lo = glm::min(dvec2(s0), dvec2(s1)), hi = glm::max(dvec2(s0), dvec2(s1));
+    if (body.hi.x < lo.x || body.lo.x > hi.x || body.hi.y < lo.y || body.lo.y > hi.y || body.nearest <= std::min(s0.z, s1.z)) {
+      ++minimaxRejections_;
+      return std::nullopt;
+    }
+    ++bodyTests_;
+    std::vector<Row>& upper = upper_;
+    std::vector<Row>& lower = lower_;
+    upper.clear();
+    lower.clear();
+    double begin = 0, end = 1;
+    // a u + b < 0 narrows [begin, end].
+    const auto require = [&](double a, double b) {
+      if (a > 0) end = std::min(end, -b / a);
+      else if (a < 0) begin = std::max(begin, -b / a);
+      else if (b >= 0) end = -1;
+    };
+    for (const Plane& plane : body.screenPlanes) {
+      const Row row{plane.height(s0), glm::dot(plane.normal, s1 - s0), plane.normal.z};
+      if (row.g > 0) upper.push_back(row);       // alpha < -h / g
+      else if (row.g < 0) lower.push_back(row);  // alpha > -h / g
+      else require(row.h1, row.h0);              // h(u) < 0 whatever alpha is
+    }
+    // Every lower bound (and alpha > 0) below every upper bound: one inequality in u per pair.
+    for (const Row& i : upper) {
+      require(i.h1, i.h0);  // 0 < -h_i / g_i
+      for (const Row& j : lower)  // -h_j / g_j < -h_i / g_i, times g_i g_j < 0
+        require(-(i.h1 * j.g - j.h1 * i.g), -(i.h0 * j.g - j.h0 * i.g));
+    }
+    if (begin >= end) return std::nullopt;
+    ++hiddenIntervals_;
+    return Interval{begin, end};
+  }
+
+  // Step 3: for every pair of bodies whose boxes meet, and every pair of their faces, the
+  // line where the two planes meet, clipped to both bodies, is a junction when its middle
+  // lies inside both faces (strictly within every other plane of both bodies).
+  void addJunctions(LineSet& lines, std::vector<std::uint32_t>& owner, std::vector<std::uint32_t>& secondOwner,
+                    std::vector<std::uint8_t>& selfHidden) {
+    for (std::uint32_t a = 0; a < bodies_.size(); ++a)
+      for (std::uint32_t b = a + 1; b < bodies_.size(); ++b) {
+        const Body &A = bodies_[a], &B = bodies_[b];
+        if (glm::any(glm::lessThan(A.worldBox.hi, B.worldBox.lo)) || glm::any(glm::lessThan(B.worldBox.hi, A.worldBox.lo))) continue;
+        const double tolerance = kRelativeTolerance * std::max(sizeOf(A.worldBox), sizeOf(B.worldBox));
+        for (std::uint32_t f = 0; f < A.worldPlanes.size(); ++f)
+          for (std::uint32_t g = 0; g < B.worldPlanes.size(); ++g) {
+            const Plane &P = A.worldPlanes[f], &Q = B.worldPlanes[g];
+            const dvec3 direction = glm::cross(P.normal, Q.normal);
+            if (glm::length(direction) < 1e-9) continue;  // parallel or coplanar faces meet in no line
+            // A point on both planes, then the line clipped by every plane of both bodies.
+            const dvec3 point = glm::cross(P.offset * Q.normal - Q.offset * P.normal, direction) / glm::dot(direction, direction);
+            double t0 = -kInfinity, t1 = kInfinity;
+            const auto clip = [&](const Body& body, std::uint32_t skip) {
+              for (std::uint32_t k = 0; k < body.worldPlanes.size(); ++k) {
+                if (k == skip) continue;
+                const double along = glm::dot(body.worldPlanes[k].normal, direction), at = body.worldPlanes[k].height(point);
+                if (std::abs(along) < 1e-15) {
+                  if (at > tolerance) t1 = -kInfinity;
+                } else if (along > 0) {
+                  t1 = std::min(t1, -at / along);
+                } else {
+                  t0 = std::max(t0, -at / along);
+                }
+              }
+            };
+            clip(A, f);
+            clip(B, g);
+            if (!(t0 < t1) || (t1 - t0) * glm::length(direction) <= tolerance) continue;
+            const dvec3 from = point + t0 * direction, to = point + t1 * direction, middle = (from + to) * 0.5;
+            const auto strictlyInside = [&](const Body& body, std::uint32_t skip) {
+              for (std::uint32_t k = 0; k < body.worldPlanes.size(); ++k)
+                if (k != skip && body.worldPlanes[k].height(middle) > -tolerance) return false;
+              return true;
+            };
+            if (!strictlyInside(A, f) || !strictlyInside(B, g)) continue;
+            lines.edges.push_back(projectEdge(camera_, from, to, EdgeKind::junction));
+            owner.push_back(a);
+            secondOwner.push_back(b);
+            // On a back face of either body, the line is inside that body's shadow of itself.
+            selfHidden.push_back(!A.frontFace[f] || !B.frontFace[g]);
+            stats_.add("junction lines");
+          }
+      }
+  }
+
+  // The screen grid: the bodies whose projected boxes cover each cell.
+  void buildGrid() {
+    if (!knobs_.grid) return;
+    dvec2 lo(kInfinity), hi(-kInfinity);
+    for (const Body& body : bodies_) lo = glm::min(lo, body.lo), hi = glm::max(hi, body.hi);
+    grid_.emplace(lo, hi, knobs_.cellPixels);
+    grid_->bin(bodies_.size(), [&](std::size_t b, auto&& add) { grid_->cellsInBox(bodies_[b].lo, bodies_[b].hi, add); });
+    seen_.assign(bodies_.size(), kNoBody);
+  }
+
+  template <typename Visit>
+  void forEachCandidate(const FeatureEdge& edge, Visit&& visit) {
+    if (!grid_) {
+      for (std::uint32_t b = 0; b < bodies_.size(); ++b) visit(b);
+      return;
+    }
+    ++stamp_;
+    grid_->cellsOnSegment(edge.pixelFrom, edge.pixelTo, [&](std::size_t cell) {
+      grid_->itemsIn(cell, [&](std::uint32_t b) {
+        if (seen_[b] == stamp_) return;
+        seen_[b] = stamp_;
+        visit(b);
+      });
+    });
+  }
+
+  // The edge's pieces: the union of the hidden intervals, and the gaps between them visible.
+  static void appendPieces(std::uint32_t e, std::vector<Interval> hidden, std::vector<LineSegment>& out) {
+    std::sort(hidden.begin(), hidden.end(), [](const Interval& a, const Interval& b) { return a.begin < b.begin; });
+    double u = 0;  // the edge is drawn up to here
+    for (const Interval& part : hidden) {
+      if (part.end <= u) continue;
+      if (part.begin > u) out.push_back({e, u, part.begin, 0});
+      if (part.begin <= u && u > 0) out.back().end = part.end;  // overlaps the hidden piece before it
+      else out.push_back({e, part.begin, part.end, LineSegment::kHidden});
+      u = part.end;
+    }
+    if (u < 1) out.push_back({e, u, 1.0, 0});
+  }
+
+  const PreparedScene& scene_;
+  const Knobs& knobs_;
+  CameraTransform camera_;
+  Stats& stats_;
+  std::vector<Body> bodies_;
+  std::optional<ImageGrid> grid_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t stamp_ = 0;
+  std::vector<Row> upper_, lower_;  // step 2's bounds on alpha, kept to reuse their storage
+  std::int64_t pairs_ = 0, minimaxRejections_ = 0, bodyTests_ = 0, hiddenIntervals_ = 0;
+};
+
+}  // namespace
+
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
+  PhaseTimer timer(stats, "roberts");
+  return Roberts(scene, knobs, stats).run();
+}
+
+}  // namespace hsr::roberts
