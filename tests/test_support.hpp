@@ -24,6 +24,15 @@ namespace hsr::test {
 
 inline std::filesystem::path sourcePath(const std::string& relative) { return std::filesystem::path(HSR_SOURCE_DIR) / relative; }
 
+// A scene file loaded and prepared, optionally at another width (same aspect ratio).
+struct LoadedScene {
+  Scene scene;
+  PreparedScene prepared;
+  explicit LoadedScene(const std::filesystem::path& file, int width = 0) : scene(loadScene(file)), prepared(scene) {
+    if (width > 0) prepared.setSize(width, std::max(1, width * scene.height / scene.width));
+  }
+};
+
 inline std::filesystem::path outputPath(const std::string& name) {
   std::filesystem::create_directories(HSR_TEST_OUTPUT_DIR);
   return std::filesystem::path(HSR_TEST_OUTPUT_DIR) / name;

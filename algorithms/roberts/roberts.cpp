@@ -64,16 +64,15 @@ std::string refusal(const PreparedScene& scene) {
   for (const Instance& body : scene.instances()) {
     const Aabb box = boxOf(scene, body);
     const double tolerance = kRelativeTolerance * sizeOf(box);
+    double outside = 0;  // the farthest any vertex lies outside any face plane
     for (const Plane& plane : facePlanes(scene, body, tolerance, nullptr))
       for (std::uint32_t t = body.firstTriangle; t < body.firstTriangle + body.triangleCount; ++t)
-        for (std::uint32_t v : scene.triangles()[t]) {
-          const double outside = plane.height(scene.positions()[v]);
-          if (outside <= tolerance) continue;
-          char amount[32];
-          std::snprintf(amount, sizeof amount, "%.3g", outside);
-          return "object '" + scene.scene().objects[body.object].name + "' is not convex: a vertex lies " + amount +
-                 " outside one of its face planes; Roberts draws convex solids only";
-        }
+        for (std::uint32_t v : scene.triangles()[t]) outside = std::max(outside, plane.height(scene.positions()[v]));
+    if (outside <= tolerance) continue;
+    char amount[32];
+    std::snprintf(amount, sizeof amount, "%.3g", outside);
+    return "object '" + scene.scene().objects[body.object].name + "' is not convex: a vertex lies " + amount +
+           " outside one of its face planes; Roberts draws convex solids only";
   }
   return "";
 }

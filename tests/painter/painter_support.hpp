@@ -12,13 +12,6 @@
 namespace hsr::test {
 
 // A scene file loaded and prepared, optionally at another width (same aspect ratio).
-struct LoadedScene {
-  Scene scene;
-  PreparedScene prepared;
-  explicit LoadedScene(const std::filesystem::path& file, int width = 0) : scene(loadScene(file)), prepared(scene) {
-    if (width > 0) prepared.setSize(width, std::max(1, width * scene.height / scene.width));
-  }
-};
 
 // The painter's order is exact, so a non-ambiguous pixel may differ from the reference
 // for one of two documented reasons (algorithms/painter/README.md):

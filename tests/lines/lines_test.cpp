@@ -1,0 +1,302 @@
+// The hidden-line algorithms against the exact line reference and against each other,
+// Appel's QI invariants, and the line infrastructure's own rules.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "algorithms/appel/appel.hpp"
+#include "algorithms/registry.hpp"
+#include "algorithms/roberts/roberts.hpp"
+#include "renderer/line_reference.hpp"
+#include "renderer/lines.hpp"
+#include "renderer/raster.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+LineSet draw(const std::string& algorithm, const PreparedScene& scene, const KnobSettings& knobs = {}) {
+  const AlgorithmEntry& entry = findAlgorithm(algorithm);
+  Stats stats;
+  return entry.drawLines(scene, resolveKnobs(entry, knobs), 1, stats);
+}
+
+bool refuses(const std::string& algorithm, const PreparedScene& scene, const KnobSettings& knobs = {}) {
+  const AlgorithmEntry& entry = findAlgorithm(algorithm);
+  return !entry.refusal(scene, resolveKnobs(entry, knobs)).empty();
+}
+
+LineError errorOf(const PreparedScene& scene, const LineSet& lines) {
+  Stats stats;
+  return lineError(edgeVisibility(lines), traceLineReference(scene, lines.edges, 2, stats));
+}
+
+std::vector<std::filesystem::path> shippedScenes() {
+  std::vector<std::filesystem::path> scenes;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourcePath("scenes")))
+    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+// The length (pixels) of the parts drawn visible that the reference hides and that do not
+// lie exactly on a visible line of the reference drawing: where an edge lies exactly
+// behind a nearer edge, the reference's closed triangles hide it and the algorithms may
+// draw it, which changes no pixel of the picture. Sampled every half pixel.
+double strayLength(const LineSet& lines, const std::vector<EdgeVisibility>& truth) {
+  const std::vector<EdgeVisibility> drawn = edgeVisibility(lines);
+  double stray = 0;
+  for (std::size_t e = 0; e < lines.edges.size(); ++e) {
+    const double length = lines.edges[e].lengthPixels();
+    if (length == 0) continue;
+    const double step = 0.5 / length;
+    for (const Interval& part : drawn[e].visible)
+      for (double u = part.begin + step / 2; u < part.end; u += step) {
+        if (std::any_of(truth[e].visible.begin(), truth[e].visible.end(), [&](const Interval& v) { return v.begin <= u && u <= v.end; }))
+          continue;
+        const dvec2 at = lines.edges[e].pixelAt(u);
+        bool onALine = false;
+        for (std::size_t other = 0; other < lines.edges.size() && !onALine; ++other)
+          for (const Interval& v : truth[other].visible)
+            onALine |= other != e && squaredDistanceToSegment(at, lines.edges[other].pixelAt(v.begin), lines.edges[other].pixelAt(v.end)) < 1e-12;
+        if (!onALine) stray += std::min(step, part.end - u) * length;
+      }
+  }
+  return stray;
+}
+
+// Out of surfaces=any's domain: a surface passing through itself (interpenetrating,
+// near_degenerate_splits) or two coincident faces of different objects (touching_boxes),
+// where counting faces along an edge misses the changes inside the surfaces. Their
+// errors are printed and documented (algorithms/appel/README.md), not bounded.
+bool outsideCountingEveryFace(const std::filesystem::path& scene) {
+  const std::string name = scene.filename().string();
+  return name == "interpenetrating.toml" || name == "near_degenerate_splits.toml" || name == "touching_boxes.toml" ||
+         name == "dragon.toml";
+}
+
+TEST(LineAlgorithms, WithinATenthOfAPercentOfTheReferenceOnEveryShippedSceneTheyAccept) {
+  int judged = 0;
+  for (const auto& path : shippedScenes()) {
+    const test::LoadedScene loaded(path, 320);
+    for (const auto& [algorithm, knobs] : std::vector<std::pair<std::string, KnobSettings>>{
+             {"roberts", {}}, {"roberts", {{"grid", "off"}}}, {"appel", {}}, {"appel", {{"surfaces", "any"}}}}) {
+      if (refuses(algorithm, loaded.prepared, knobs)) continue;
+      const LineSet lines = draw(algorithm, loaded.prepared, knobs);
+      Stats stats;
+      const std::vector<EdgeVisibility> truth = traceLineReference(loaded.prepared, lines.edges, 2, stats);
+      const LineError error = lineError(edgeVisibility(lines), truth);
+      const double stray = strayLength(lines, truth);
+      std::printf("%-28s %-7s %-8s visible %9.1f px, wrongly drawn %7.3f px (%7.3f px off every line), wrongly hidden %7.3f px\n",
+                  path.filename().c_str(), algorithm.c_str(), knobs.empty() ? "defaults" : knobs[0].second.c_str(),
+                  error.visibleLength, error.wronglyDrawn, stray, error.wronglyHidden);
+      EXPECT_GT(error.visibleLength, 0) << path;
+      ++judged;
+      if (!knobs.empty() && knobs[0].second == "any" && outsideCountingEveryFace(path)) continue;
+      EXPECT_LE(error.wronglyHidden, 1e-3 * error.visibleLength) << algorithm << " on " << path;
+      EXPECT_LE(stray, 1e-3 * error.visibleLength) << algorithm << " on " << path;
+    }
+  }
+  EXPECT_GE(judged, 20);
+}
+
+TEST(LineAlgorithms, RobertsAndAppelDrawTheSameOnConvexSolids) {
+  for (const char* name : {"blocks.toml", "cube.toml", "hard/touching_boxes.toml"}) {
+    const test::LoadedScene loaded(test::sourcePath(std::string("scenes/") + name));
+    const std::vector<EdgeVisibility> roberts = edgeVisibility(draw("roberts", loaded.prepared));
+    const std::vector<EdgeVisibility> appel = edgeVisibility(draw("appel", loaded.prepared));
+    ASSERT_EQ(roberts.size(), appel.size()) << name;  // no junctions: the same feature edges
+    const LineError difference = lineError(roberts, appel);
+    EXPECT_LT(difference.wronglyDrawn + difference.wronglyHidden, 1e-4) << name;  // pixels: Roberts solves in double precision
+    EXPECT_GT(difference.visibleLength, 100) << name;
+  }
+}
+
+// An independent count of the front faces in front of a point: every front-facing
+// triangle the sight line crosses before the point, in plain double precision (the
+// points tested are generic, away from every edge).
+int frontFacesInFront(const PreparedScene& scene, const CameraTransform& camera, const dvec3& x) {
+  const dvec3 origin = camera.perspective() ? camera.camera().eye : x - camera.forward() * 1e6;
+  const dvec3 direction = x - origin;
+  int count = 0;
+  for (std::size_t t = 0; t < scene.triangleCount(); ++t) {
+    const Triangle& tri = scene.triangles()[t];
+    const dvec3 &a = scene.positions()[tri[0]], &b = scene.positions()[tri[1]], &c = scene.positions()[tri[2]];
+    const dvec3 normal = glm::cross(b - a, c - a);
+    if (glm::dot(normal, origin - a) <= 0) continue;  // not facing the viewer
+    const double along = glm::dot(normal, direction);
+    if (along == 0) continue;
+    const double hit = glm::dot(normal, a - origin) / along;
+    if (hit <= 0 || hit >= 1 - 1e-9) continue;
+    const dvec3 p = origin + hit * direction;
+    if (glm::dot(glm::cross(b - a, p - a), normal) >= 0 && glm::dot(glm::cross(c - b, p - b), normal) >= 0 &&
+        glm::dot(glm::cross(a - c, p - c), normal) >= 0)
+      ++count;
+  }
+  return count;
+}
+
+TEST(Appel, QuantitativeInvisibilityInvariants) {
+  for (const char* name : {"bunny.toml", "blocks.toml", "hard/torus.toml"}) {
+    const test::LoadedScene loaded(test::sourcePath(std::string("scenes/") + name));
+    const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+    Stats stats;
+    const LineSet lines = draw("appel", loaded.prepared);
+    appel::run(loaded.prepared, appel::Knobs{}, stats);
+    EXPECT_EQ(stats.counter("QI mismatches"), 0) << name;  // every edge's end agrees with its vertex
+    EXPECT_EQ(stats.counter("negative QI"), 0) << name;
+    int checked = 0, maximum = 0;
+    for (std::size_t i = 0; i < lines.segments.size(); ++i) {
+      const LineSegment& piece = lines.segments[i];
+      EXPECT_GE(piece.qi, 0) << name;
+      maximum = std::max(maximum, piece.qi);
+      // Along an edge QI changes only at a crossing, by exactly one.
+      if (i + 1 < lines.segments.size() && lines.segments[i + 1].edge == piece.edge) {
+        EXPECT_EQ(std::abs(lines.segments[i + 1].qi - piece.qi), 1) << name << " edge " << piece.edge;
+      }
+      // Inside a long enough piece, the QI is the count of front faces in front of it.
+      const FeatureEdge& edge = lines.edges[piece.edge];
+      if ((piece.end - piece.begin) * edge.lengthPixels() < 2) continue;
+      const double s = edge.edgeParameter((piece.begin + piece.end) / 2);
+      EXPECT_EQ(piece.qi, frontFacesInFront(loaded.prepared, camera, edge.from + s * (edge.to - edge.from)))
+          << name << " edge " << piece.edge;
+      ++checked;
+    }
+    EXPECT_GT(checked, 20) << name;
+    if (std::string(name) == "hard/torus.toml") {
+      EXPECT_GE(maximum, 2);  // behind both near walls of the tube
+    }
+  }
+}
+
+TEST(LineHardCases, TouchingBoxesDrawNoJunctionAndLoseNothing) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/hard/touching_boxes.toml"));
+  Stats stats;
+  const LineSet roberts = roberts::run(loaded.prepared, roberts::Knobs{}, stats);
+  EXPECT_EQ(stats.counter("junction lines"), 0);
+  for (const LineSet& lines : {roberts, draw("appel", loaded.prepared)}) {
+    const LineError error = errorOf(loaded.prepared, lines);
+    EXPECT_LT(error.wronglyDrawn + error.wronglyHidden, 1e-4);
+    EXPECT_GT(error.visibleLength, 500);
+  }
+}
+
+TEST(LineHardCases, InterpenetratingBoxesGetJunctionLinesAndAppelRefuses) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/hard/box_junctions.toml"));
+  Stats stats;
+  const LineSet lines = roberts::run(loaded.prepared, roberts::Knobs{}, stats);
+  double visibleJunction = 0;
+  const std::vector<EdgeVisibility> visibility = edgeVisibility(lines);
+  for (std::size_t e = 0; e < lines.edges.size(); ++e)
+    if (lines.edges[e].kind == EdgeKind::junction)
+      for (const Interval& part : visibility[e].visible) visibleJunction += (part.end - part.begin) * visibility[e].lengthPixels;
+  EXPECT_GE(stats.counter("junction lines"), 4);
+  EXPECT_GT(visibleJunction, 100);  // where the tall box enters the top and leaves the front
+  const LineError error = errorOf(loaded.prepared, lines);
+  EXPECT_LT(error.wronglyDrawn + error.wronglyHidden, 1e-4);
+  const std::string refusal = appel::refusal(loaded.prepared, appel::Knobs{});
+  EXPECT_NE(refusal.find("passes through"), std::string::npos) << refusal;
+}
+
+// Under the exact alignments, the reference's triangles are closed: a part lying exactly
+// behind a nearer edge is hidden by the face that edge bounds. Roberts and Appel draw
+// such parts; the test proves each one lies exactly on a visible line of the drawing, so
+// the drawing is the same picture, and nothing visible is lost.
+TEST(LineHardCases, AlignedEdgesDisagreeOnlyWhereALineIsDrawnAnyway) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/hard/aligned_edges.toml"));
+  for (const auto& [algorithm, knobs] : std::vector<std::pair<std::string, KnobSettings>>{
+           {"roberts", {}}, {"appel", {}}, {"appel", {{"surfaces", "any"}}}}) {
+    const LineSet lines = draw(algorithm, loaded.prepared, knobs);
+    Stats stats;
+    const std::vector<EdgeVisibility> truth = traceLineReference(loaded.prepared, lines.edges, 1, stats);
+    const std::vector<EdgeVisibility> drawn = edgeVisibility(lines);
+    const LineError error = lineError(drawn, truth);
+    EXPECT_LT(error.wronglyHidden, 1e-6) << algorithm;
+    // 0.25 world units of the far box's top edge lie behind the near box's: 40 pixels.
+    EXPECT_NEAR(error.wronglyDrawn, algorithm == "roberts" || !knobs.empty() ? 40.0 : 120.0, 1e-6) << algorithm;
+    EXPECT_LT(strayLength(lines, truth), 1e-9) << algorithm;
+  }
+}
+
+// Translating by a power of two and scaling by one leave the drawing's pixels and QIs:
+// the algorithms depend on the geometry, not on where it sits or its units.
+TEST(LineHardCases, TranslationAndScaleLeaveTheDrawing) {
+  const test::LoadedScene base(test::sourcePath("scenes/blocks.toml"));
+  for (const auto& [shift, scale] : std::vector<std::pair<double, double>>{{1 << 20, 1}, {-1024, 1}, {0, 1024}, {0, 1.0 / 1024}}) {
+    Scene moved = base.scene;
+    for (SceneObject& object : moved.objects) {
+      object.transform.translate = object.transform.translate * scale + shift;
+      object.transform.scale *= scale;
+    }
+    moved.camera.eye = moved.camera.eye * scale + shift;
+    moved.camera.target = moved.camera.target * scale + shift;
+    moved.camera.near *= scale;
+    moved.camera.far *= scale;
+    const PreparedScene prepared(moved);
+    for (const char* algorithm : {"roberts", "appel"}) {
+      const LineSet before = draw(algorithm, base.prepared), after = draw(algorithm, prepared);
+      ASSERT_EQ(before.segments.size(), after.segments.size()) << algorithm << " shift " << shift << " scale " << scale;
+      for (std::size_t i = 0; i < before.segments.size(); ++i) {
+        EXPECT_EQ(before.segments[i].qi, after.segments[i].qi);
+        const double tolerance = 1e-6 / std::max(1.0, before.edges[before.segments[i].edge].lengthPixels());
+        EXPECT_NEAR(before.segments[i].begin, after.segments[i].begin, tolerance);
+        EXPECT_NEAR(before.segments[i].end, after.segments[i].end, tolerance);
+      }
+      EXPECT_EQ(lineSetFrame(before, LineStyle::hidden).color, lineSetFrame(after, LineStyle::hidden).color) << algorithm;
+    }
+  }
+}
+
+TEST(LineInfrastructure, FeatureEdgesOfACube) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/cube.toml"));
+  const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+  Stats stats;
+  const std::vector<std::int8_t> facing = viewFacing(loaded.prepared, camera, stats);
+  const std::vector<FeatureEdge> edges = featureEdges(loaded.prepared, camera, facing, 30, stats);
+  // 12 box edges, the 6 face diagonals are flat; 3 faces visible, so 6 contour edges.
+  EXPECT_EQ(edges.size(), 12u);
+  EXPECT_EQ(std::count_if(edges.begin(), edges.end(), [](const FeatureEdge& e) { return e.kind == EdgeKind::contour; }), 6);
+  EXPECT_EQ(stats.counter("mesh edges built"), 18);
+  // Above 90 degrees no box edge is a crease: only the contours are left.
+  EXPECT_EQ(featureEdges(loaded.prepared, camera, facing, 91, stats).size(), 6u);
+}
+
+TEST(LineInfrastructure, EdgeParameterMapsScreenToSpaceUnderPerspective) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/blocks.toml"));
+  const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+  const FeatureEdge edge = projectEdge(camera, {-2, 0, 1.5}, {2, 0, -1.5}, EdgeKind::crease);
+  for (const double u : {0.0, 0.1, 0.5, 0.77, 1.0}) {
+    const double s = edge.edgeParameter(u);
+    const dvec2 projected = camera.pixelFromClip(camera.clipFromWorld(edge.from + s * (edge.to - edge.from)));
+    EXPECT_LT(glm::length(projected - edge.pixelAt(u)), 1e-9) << u;
+  }
+}
+
+TEST(LineInfrastructure, TheLineRuleCoversPixelsWithinHalfTheWidth) {
+  // A horizontal segment at y = 10.5 from x = 2 to 8: width 1.5 covers the centers at
+  // distance 0 (row 10) and 1 (rows 9 and 11 are out: 1 > 0.75), and the round caps
+  // reach the centers 0.5 beyond each end (x = 1.5 and 8.5).
+  std::vector<std::pair<int, int>> covered;
+  rasterizeLine({2, 10.5}, {8, 10.5}, 1.5, 20, 20, [&](int x, int y) { covered.emplace_back(x, y); });
+  std::vector<std::pair<int, int>> expected;
+  for (int x = 1; x <= 8; ++x) expected.emplace_back(x, 10);
+  EXPECT_EQ(covered, expected);
+}
+
+TEST(LineInfrastructure, SvgDrawsVisibleSolidAndHiddenDashed) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/blocks.toml"));
+  const LineSet lines = draw("appel", loaded.prepared);
+  const std::string visible = lineSetSvg(lines, LineStyle::visible), hidden = lineSetSvg(lines, LineStyle::hidden);
+  const auto count = [](const std::string& svg, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  const std::size_t visiblePieces = std::count_if(lines.segments.begin(), lines.segments.end(), [](const LineSegment& s) { return s.visible(); });
+  EXPECT_EQ(count(visible, "<line"), visiblePieces);
+  EXPECT_EQ(count(visible, "rgb(136"), 0u);
+  EXPECT_GT(count(hidden, "rgb(136"), visiblePieces / 4);  // dashes of the hidden parts
+}
+
+}  // namespace
+}  // namespace hsr
