@@ -208,6 +208,31 @@ std::vector<Interval> difference(const std::vector<Interval>& from, const std::v
 
 }  // namespace
 
+double strayDrawnLength(const LineSet& lines, std::span<const EdgeVisibility> truth) {
+  HSR_CHECK(truth.size() == lines.edges.size());
+  const std::vector<EdgeVisibility> drawn = edgeVisibility(lines);
+  const auto visibleAt = [&](std::size_t edge, double u) {
+    return std::any_of(truth[edge].visible.begin(), truth[edge].visible.end(), [&](const Interval& v) { return v.begin <= u && u <= v.end; });
+  };
+  const auto onAVisibleLine = [&](std::size_t edge, const dvec2& at) {
+    for (std::size_t other = 0; other < lines.edges.size(); ++other)
+      for (const Interval& v : truth[other].visible)
+        if (other != edge && squaredDistanceToSegment(at, lines.edges[other].pixelAt(v.begin), lines.edges[other].pixelAt(v.end)) < 1e-12)
+          return true;
+    return false;
+  };
+  double stray = 0;
+  for (std::size_t e = 0; e < lines.edges.size(); ++e) {
+    const double length = lines.edges[e].lengthPixels();
+    if (length == 0) continue;
+    const double step = 0.5 / length;
+    for (const Interval& part : drawn[e].visible)
+      for (double u = part.begin + step / 2; u < part.end; u += step)
+        if (!visibleAt(e, u) && !onAVisibleLine(e, lines.edges[e].pixelAt(u))) stray += std::min(step, part.end - u) * length;
+  }
+  return stray;
+}
+
 std::vector<std::uint8_t> lineErrorMap(const LineSet& lines, std::span<const EdgeVisibility> truth) {
   HSR_CHECK(truth.size() == lines.edges.size());
   std::vector<std::uint8_t> rgba(std::size_t(lines.width) * std::size_t(lines.height) * 4, 255);

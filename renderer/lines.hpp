@@ -121,6 +121,13 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style);
 // The drawing rasterized (renderer/raster's line rule) over a white background.
 Frame lineSetFrame(const LineSet& lines, LineStyle style);
 
+// The length in pixels of the parts drawn visible that the reference hides and that do
+// not lie on a visible line of the exact drawing (within 1e-6 pixel). Where an edge lies
+// exactly behind a nearer edge (an orthographic view along a face, say), the reference's
+// closed triangles hide it while an algorithm may draw it: that counts in the line error
+// but changes no pixel, and not here. Sampled every half pixel. truth[i] describes lines.edges[i].
+double strayDrawnLength(const LineSet& lines, std::span<const EdgeVisibility> truth);
+
 // Where a drawing is wrong, as an RGBA8 picture: the exactly visible lines light grey,
 // parts drawn but hidden in the reference red, parts visible there but not drawn blue.
 // truth[i] describes lines.edges[i].

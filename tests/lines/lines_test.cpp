@@ -39,32 +39,6 @@ std::vector<std::filesystem::path> shippedScenes() {
   return scenes;
 }
 
-// The length (pixels) of the parts drawn visible that the reference hides and that do not
-// lie exactly on a visible line of the reference drawing: where an edge lies exactly
-// behind a nearer edge, the reference's closed triangles hide it and the algorithms may
-// draw it, which changes no pixel of the picture. Sampled every half pixel.
-double strayLength(const LineSet& lines, const std::vector<EdgeVisibility>& truth) {
-  const std::vector<EdgeVisibility> drawn = edgeVisibility(lines);
-  double stray = 0;
-  for (std::size_t e = 0; e < lines.edges.size(); ++e) {
-    const double length = lines.edges[e].lengthPixels();
-    if (length == 0) continue;
-    const double step = 0.5 / length;
-    for (const Interval& part : drawn[e].visible)
-      for (double u = part.begin + step / 2; u < part.end; u += step) {
-        if (std::any_of(truth[e].visible.begin(), truth[e].visible.end(), [&](const Interval& v) { return v.begin <= u && u <= v.end; }))
-          continue;
-        const dvec2 at = lines.edges[e].pixelAt(u);
-        bool onALine = false;
-        for (std::size_t other = 0; other < lines.edges.size() && !onALine; ++other)
-          for (const Interval& v : truth[other].visible)
-            onALine |= other != e && squaredDistanceToSegment(at, lines.edges[other].pixelAt(v.begin), lines.edges[other].pixelAt(v.end)) < 1e-12;
-        if (!onALine) stray += std::min(step, part.end - u) * length;
-      }
-  }
-  return stray;
-}
-
 // Out of surfaces=any's domain: a surface passing through itself (interpenetrating,
 // near_degenerate_splits) or two coincident faces of different objects (touching_boxes),
 // where counting faces along an edge misses the changes inside the surfaces. Their
@@ -86,7 +60,7 @@ TEST(LineAlgorithms, WithinATenthOfAPercentOfTheReferenceOnEveryShippedSceneThey
       Stats stats;
       const std::vector<EdgeVisibility> truth = traceLineReference(loaded.prepared, lines.edges, 2, stats);
       const LineError error = lineError(edgeVisibility(lines), truth);
-      const double stray = strayLength(lines, truth);
+      const double stray = strayDrawnLength(lines, truth);
       std::printf("%-28s %-7s %-8s visible %9.1f px, wrongly drawn %7.3f px (%7.3f px off every line), wrongly hidden %7.3f px\n",
                   path.filename().c_str(), algorithm.c_str(), knobs.empty() ? "defaults" : knobs[0].second.c_str(),
                   error.visibleLength, error.wronglyDrawn, stray, error.wronglyHidden);
@@ -214,7 +188,7 @@ TEST(LineHardCases, AlignedEdgesDisagreeOnlyWhereALineIsDrawnAnyway) {
     EXPECT_LT(error.wronglyHidden, 1e-6) << algorithm;
     // 0.25 world units of the far box's top edge lie behind the near box's: 40 pixels.
     EXPECT_NEAR(error.wronglyDrawn, algorithm == "roberts" || !knobs.empty() ? 40.0 : 120.0, 1e-6) << algorithm;
-    EXPECT_LT(strayLength(lines, truth), 1e-9) << algorithm;
+    EXPECT_LT(strayDrawnLength(lines, truth), 1e-9) << algorithm;
   }
 }
 
