@@ -45,5 +45,13 @@ cp "$study/scale_triangles.png" images/figures/painter/scale-sort.png
 cp "$study/scale_triangles.png" images/figures/painter/scale-newell.png
 ./build/hsr sweep scenes/bunny.toml --algo painter --variant bsp --scale triangles --repeat 1 --threads 1 --out "$study" > /dev/null
 cp "$study/scale_triangles.png" images/figures/painter/scale-bsp.png
+# Hidden lines: Roberts with hidden lines dashed, its junction lines, Appel's QI on the
+# torus, Appel on the dragon.
+mkdir -p images/figures/lines
+./build/hsr render scenes/blocks.toml --algo roberts --line-style hidden -o images/figures/lines/blocks-roberts.png
+./build/hsr render scenes/hard/box_junctions.toml --algo roberts --line-style hidden --size 480x360 \
+  -o images/figures/lines/junctions-roberts.png
+./build/hsr render scenes/hard/torus.toml --algo appel --line-style qi --size 480x360 -o images/figures/lines/torus-qi.png
+./build/hsr render scenes/dragon.toml --algo appel --knob surfaces=any --size 960x540 -o images/figures/lines/dragon-appel.png
 rm -r "$study"
 echo "figures are in images/figures/"
