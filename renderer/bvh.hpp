@@ -53,6 +53,25 @@ class Bvh {
   explicit Bvh(std::span<const Aabb> boxes);
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }       // nodes()[0] is the root
+
+  // Calls visit(primitive, slot in order()) for each primitive of every leaf reached through nodes that
+  // all pass keep(node): a conservative query (a box, a ray, a projected rectangle).
+  template <typename Keep, typename Visit>
+  void visitPrimitives(Keep&& keep, Visit&& visit) const {
+    if (empty()) return;
+    std::vector<std::uint32_t> stack = {0};
+    while (!stack.empty()) {
+      const BvhNode& node = nodes_[stack.back()];
+      stack.pop_back();
+      if (!keep(node)) continue;
+      if (!node.leaf()) {
+        stack.push_back(node.index);
+        stack.push_back(node.index + 1);
+        continue;
+      }
+      for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) visit(order_[slot], slot);
+    }
+  }
   const std::vector<std::uint32_t>& order() const { return order_; }  // primitive ids by leaf
   int depth() const { return depth_; }                                // root alone = 1
   bool empty() const { return order_.empty(); }

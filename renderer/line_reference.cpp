@@ -90,32 +90,19 @@ class EdgeJudge {
     candidates_.clear();
     const dvec2 lo = glm::min(edge.pixelFrom, edge.pixelTo) - 1e-6, hi = glm::max(edge.pixelFrom, edge.pixelTo) + 1e-6;
     const double farthest = std::max(camera_.clipFromWorld(edge.from).d, camera_.clipFromWorld(edge.to).d);
-    std::vector<std::uint32_t>& stack = stack_;
-    stack.assign(1, 0);
-    const auto& nodes = bvh_.nodes();
-    while (!stack.empty()) {
-      const BvhNode& node = nodes[stack.back()];
-      stack.pop_back();
-      if (!boxMayCover(node, lo, hi, farthest)) continue;
-      if (!node.leaf()) {
-        stack.push_back(node.index);
-        stack.push_back(node.index + 1);
-        continue;
-      }
-      for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) {
-        const std::uint32_t t = bvh_.order()[slot];
-        const Triangle& tri = scene_.triangles()[t];
-        dvec2 tlo(std::numeric_limits<double>::infinity()), thi(-std::numeric_limits<double>::infinity());
-        double nearest = std::numeric_limits<double>::infinity();
-        for (std::uint32_t v : tri) {
-          tlo = glm::min(tlo, pixel_[v]);
-          thi = glm::max(thi, pixel_[v]);
-          nearest = std::min(nearest, distance_[v]);
-        }
-        if (thi.x < lo.x || tlo.x > hi.x || thi.y < lo.y || tlo.y > hi.y || nearest >= farthest) continue;
-        candidates_.push_back({t, tlo, thi});
-      }
-    }
+    bvh_.visitPrimitives([&](const BvhNode& node) { return boxMayCover(node, lo, hi, farthest); },
+                         [&](std::uint32_t t, std::uint32_t) {
+                           const Triangle& tri = scene_.triangles()[t];
+                           dvec2 tlo(std::numeric_limits<double>::infinity()), thi(-std::numeric_limits<double>::infinity());
+                           double nearest = std::numeric_limits<double>::infinity();
+                           for (std::uint32_t v : tri) {
+                             tlo = glm::min(tlo, pixel_[v]);
+                             thi = glm::max(thi, pixel_[v]);
+                             nearest = std::min(nearest, distance_[v]);
+                           }
+                           if (thi.x < lo.x || tlo.x > hi.x || thi.y < lo.y || tlo.y > hi.y || nearest >= farthest) return;
+                           candidates_.push_back({t, tlo, thi});
+                         });
     // The BVH order is fixed, but sort anyway so the work never depends on traversal details.
     std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) { return a.triangle < b.triangle; });
     candidates += static_cast<std::int64_t>(candidates_.size());
@@ -234,7 +221,6 @@ class EdgeJudge {
   const std::vector<double>& distance_;
   ExactPredicates exact_;
   std::vector<Candidate> candidates_;
-  std::vector<std::uint32_t> stack_;
 };
 
 }  // namespace

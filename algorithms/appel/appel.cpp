@@ -23,37 +23,29 @@ std::string interpenetration(const PreparedScene& scene) {
   const EdgeAdjacency& adjacency = scene.edgeAdjacency(ignored);
   const Bvh& bvh = scene.triangleBvh(ignored);
   ExactPredicates exact;
-  std::vector<std::uint32_t> stack;
   for (const MeshEdge& edge : adjacency.edges) {
     const dvec3 &p = scene.positions()[edge.a], &q = scene.positions()[edge.b];
     const dvec3 lo = glm::min(p, q), hi = glm::max(p, q);
     const Instance& own = scene.instanceOf(edge.faces[0]);
-    stack.assign(1, 0);
-    while (!stack.empty()) {
-      const BvhNode& node = bvh.nodes()[stack.back()];
-      stack.pop_back();
-      bool apart = false;
-      for (int axis = 0; axis < 3; ++axis)
-        apart |= double(node.bounds[0][axis]) > hi[axis] || double(node.bounds[1][axis]) < lo[axis];
-      if (apart) continue;
-      if (!node.leaf()) {
-        stack.push_back(node.index);
-        stack.push_back(node.index + 1);
-        continue;
-      }
-      for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) {
-        const std::uint32_t t = bvh.order()[slot];
-        const Instance& other = scene.instanceOf(t);
-        if (&other == &own) continue;
-        const Triangle& tri = scene.triangles()[t];
-        const dvec3 &a = scene.positions()[tri[0]], &b = scene.positions()[tri[1]], &c = scene.positions()[tri[2]];
-        if (exact.orient3d(a, b, c, p) * exact.orient3d(a, b, c, q) >= 0) continue;
-        const int s0 = exact.orient3d(p, q, a, b), s1 = exact.orient3d(p, q, b, c), s2 = exact.orient3d(p, q, c, a);
-        if (s0 == 0 || s0 != s1 || s1 != s2) continue;
-        return "object '" + scene.scene().objects[own.object].name + "' passes through object '" +
-               scene.scene().objects[other.object].name + "'";
-      }
-    }
+    const Instance* other = nullptr;
+    bvh.visitPrimitives(
+        [&](const BvhNode& node) {
+          for (int axis = 0; axis < 3; ++axis)
+            if (double(node.bounds[0][axis]) > hi[axis] || double(node.bounds[1][axis]) < lo[axis]) return false;
+          return other == nullptr;
+        },
+        [&](std::uint32_t t, std::uint32_t) {
+          const Instance& owner = scene.instanceOf(t);
+          if (&owner == &own || other) return;
+          const Triangle& tri = scene.triangles()[t];
+          const dvec3 &a = scene.positions()[tri[0]], &b = scene.positions()[tri[1]], &c = scene.positions()[tri[2]];
+          if (exact.orient3d(a, b, c, p) * exact.orient3d(a, b, c, q) >= 0) return;
+          const int s0 = exact.orient3d(p, q, a, b), s1 = exact.orient3d(p, q, b, c), s2 = exact.orient3d(p, q, c, a);
+          if (s0 != 0 && s0 == s1 && s1 == s2) other = &owner;
+        });
+    if (other)
+      return "object '" + scene.scene().objects[own.object].name + "' passes through object '" +
+             scene.scene().objects[other->object].name + "'";
   }
   return "";
 }
@@ -242,34 +234,23 @@ class QuantitativeInvisibility {
     const Ray ray = camera_.perspective() ? Ray{camera_.camera().eye, v - camera_.camera().eye} : Ray{v, -camera_.forward()};
     const double reach = camera_.perspective() ? 1.0 : std::numeric_limits<double>::infinity();
     const RayBoxTest boxTest(ray.origin, ray.direction);
-    const Bvh& bvh = scene_.triangleBvh(stats_);
     const auto& triangles = scene_.leafTriangles(stats_);
     int count = 0;
-    std::vector<std::uint32_t> stack = {0};
-    while (!stack.empty()) {
-      const BvhNode& node = bvh.nodes()[stack.back()];
-      stack.pop_back();
-      if (boxTest.entry(node, reach) == std::numeric_limits<double>::infinity()) continue;
-      if (!node.leaf()) {
-        stack.push_back(node.index);
-        stack.push_back(node.index + 1);
-        continue;
-      }
-      for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) {
-        const auto& t = triangles[slot];
-        const std::uint32_t triangle = t.id - 1;
-        const Triangle& corners = scene_.triangles()[triangle];
-        if (!counted(triangle) || std::find(corners.begin(), corners.end(), vertex) != corners.end()) continue;
-        // The vertex must lie behind the plane, on the side away from the viewer.
-        if (viewer_.exact().orient3d(t.a, t.b, t.c, v) != -facing_[triangle]) continue;
-        const int sides[3] = {viewer_.side(v, t.a, t.b), viewer_.side(v, t.b, t.c), viewer_.side(v, t.c, t.a)};
-        const bool positive = sides[0] >= 0 && sides[1] >= 0 && sides[2] >= 0;
-        const bool negative = sides[0] <= 0 && sides[1] <= 0 && sides[2] <= 0;
-        if (!positive && !negative) continue;
-        ++count;
-        degenerate = degenerate || sides[0] == 0 || sides[1] == 0 || sides[2] == 0;
-      }
-    }
+    scene_.triangleBvh(stats_).visitPrimitives(
+        [&](const BvhNode& node) { return boxTest.entry(node, reach) != std::numeric_limits<double>::infinity(); },
+        [&](std::uint32_t triangle, std::uint32_t slot) {
+          const auto& t = triangles[slot];
+          const Triangle& corners = scene_.triangles()[triangle];
+          if (!counted(triangle) || std::find(corners.begin(), corners.end(), vertex) != corners.end()) return;
+          // The vertex must lie behind the plane, on the side away from the viewer.
+          if (viewer_.exact().orient3d(t.a, t.b, t.c, v) != -facing_[triangle]) return;
+          const int sides[3] = {viewer_.side(v, t.a, t.b), viewer_.side(v, t.b, t.c), viewer_.side(v, t.c, t.a)};
+          const bool positive = sides[0] >= 0 && sides[1] >= 0 && sides[2] >= 0;
+          const bool negative = sides[0] <= 0 && sides[1] <= 0 && sides[2] <= 0;
+          if (!positive && !negative) return;
+          ++count;
+          degenerate = degenerate || sides[0] == 0 || sides[1] == 0 || sides[2] == 0;
+        });
     return count;
   }
 
