@@ -200,7 +200,8 @@ AlgorithmEntry appelEntry() {
   entry.knobs = {
       {"surfaces",
        "closed: count front faces (Appel's QI; needs closed, consistently oriented meshes); any: count every face, "
-       "so open, non-manifold and double-sided meshes are drawn right",
+       "so open, non-manifold and double-sided meshes are drawn too (wrong where surfaces pass through or lie on "
+       "each other)",
        {"closed", "any"}},
       {"cell", "side in pixels of the image-plane grid that lists the contour edges each edge may cross",
        {"16", "4", "64", "256"}, KnobSpec::Range{1, 65536}},
