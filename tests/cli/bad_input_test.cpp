@@ -158,7 +158,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"sweep-knob-without-values", kCube + " --knob variant --out OUT", "--knob variant: expected NAME=VALUE", "sweep"},
         Case{"sweep-bad-scale", kCube + " --scale triangle --out OUT", "--scale triangle: expected triangles or pixels", "sweep"},
         Case{"sweep-scale-with-a-list", kCube + " --scale pixels --knob variant=full,scanline --out OUT", "each --knob fixes one", "sweep"},
-        Case{"sweep-reference", kCube + " --algo reference --knob size=8x8 --out OUT", "only surface algorithms are swept", "sweep"},
+        Case{"sweep-reference", kCube + " --algo reference --knob size=8x8 --out OUT", "the reference is what a sweep measures against; sweep a surface or line algorithm", "sweep"},
         Case{"sweep-scale-too-many-triangles", std::string(HSR_SOURCE_DIR) + "/scenes/dragons.toml --scale triangles --out OUT",
              "--scale triangles grows a scene of at most 275,000", "sweep"},
         // hsr diff
