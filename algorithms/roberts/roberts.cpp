@@ -53,6 +53,13 @@ Aabb boxOf(const PreparedScene& scene, const Instance& body) {
 
 std::string refusal(const PreparedScene& scene) {
   if (std::string nearPlane = nearPlaneRefusal(scene); !nearPlane.empty()) return nearPlane;
+  // Merging faces and checking convexity compare every triangle with every face: bound it
+  // before that work, not after.
+  for (const Instance& body : scene.instances())
+    if (body.triangleCount > kMaxBodyTriangles)
+      return "object '" + scene.scene().objects[body.object].name + "' has " + std::to_string(body.triangleCount) +
+             " triangles, more than the " + std::to_string(kMaxBodyTriangles) +
+             " a Roberts body may have (its faces are tested against every other edge); use --algo appel";
   Stats ignored;
   const EdgeAdjacency& adjacency = scene.edgeAdjacency(ignored);
   for (const MeshEdge& edge : adjacency.edges) {

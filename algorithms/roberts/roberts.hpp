@@ -30,6 +30,7 @@
 // piece visible (QI 0) or hidden (LineSegment::kHidden: Roberts does not count faces).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "renderer/lines.hpp"
@@ -43,6 +44,10 @@ struct Knobs {
   double cellPixels = 32;                        // its cell side
   double creaseDegrees = kDefaultCreaseDegrees;  // feature edges: creases sharper than this
 };
+
+// Roberts' bodies are polyhedra of a few faces; merging a body's coplanar triangles and
+// checking its convexity take time quadratic in its triangles, so larger bodies are refused.
+inline constexpr std::uint32_t kMaxBodyTriangles = 8192;
 
 // Why Roberts cannot draw this scene, or "" when it can.
 std::string refusal(const PreparedScene& scene);

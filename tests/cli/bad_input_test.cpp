@@ -99,6 +99,10 @@ INSTANTIATE_TEST_SUITE_P(
              "--depth: roberts draws lines, which have no depth or id image"},
         Case{"roberts-non-convex", std::string(HSR_SOURCE_DIR) + "/scenes/bunny.toml --algo roberts -o OUT",
              "roberts cannot render it: object 'bunny' is not convex: a vertex lies"},
+        Case{"roberts-body-too-large",
+             write("fine-sphere.toml", kCamera + "[[objects]]\nname = \"ball\"\nshape = \"sphere\"\nsegments = 128\nrings = 64\n") +
+                 " --algo roberts -o OUT",
+             "object 'ball' has 16128 triangles, more than the 8192 a Roberts body may have"},
         Case{"appel-open-surface", std::string(HSR_SOURCE_DIR) + "/scenes/hard/coplanar.toml --algo appel -o OUT",
              "bounds one triangle (the surface is open); quantitative invisibility by front faces needs closed"},
         Case{"appel-interpenetrating", std::string(HSR_SOURCE_DIR) + "/scenes/hard/box_junctions.toml --algo appel -o OUT",
