@@ -1,6 +1,7 @@
 #include "renderer/mesh.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "renderer/error.hpp"
@@ -53,21 +54,11 @@ void addWall(Mesh& mesh, std::uint32_t lower, std::uint32_t upper, int segments)
   }
 }
 
-// Vertices of a (segmentsX+1) x (segmentsZ+1) lattice over the xz plane; the quads
-// face +y: seen from above, (x, z) -> (x, z+1) -> (x+1, z+1) runs counter-clockwise.
-template <typename Height>
-Mesh makeLattice(const dvec2& size, int segmentsX, int segmentsZ, Height height) {
-  Mesh mesh;
-  for (int k = 0; k <= segmentsZ; ++k)
-    for (int i = 0; i <= segmentsX; ++i) {
-      const double u = size.x * (double(i) / segmentsX - 0.5);
-      const double v = size.y * (double(k) / segmentsZ - 0.5);
-      addVertex(mesh, {u, height(u, v), v});
-    }
-  const auto at = [&](int i, int k) { return static_cast<std::uint32_t>(k * (segmentsX + 1) + i); };
-  for (int k = 0; k < segmentsZ; ++k)
-    for (int i = 0; i < segmentsX; ++i) addQuad(mesh, at(i, k), at(i, k + 1), at(i + 1, k + 1), at(i + 1, k));
-  return mesh;
+// n + 1 evenly spaced coordinates across a centered extent.
+std::vector<double> evenlySpaced(double extent, int n) {
+  std::vector<double> coordinates(std::size_t(n) + 1);
+  for (int i = 0; i <= n; ++i) coordinates[std::size_t(i)] = extent * (double(i) / n - 0.5);
+  return coordinates;
 }
 
 }  // namespace
@@ -133,29 +124,74 @@ Mesh makeCylinder(double radius, double height, int segments) { return makeFrust
 
 Mesh makeCone(double radius, double height, int segments) { return makeFrustum(radius, 0, height, segments); }
 
+Lattice makeLattice(std::span<const double> us, std::span<const double> vs, const std::function<double(double, double)>& height,
+                    const std::function<bool(dvec2, dvec2)>& broken) {
+  Lattice lattice;
+  Mesh& mesh = lattice.mesh;
+  lattice.vertexAt.reserve(us.size() * vs.size());
+  for (const double v : vs)
+    for (const double u : us) {
+      const double h = height(u, v);
+      lattice.vertexAt.push_back(std::isnan(h) ? Lattice::kNoVertex : addVertex(mesh, {u, h, v}));
+    }
+  const auto at = [&](std::size_t i, std::size_t k) { return lattice.vertexAt[k * us.size() + i]; };
+  const auto point = [&](std::size_t i, std::size_t k) { return dvec2(us[i], vs[k]); };
+  const auto continues = [&](std::size_t i0, std::size_t k0, std::size_t i1, std::size_t k1) {
+    return !broken || !broken(point(i0, k0), point(i1, k1));
+  };
+  // Quads face +y: seen from above, (i, k) -> (i, k+1) -> (i+1, k+1) runs counter-clockwise.
+  // Each is split along its (i, k)-(i+1, k+1) diagonal, as addQuad splits.
+  for (std::size_t k = 0; k + 1 < vs.size(); ++k)
+    for (std::size_t i = 0; i + 1 < us.size(); ++i) {
+      const std::uint32_t a = at(i, k), b = at(i, k + 1), c = at(i + 1, k + 1), d = at(i + 1, k);
+      const bool diagonal = continues(i, k, i + 1, k + 1);
+      if (a != Lattice::kNoVertex && b != Lattice::kNoVertex && c != Lattice::kNoVertex && diagonal &&
+          continues(i, k, i, k + 1) && continues(i, k + 1, i + 1, k + 1))
+        mesh.triangles.push_back({a, b, c});
+      if (a != Lattice::kNoVertex && c != Lattice::kNoVertex && d != Lattice::kNoVertex && diagonal &&
+          continues(i + 1, k + 1, i + 1, k) && continues(i, k, i + 1, k))
+        mesh.triangles.push_back({a, c, d});
+    }
+  return lattice;
+}
+
 Mesh makeGrid(const dvec2& size, int segmentsX, int segmentsZ) {
-  return makeLattice(size, segmentsX, segmentsZ, [](double, double) { return 0.0; });
+  return makeLattice(evenlySpaced(size.x, segmentsX), evenlySpaced(size.y, segmentsZ), [](double, double) { return 0.0; }).mesh;
 }
 
 const std::vector<std::string>& heightFunctionNames() {
-  static const std::vector<std::string> names = {"ripple", "saddle", "gauss", "waves", "spike", "step"};
+  static const std::vector<std::string> names = {"ripple", "saddle", "gauss", "bumps", "waves",
+                                                 "spike",  "step",   "cliff", "dome",  "holes"};
   return names;
 }
 
 double HeightFunction::evaluate(double u, double v) const {
+  constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
   const double r = std::hypot(u, v) * frequency;
   if (name == "ripple") return amplitude * (r < 1e-9 ? 1.0 : std::sin(r) / r);  // sinc
   if (name == "saddle") return amplitude * (u * u - v * v) * frequency * frequency;
   if (name == "gauss") return amplitude * std::exp(-r * r);
+  if (name == "bumps") {  // three Gaussian bumps of different heights
+    const dvec2 q = frequency * dvec2(u, v);
+    const auto bump = [&](dvec2 center, double height) { return height * std::exp(-glm::dot(q - center, q - center)); };
+    return amplitude * (bump({-1.5, -1.0}, 1.0) + bump({1.5, -0.5}, 0.6) + bump({0.0, 1.5}, 0.8));
+  }
   if (name == "waves") return amplitude * std::sin(u * frequency) * std::cos(v * frequency);
   if (name == "spike") return amplitude / (1.0 + 100.0 * r * r);
-  if (name == "step") return u * frequency >= 0 ? amplitude : 0.0;
+  if (name == "step") return u * frequency >= 0 ? amplitude : 0.0;                 // a jump at u = 0
+  if (name == "cliff") return amplitude * std::tanh(u * frequency);               // steep but continuous
+  if (name == "dome") return r <= 1 ? amplitude * std::sqrt(1 - r * r) : kUndefined;  // undefined outside r = 1
+  if (name == "holes")  // waves, undefined in patches
+    return std::sin(u * frequency) * std::sin(v * frequency) > 0.5 ? kUndefined
+                                                                    : amplitude * std::sin(u * frequency) * std::cos(v * frequency);
   HSR_CHECK(!"height function names are validated when the scene is loaded");
   return 0.0;
 }
 
 Mesh makeHeightField(const dvec2& size, int segmentsX, int segmentsZ, const HeightFunction& function) {
-  return makeLattice(size, segmentsX, segmentsZ, [&](double u, double v) { return function.evaluate(u, v); });
+  return makeLattice(evenlySpaced(size.x, segmentsX), evenlySpaced(size.y, segmentsZ),
+                     [&](double u, double v) { return function.evaluate(u, v); })
+      .mesh;
 }
 
 double signedVolume(const Mesh& mesh) {

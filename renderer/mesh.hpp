@@ -3,6 +3,10 @@
 // triangles) and wound counter-clockwise seen from outside (conventions.hpp).
 #pragma once
 
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,6 +40,20 @@ struct HeightFunction {
 };
 const std::vector<std::string>& heightFunctionNames();
 Mesh makeHeightField(const dvec2& size, int segmentsX, int segmentsZ, const HeightFunction& function);
+
+// A height field over the lattice us x vs (each ascending): lattice point (i, k) is the
+// vertex (us[i], height(us[i], vs[k]), vs[k]), rows of constant v one after the other,
+// and each cell is two triangles facing +y, split as the grid's. Where the height is
+// undefined (NaN) there is no vertex (vertexAt holds kNoVertex), and a triangle is left
+// out when it would use such a vertex or when `broken` says the surface does not continue
+// along one of its sides (a jump): the surface has a hole there, not a wall to nowhere.
+struct Lattice {
+  static constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+  Mesh mesh;
+  std::vector<std::uint32_t> vertexAt;  // per lattice point, row by row
+};
+Lattice makeLattice(std::span<const double> us, std::span<const double> vs, const std::function<double(double, double)>& height,
+                    const std::function<bool(dvec2, dvec2)>& broken = nullptr);
 
 // Signed volume (positive for a closed mesh wound counter-clockwise from outside).
 double signedVolume(const Mesh& mesh);

@@ -176,21 +176,49 @@ void readImage(TableReader& image, Scene& scene) {
   checkImageSize(scene.width, scene.height, image.file().string() + ": image");
 }
 
+// (cos, sin) of an angle in degrees, exact at multiples of 90 (so a view from straight
+// above has no stray horizontal component).
+dvec2 unitCircleDegrees(double degrees) {
+  const double quarterTurns = degrees / 90;
+  if (quarterTurns == std::round(quarterTurns)) {
+    constexpr dvec2 kQuarter[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    return kQuarter[((static_cast<int>(quarterTurns) % 4) + 4) % 4];
+  }
+  const double radians = glm::radians(degrees);
+  return {std::cos(radians), std::sin(radians)};
+}
+
 void readCamera(TableReader& camera, Scene& scene) {
   Camera& c = scene.camera;
   const std::string type = camera.choice("type", "perspective", {"perspective", "orthographic"});
   c.projection = type == "perspective" ? Projection::perspective : Projection::orthographic;
-  c.eye = camera.vector3("eye", std::nullopt, -kHuge, kHuge);
   c.target = camera.vector3("target", std::nullopt, -kHuge, kHuge);
-  c.up = camera.vector3("up", dvec3(0, 1, 0), -kHuge, kHuge);
+  std::vector<std::string> keys = {"type", "target", "near", "far", c.projection == Projection::perspective ? "fov_y" : "height"};
+  if (camera.has("azimuth") || camera.has("elevation") || camera.has("distance")) {
+    // The eye on a sphere around the target, as plots of z = f(x, y) are viewed: azimuth
+    // 0 puts it on the +z side, growing toward +x; elevation 90 looks straight down.
+    // Up is where the elevation grows, so a view from straight above has one too.
+    if (camera.has("eye")) camera.fail(camera.find("eye"), "eye", "give either eye or azimuth, elevation and distance, not both");
+    if (camera.has("up")) camera.fail(camera.find("up"), "up", "is implied by azimuth and elevation; leave it out");
+    const double azimuth = camera.number("azimuth", std::nullopt, -360, 360);
+    const double elevation = camera.number("elevation", std::nullopt, -90, 90);
+    const double distance = camera.number("distance", std::nullopt, 1e-9, kHuge);
+    const dvec2 a = unitCircleDegrees(azimuth), e = unitCircleDegrees(elevation);  // (cos, sin)
+    c.eye = c.target + distance * dvec3(e.x * a.y, e.y, e.x * a.x);
+    c.up = dvec3(-e.y * a.y, e.x, -e.y * a.x);
+    keys.insert(keys.end(), {"azimuth", "elevation", "distance"});
+  } else {
+    c.eye = camera.vector3("eye", std::nullopt, -kHuge, kHuge);
+    c.up = camera.vector3("up", dvec3(0, 1, 0), -kHuge, kHuge);
+    keys.insert(keys.end(), {"eye", "up"});
+  }
   c.near = camera.number("near", 0.1, 1e-9, kHuge);
   c.far = camera.number("far", 1000.0, 1e-9, kHuge);
   if (c.projection == Projection::perspective)
     c.fovYDegrees = camera.number("fov_y", 45.0, 0.01, 179.0);
   else
     c.orthoHeight = camera.number("height", std::nullopt, 1e-9, kHuge);
-  camera.finish({"type", "eye", "target", "up", "near", "far",
-                 c.projection == Projection::perspective ? "fov_y" : "height"});
+  camera.finish(keys);
   if (!(c.far > c.near)) camera.fail(nullptr, "far", "must be greater than near");
   const dvec3 forward = c.target - c.eye;
   if (glm::length(forward) == 0) camera.fail(nullptr, "target", "must differ from eye");
