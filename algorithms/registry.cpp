@@ -7,11 +7,13 @@
 #include <cstdlib>
 
 #include "algorithms/appel/appel.hpp"
+#include "algorithms/floating_horizon/floating_horizon.hpp"
 #include "algorithms/painter/painter.hpp"
 #include "algorithms/roberts/roberts.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/error.hpp"
+#include "renderer/line_reference.hpp"
 #include "renderer/reference.hpp"
 
 namespace hsr {
@@ -191,6 +193,53 @@ void setDrawing(AlgorithmEntry& entry, std::function<LineSet(const PreparedScene
   entry.render = [draw](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
     return lineSetFrame(draw(scene, values, threads, stats), LineStyle::visible);
   };
+  entry.judgeLines = [](const PreparedScene& scene, const KnobValues&, const LineSet& lines, int threads, Stats& stats) {
+    const std::vector<EdgeVisibility> exact = traceLineReference(scene, lines.edges, threads, stats);
+    return LineJudgement{lineError(edgeVisibility(lines), exact), lineErrorMap(lines, exact)};
+  };
+}
+
+AlgorithmEntry floatingHorizonEntry() {
+  AlgorithmEntry entry;
+  entry.name = "floating_horizon";
+  entry.summary = "curves of a height field front to back against upper and lower horizons (Williamson 1972, Wright 1973)";
+  entry.knobs = {
+      {"columns", "horizon resolution: screen columns the horizons are kept for (P%: of the image width)",
+       {"100%", "25%", "50%", "200%"}, KnobSpec::Range{1, 65536, true, true}},
+      {"samples", "points sampled along each curve (P%: of the image width)", {"100%", "5%", "25%", "200%"},
+       KnobSpec::Range{2, 1048576, true, true}},
+      {"interpolate", "on: compute where a segment crosses a horizon; off: drop segments whose samples disagree",
+       {"on", "off"}},
+      {"lower", "on: keep the lower horizon too, so curves seen below everything drawn are visible; off: upper only",
+       {"on", "off"}},
+      {"mesh", "on: draw the curves of constant x as well as of constant z", {"off", "on"}},
+  };
+  entry.keyCounters = {"curves", "samples", "horizon crossings", "breaks", "segments dropped"};
+  entry.studyConfigurations = {{}, {{"interpolate", "off"}, {"samples", "5%"}}, {{"samples", "5%"}}, {{"lower", "off"}},
+                               {{"columns", "25%"}}};
+  const auto typed = [](const PreparedScene& scene, const KnobValues& values) {
+    const auto widthShare = [&](const std::string& name, int minimum) {
+      const KnobNumber number = knobNumber(values, name);
+      return std::max(minimum, static_cast<int>(std::lround(number.percent ? number.value / 100 * scene.width() : number.value)));
+    };
+    floating_horizon::Knobs knobs;
+    knobs.columns = widthShare("columns", 1);
+    knobs.samples = widthShare("samples", 2);
+    knobs.interpolate = values.at("interpolate") == "on";
+    knobs.lowerHorizon = values.at("lower") == "on";
+    knobs.mesh = values.at("mesh") == "on";
+    return knobs;
+  };
+  entry.refusal = [](const PreparedScene& scene, const KnobValues&) { return floating_horizon::refusal(scene); };
+  setDrawing(entry, [typed](const PreparedScene& scene, const KnobValues& values, int, Stats& stats) {
+    return floating_horizon::run(scene, typed(scene, values), stats);
+  });
+  entry.judgeLines = [](const PreparedScene& scene, const KnobValues& values, const LineSet& lines, int threads, Stats& stats) {
+    const floating_horizon::ExactDrawing exact = floating_horizon::exactDrawing(scene, values.at("mesh") == "on", threads, stats);
+    CurveComparison comparison = compareCurveDrawings(lines, exact.lines, exact.visibility);
+    return LineJudgement{comparison.error, std::move(comparison.errorMap)};
+  };
+  return entry;
 }
 
 AlgorithmEntry appelEntry() {
@@ -263,7 +312,8 @@ AlgorithmEntry referenceEntry() {
 }  // namespace
 
 const std::vector<AlgorithmEntry>& algorithms() {
-  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry(), painterEntry(), robertsEntry(), appelEntry()};
+  static const std::vector<AlgorithmEntry> all = {referenceEntry(), zbufferEntry(), rayCastingEntry(), painterEntry(), robertsEntry(), appelEntry(),
+                                                 floatingHorizonEntry()};
   return all;
 }
 

@@ -41,6 +41,13 @@ using KnobValues = std::map<std::string, std::string>;  // every knob of the alg
 
 using KnobSettings = std::vector<std::pair<std::string, std::string>>;  // NAME=VALUE as the user gave them
 
+// A line drawing judged against the exact one: its line error, and where it is wrong
+// (renderer/lines: lineErrorMap's colours).
+struct LineJudgement {
+  LineError error;
+  std::vector<std::uint8_t> errorMap;
+};
+
 struct AlgorithmEntry {
   std::string name;
   // "surface"; "line" for a hidden-line algorithm, judged by the line reference; or
@@ -60,8 +67,11 @@ struct AlgorithmEntry {
   };
   // threads: 0 = all cores. A line algorithm's frame is its drawing rasterized.
   std::function<Frame(const PreparedScene&, const KnobValues&, int threads, Stats&)> render;
-  // Line algorithms: the drawing itself.
+  // Line algorithms: the drawing itself, and how it is judged (by default, the line
+  // reference on the drawing's own edges; a drawing of curves, against the exact drawing
+  // of the same curves).
   std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&)> drawLines;
+  std::function<LineJudgement(const PreparedScene&, const KnobValues&, const LineSet&, int threads, Stats&)> judgeLines;
 };
 
 const std::vector<AlgorithmEntry>& algorithms();

@@ -95,10 +95,10 @@ MeasuredConfiguration measureConfiguration(const std::string& scene, const Prepa
     auto measured = measure(repeats, [&](Stats& stats) { return algorithm.drawLines(prepared, configuration.knobs, threads, stats); });
     ResultRow row = measuredRow(scene, prepared, algorithm, knobs, measured, threads);
     Stats referenceStats;
-    const std::vector<EdgeVisibility> exact = traceLineReference(prepared, measured.result.edges, threads, referenceStats);
+    LineJudgement judgement = algorithm.judgeLines(prepared, configuration.knobs, measured.result, threads, referenceStats);
     row.lines = true;
-    row.lineError = lineError(edgeVisibility(measured.result), exact);
-    return {std::move(row), lineSetFrame(measured.result, LineStyle::visible), lineErrorMap(measured.result, exact)};
+    row.lineError = judgement.error;
+    return {std::move(row), lineSetFrame(measured.result, LineStyle::visible), std::move(judgement.errorMap)};
   }
   auto measured = measure(repeats, [&](Stats& stats) { return algorithm.render(prepared, configuration.knobs, threads, stats); });
   ResultRow row = measuredRow(scene, prepared, algorithm, knobs, measured, threads);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 #include "renderer/error.hpp"
 #include "renderer/raster.hpp"
@@ -44,6 +45,7 @@ const char* edgeKindName(EdgeKind kind) {
     case EdgeKind::contour: return "contour";
     case EdgeKind::crease: return "crease";
     case EdgeKind::junction: return "junction";
+    case EdgeKind::curve: return "curve";
   }
   return "?";
 }
@@ -54,6 +56,11 @@ double FeatureEdge::edgeParameter(double u) const {
   // s / w and 1 / w are affine in screen space; s = (u / w1) / ((1 - u) / w0 + u / w1).
   const double denominator = (1 - u) * divisorTo + u * divisorFrom;
   return denominator > 0 ? u * divisorFrom / denominator : u;
+}
+
+double FeatureEdge::projectedParameter(double s) const {
+  const double denominator = (1 - s) * divisorFrom + s * divisorTo;
+  return denominator > 0 ? s * divisorTo / denominator : s;
 }
 
 FeatureEdge projectEdge(const CameraTransform& camera, const dvec3& from, const dvec3& to, EdgeKind kind) {
@@ -233,26 +240,147 @@ double strayDrawnLength(const LineSet& lines, std::span<const EdgeVisibility> tr
   return stray;
 }
 
+namespace {
+
+using Rgb = std::array<std::uint8_t, 3>;
+constexpr Rgb kExactLineGrey = {187, 187, 187}, kWronglyDrawnRed = {220, 30, 30}, kWronglyHiddenBlue = {30, 60, 220};
+constexpr double kErrorLineWidth = 3;  // errors drawn wider, so a short one is still seen
+
+// An RGBA8 picture of a drawing's errors, white to start with.
+class ErrorPicture {
+ public:
+  ErrorPicture(int width, int height)
+      : width_(width), height_(height), rgba_(std::size_t(width) * std::size_t(height) * 4, 255) {}
+  void line(const dvec2& a, const dvec2& b, double width, Rgb color) {
+    rasterizeLine(a, b, width, width_, height_, [&](int x, int y) {
+      std::uint8_t* pixel = &rgba_[(std::size_t(y) * std::size_t(width_) + std::size_t(x)) * 4];
+      pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
+    });
+  }
+  // Parts of an edge; those shorter than a millionth of a pixel are the rounding of event
+  // positions, not errors.
+  void parts(const FeatureEdge& edge, const std::vector<Interval>& parts, double width, Rgb color) {
+    for (const Interval& part : parts)
+      if ((part.end - part.begin) * edge.lengthPixels() > 1e-6) line(edge.pixelAt(part.begin), edge.pixelAt(part.end), width, color);
+  }
+  std::vector<std::uint8_t> take() { return std::move(rgba_); }
+
+ private:
+  int width_, height_;
+  std::vector<std::uint8_t> rgba_;
+};
+
+bool contains(const std::vector<Interval>& sorted, double u) {
+  const auto after = std::upper_bound(sorted.begin(), sorted.end(), u, [](double x, const Interval& i) { return x < i.begin; });
+  return after != sorted.begin() && u <= std::prev(after)->end;
+}
+
+// A drawing of curves looked up by curve and running coordinate.
+class CurveLookup {
+ public:
+  CurveLookup(const LineSet& lines, std::vector<EdgeVisibility> visibility, std::size_t curves)
+      : lines_(lines), visibility_(std::move(visibility)), byCurve_(curves) {
+    HSR_CHECK(lines.curvePlaces.size() == lines.edges.size());
+    for (std::uint32_t e = 0; e < lines.edges.size(); ++e) byCurve_.at(lines.curvePlaces[e].curve).push_back(e);
+    for (auto& edges : byCurve_)
+      std::sort(edges.begin(), edges.end(), [&](auto a, auto b) { return lines.curvePlaces[a].from < lines.curvePlaces[b].from; });
+  }
+
+  const LineSet& lines() const { return lines_; }
+  const EdgeVisibility& visibility(std::size_t edge) const { return visibility_[edge]; }
+
+  // The point of the curve at that coordinate, if the drawing has it, and whether it is drawn visible.
+  struct Point {
+    bool visible = false;
+    dvec2 pixel{0};
+  };
+  std::optional<Point> at(std::uint32_t curve, double coordinate) const {
+    const std::vector<std::uint32_t>& edges = byCurve_[curve];
+    const auto after = std::upper_bound(edges.begin(), edges.end(), coordinate,
+                                        [&](double c, std::uint32_t e) { return c < lines_.curvePlaces[e].from; });
+    if (after == edges.begin()) return std::nullopt;
+    const std::uint32_t e = *std::prev(after);
+    const CurvePlace& place = lines_.curvePlaces[e];
+    if (coordinate > place.to) return std::nullopt;
+    const double u = lines_.edges[e].projectedParameter((coordinate - place.from) / (place.to - place.from));
+    return Point{contains(visibility_[e].visible, u), lines_.edges[e].pixelAt(u)};
+  }
+
+ private:
+  const LineSet& lines_;
+  std::vector<EdgeVisibility> visibility_;
+  std::vector<std::vector<std::uint32_t>> byCurve_;
+};
+
+// Walks every edge of `walked` in steps of at most a quarter pixel. For each step: its
+// ends in pixels, its length, whether `walked` shows it, and whether `other` shows the same
+// curve within kCurveTolerancePixels at the same coordinate.
+template <typename Visit>
+void walkCurves(const CurveLookup& walked, const CurveLookup& other, Visit&& visit) {
+  const LineSet& lines = walked.lines();
+  for (std::size_t e = 0; e < lines.edges.size(); ++e) {
+    const FeatureEdge& edge = lines.edges[e];
+    const CurvePlace& place = lines.curvePlaces[e];
+    const int steps = std::max(1, static_cast<int>(std::ceil(edge.lengthPixels() / 0.25)));
+    for (int i = 0; i < steps; ++i) {
+      const double u0 = double(i) / steps, u1 = double(i + 1) / steps, middle = 0.5 * (u0 + u1);
+      const bool shown = contains(walked.visibility(e).visible, middle);
+      const double coordinate = place.from + edge.edgeParameter(middle) * (place.to - place.from);
+      const auto there = other.at(place.curve, coordinate);
+      const bool matched = there && there->visible && glm::length(there->pixel - edge.pixelAt(middle)) <= kCurveTolerancePixels;
+      visit(edge.pixelAt(u0), edge.pixelAt(u1), (u1 - u0) * edge.lengthPixels(), shown, matched);
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> lineErrorMap(const LineSet& lines, std::span<const EdgeVisibility> truth) {
   HSR_CHECK(truth.size() == lines.edges.size());
-  std::vector<std::uint8_t> rgba(std::size_t(lines.width) * std::size_t(lines.height) * 4, 255);
+  ErrorPicture picture(lines.width, lines.height);
   const std::vector<EdgeVisibility> drawn = edgeVisibility(lines);
-  const auto paint = [&](const FeatureEdge& edge, const std::vector<Interval>& parts, double width, std::array<std::uint8_t, 3> color) {
-    for (const Interval& part : parts)
-      // Parts shorter than a millionth of a pixel are the rounding of event positions, not errors.
-      if ((part.end - part.begin) * edge.lengthPixels() > 1e-6)
-        rasterizeLine(edge.pixelAt(part.begin), edge.pixelAt(part.end), width, lines.width, lines.height, [&](int x, int y) {
-        std::uint8_t* pixel = &rgba[(std::size_t(y) * std::size_t(lines.width) + std::size_t(x)) * 4];
-        pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
-      });
-  };
-  for (std::size_t e = 0; e < lines.edges.size(); ++e) paint(lines.edges[e], truth[e].visible, kLineWidthPixels, {187, 187, 187});
-  // Errors drawn wider, so a short one is still seen.
+  for (std::size_t e = 0; e < lines.edges.size(); ++e) picture.parts(lines.edges[e], truth[e].visible, kLineWidthPixels, kExactLineGrey);
   for (std::size_t e = 0; e < lines.edges.size(); ++e) {
-    paint(lines.edges[e], difference(drawn[e].visible, truth[e].visible), 3, {220, 30, 30});
-    paint(lines.edges[e], difference(truth[e].visible, drawn[e].visible), 3, {30, 60, 220});
+    picture.parts(lines.edges[e], difference(drawn[e].visible, truth[e].visible), kErrorLineWidth, kWronglyDrawnRed);
+    picture.parts(lines.edges[e], difference(truth[e].visible, drawn[e].visible), kErrorLineWidth, kWronglyHiddenBlue);
   }
-  return rgba;
+  return picture.take();
+}
+
+CurveComparison compareCurveDrawings(const LineSet& drawn, const LineSet& exact, std::span<const EdgeVisibility> exactVisibility) {
+  HSR_CHECK(exactVisibility.size() == exact.edges.size());
+  std::size_t curves = 0;
+  for (const LineSet* lines : {&drawn, &exact})
+    for (const CurvePlace& place : lines->curvePlaces) curves = std::max<std::size_t>(curves, place.curve + 1);
+  const CurveLookup drawnCurves(drawn, edgeVisibility(drawn), curves);
+  const CurveLookup exactCurves(exact, {exactVisibility.begin(), exactVisibility.end()}, curves);
+  CurveComparison result;
+  ErrorPicture picture(exact.width, exact.height);
+  walkCurves(exactCurves, drawnCurves, [&](dvec2 a, dvec2 b, double, bool shown, bool) {
+    if (shown) picture.line(a, b, kLineWidthPixels, kExactLineGrey);
+  });
+  LineError& error = result.error;
+  walkCurves(exactCurves, drawnCurves, [&](dvec2 a, dvec2 b, double length, bool shown, bool matched) {
+    if (!shown) return;
+    error.visibleLength += length;
+    if (!matched) error.wronglyHidden += length, picture.line(a, b, kErrorLineWidth, kWronglyHiddenBlue);
+  });
+  walkCurves(drawnCurves, exactCurves, [&](dvec2 a, dvec2 b, double length, bool shown, bool matched) {
+    if (shown && !matched) error.wronglyDrawn += length, picture.line(a, b, kErrorLineWidth, kWronglyDrawnRed);
+  });
+  error.error = error.visibleLength > 0 ? (error.wronglyDrawn + error.wronglyHidden) / error.visibleLength : 0;
+  result.errorMap = picture.take();
+  return result;
+}
+
+void appendPieces(LineSet& lines, std::uint32_t edge, std::span<const Interval> visible) {
+  double covered = 0;
+  for (const Interval& part : visible) {
+    if (part.begin > covered) lines.segments.push_back({edge, covered, part.begin, LineSegment::kHidden});
+    lines.segments.push_back({edge, part.begin, part.end, 0});
+    covered = part.end;
+  }
+  if (covered < 1) lines.segments.push_back({edge, covered, 1.0, LineSegment::kHidden});
 }
 
 Frame lineSetFrame(const LineSet& lines, LineStyle style) {

@@ -52,6 +52,7 @@ enum class EdgeKind : std::uint8_t {
   contour,   // between a front-facing triangle and one that is not: the silhouette
   crease,    // the normals of its two triangles differ by more than the crease angle
   junction,  // not a mesh edge: where two bodies' faces intersect (Roberts)
+  curve,     // not a mesh edge: a piece of a curve drawn on a surface (the floating horizon)
 };
 const char* edgeKindName(EdgeKind kind);
 
@@ -67,6 +68,8 @@ struct FeatureEdge {
   double lengthPixels() const;
   // The 3D parameter s (from + s (to - from)) of the point projected at parameter u.
   double edgeParameter(double u) const;
+  // Its inverse: the projected parameter u of the point at 3D parameter s.
+  double projectedParameter(double s) const;
   dvec2 pixelAt(double u) const { return pixelFrom + u * (pixelTo - pixelFrom); }
 };
 
@@ -96,11 +99,21 @@ struct LineSegment {
   bool visible() const { return qi == 0; }
 };
 
+// Where an edge of a drawing of curves lies: on curve `curve`, from running coordinate
+// `from` to `to` (from < to; the 3D parameter s is linear in it). Two drawings of the same
+// curves sampled differently are compared at equal coordinates (curveLineError).
+struct CurvePlace {
+  std::uint32_t curve;
+  double from, to;
+};
+
 struct LineSet {
   int width = 0, height = 0;
   std::vector<FeatureEdge> edges;
   // Pieces covering every edge's [0, 1] with no gap, edge by edge, in increasing u.
   std::vector<LineSegment> segments;
+  // A drawing of curves (the floating horizon's): one per edge. Empty otherwise.
+  std::vector<CurvePlace> curvePlaces;
 };
 
 // Per edge, its projected length and its visible sub-intervals merged (the line error's
@@ -132,5 +145,23 @@ double strayDrawnLength(const LineSet& lines, std::span<const EdgeVisibility> tr
 // parts drawn but hidden in the reference red, parts visible there but not drawn blue.
 // truth[i] describes lines.edges[i].
 std::vector<std::uint8_t> lineErrorMap(const LineSet& lines, std::span<const EdgeVisibility> truth);
+
+// Appends edge `edge`'s pieces covering [0, 1]: the visible parts (sorted, disjoint) with QI
+// 0, the parts between them kHidden.
+void appendPieces(LineSet& lines, std::uint32_t edge, std::span<const Interval> visible);
+
+// Two drawings of the same curves (both with curvePlaces), sampled differently: the drawn
+// one (an algorithm's) against the exact one. They are compared at equal running
+// coordinates along each curve, every quarter pixel: a point drawn visible is right when
+// the exact drawing shows the curve there within kCurveTolerancePixels of it; a point the
+// exact drawing shows is missed unless the drawn one shows it so. A curve drawn through
+// the wrong place (a spike cut off by coarse sampling) is then wrongly drawn where it is
+// and wrongly hidden where it should be. Lengths in pixels; the picture as lineErrorMap's.
+inline constexpr double kCurveTolerancePixels = 0.5;
+struct CurveComparison {
+  LineError error;
+  std::vector<std::uint8_t> errorMap;
+};
+CurveComparison compareCurveDrawings(const LineSet& drawn, const LineSet& exact, std::span<const EdgeVisibility> exactVisibility);
 
 }  // namespace hsr

@@ -344,6 +344,7 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
   solid.kind = Solid::Kind::heightField;
   solid.footprint = size2();
   const glm::ivec2 cells = segments2(shape == "grid" ? 1 : 64);
+  solid.cells = cells;
   if (shape == "grid") {
     solid.function = {"waves", 0.0, 1.0};
     return std::make_shared<const Mesh>(makeGrid(solid.footprint, cells.x, cells.y));

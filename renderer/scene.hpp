@@ -63,6 +63,7 @@ struct Solid {
   double radius = 0, height = 0;  // sphere (radius), cylinder and cone (both)
   dvec2 footprint{0};            // height field: extent in x and z, centered
   HeightFunction function;       // height field: f (a grid has amplitude 0)
+  glm::ivec2 cells{0};           // height field: its grid's cells in x and z
 };
 
 struct SceneObject {

@@ -1,0 +1,225 @@
+#include "algorithms/floating_horizon/floating_horizon.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "algorithms/floating_horizon/curves.hpp"
+
+namespace hsr::floating_horizon {
+
+namespace {
+
+// The upper and lower horizons, in pixel coordinates (y grows down the image, so the
+// upper horizon is the smallest y drawn so far). Each is known at the centers of
+// `columns` equal screen columns and taken as straight between them; beyond the first
+// and last centers it stays level.
+class Horizons {
+ public:
+  Horizons(int columns, double width, bool keepLower)
+      : spacing_(width / columns),
+        keepLower_(keepLower),
+        upper_(std::size_t(columns), kNothingDrawn),
+        lower_(std::size_t(columns), -kNothingDrawn) {}
+
+  // Step 3: visible above the upper horizon, or below the lower one.
+  bool visible(const dvec2& p) const { return p.y < at(upper_, p.x) || (keepLower_ && p.y > at(lower_, p.x)); }
+
+  // Step 4 with interpolation: the parts of segment a-b (parameter t in [0, 1]) that are
+  // visible. Between consecutive column centers both horizons are straight, as is the
+  // segment, so visibility changes at most once per horizon there, where they cross.
+  std::vector<Interval> visibleParts(const dvec2& a, const dvec2& b, std::int64_t& crossings) const {
+    std::vector<double> breaks = {0.0};
+    forEachCenterBetween(a.x, b.x, [&](std::size_t, double x) { breaks.push_back((x - a.x) / (b.x - a.x)); });
+    breaks.push_back(1.0);
+    if (b.x < a.x) std::sort(breaks.begin(), breaks.end());
+    std::vector<Interval> parts;
+    const auto add = [&](double from, double to) {
+      if (to <= from) return;
+      if (!parts.empty() && parts.back().end >= from)
+        parts.back().end = std::max(parts.back().end, to);
+      else
+        parts.push_back({from, to});
+    };
+    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+      const double t0 = breaks[i], t1 = breaks[i + 1];
+      const dvec2 p0 = a + t0 * (b - a), p1 = a + t1 * (b - a);
+      // Above the upper horizon where y - upper < 0; below the lower one where y - lower > 0.
+      const Interval above = signedPart(t0, t1, at(upper_, p0.x) - p0.y, at(upper_, p1.x) - p1.y, crossings);
+      const Interval below = keepLower_ ? signedPart(t0, t1, p0.y - at(lower_, p0.x), p1.y - at(lower_, p1.x), crossings)
+                                        : Interval{t0, t0};
+      // Between the horizons is hidden, so the two parts are disjoint: add them in order.
+      const bool aboveFirst = above.begin <= below.begin;
+      add(aboveFirst ? above.begin : below.begin, aboveFirst ? above.end : below.end);
+      add(aboveFirst ? below.begin : above.begin, aboveFirst ? below.end : above.end);
+    }
+    return parts;
+  }
+
+  // Step 5: the horizons take in segment a-b at every column center it spans.
+  void raise(const dvec2& a, const dvec2& b) {
+    forEachCenterBetween(a.x, b.x, [&](std::size_t column, double x) {
+      const double y = a.y + (x - a.x) / (b.x - a.x) * (b.y - a.y);
+      upper_[column] = std::min(upper_[column], y);
+      lower_[column] = std::max(lower_[column], y);
+    });
+  }
+
+ private:
+  // Far beyond any image: "nothing drawn in this column yet". Finite, so interpolating
+  // toward it stays arithmetic.
+  static constexpr double kNothingDrawn = 1e300;
+
+  double at(const std::vector<double>& horizon, double x) const {
+    const double column = std::clamp(x / spacing_ - 0.5, 0.0, double(horizon.size() - 1));
+    const std::size_t left = std::min(static_cast<std::size_t>(column), horizon.size() - 1);
+    const std::size_t right = std::min(left + 1, horizon.size() - 1);
+    const double f = column - double(left);
+    return f == 0 ? horizon[left] : (1 - f) * horizon[left] + f * horizon[right];
+  }
+
+  // visit(column, x) for each column center x strictly between x0 and x1 (either order),
+  // or at one of them.
+  template <typename Visit>
+  void forEachCenterBetween(double x0, double x1, Visit visit) const {
+    const double lo = std::min(x0, x1), hi = std::max(x0, x1);
+    if (!(hi > lo)) return;  // a vertical segment meets no center line, except by chance
+    const double first = std::max(0.0, std::ceil(lo / spacing_ - 0.5));
+    const double last = std::min(double(upper_.size() - 1), std::floor(hi / spacing_ - 0.5));
+    for (double column = first; column <= last; ++column) visit(static_cast<std::size_t>(column), (column + 0.5) * spacing_);
+  }
+
+  // Where, in [t0, t1], a quantity going linearly from g0 to g1 is positive.
+  static Interval signedPart(double t0, double t1, double g0, double g1, std::int64_t& crossings) {
+    if (g0 > 0 && g1 > 0) return {t0, t1};
+    if (!(g0 > 0) && !(g1 > 0)) return {t0, t0};
+    ++crossings;
+    const double t = t0 + (t1 - t0) * g0 / (g0 - g1);
+    return g0 > 0 ? Interval{t0, t} : Interval{t, t1};
+  }
+
+  double spacing_;
+  bool keepLower_;
+  std::vector<double> upper_, lower_;
+};
+
+// One sampled point of a curve.
+struct Sample {
+  double along;   // running coordinate on the curve
+  dvec3 world;
+  dvec2 pixel;
+  bool defined;   // f is defined there (and it lies beyond the near plane)
+};
+
+class FloatingHorizon {
+ public:
+  FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
+      : view_(scene),
+        knobs_(knobs),
+        stats_(stats),
+        horizons_(knobs.columns, double(scene.width()), knobs.lowerHorizon) {
+    lines_.width = scene.width();
+    lines_.height = scene.height();
+    stats.add("horizon columns", knobs.columns);
+  }
+
+  LineSet run() {
+    // Step 1: the order. Each row is drawn after the cross pieces between it and the row
+    // in front, which lie in front of it.
+    const CurveLayout layout = view_.layout(knobs_.mesh);
+    const CurveFamily& rows = layout.rows;
+    const CurveFamily& cross = layout.cross;
+    stats_.add("curves", static_cast<std::int64_t>(layout.curveCount()));
+    const dvec2 half = view_.halfFootprint();
+    // Step 2: the samples; a mesh's curves also pass through every crossing with the other family.
+    const std::vector<double> alongRows = coordinatesAcross(half[1 - rows.fixedAxis], knobs_.samples, cross.positions);
+    const std::vector<double> alongCross = coordinatesAcross(half[rows.fixedAxis], knobs_.samples, rows.positions);
+    std::vector<std::vector<Sample>> crossSamples;
+    for (const double position : cross.positions) crossSamples.push_back(sample(cross, position, alongCross));
+
+    for (std::size_t row = 0; row < rows.positions.size(); ++row) {
+      if (row > 0)
+        for (std::size_t c = 0; c < cross.positions.size(); ++c) {
+          const auto [from, to] = std::minmax(rows.positions[row - 1], rows.positions[row]);
+          std::vector<Sample> piece;
+          for (const Sample& s : crossSamples[c])
+            if (s.along >= from && s.along <= to) piece.push_back(s);
+          drawCurve(cross, cross.positions[c], rows.positions.size() + c, piece);
+        }
+      drawCurve(rows, rows.positions[row], row, sample(rows, rows.positions[row], alongRows));
+    }
+    stats_.add("horizon crossings", crossings_);
+    return std::move(lines_);
+  }
+
+ private:
+  std::vector<Sample> sample(const CurveFamily& family, double position, const std::vector<double>& along) {
+    std::vector<Sample> samples;
+    samples.reserve(along.size());
+    for (const double a : along) {
+      const dvec2 ground = SurfaceView::ground(family, position, a);
+      const double h = view_.height(ground);
+      Sample s{a, dvec3(0), dvec2(0), !std::isnan(h)};
+      if (s.defined) {
+        s.world = view_.world(ground, h);
+        s.pixel = view_.camera().pixelFromClip(view_.camera().clipFromWorld(s.world));
+      }
+      samples.push_back(s);
+    }
+    stats_.add("samples", static_cast<std::int64_t>(samples.size()));
+    stats_.add("undefined samples", std::count_if(samples.begin(), samples.end(), [](const Sample& s) { return !s.defined; }));
+    return samples;
+  }
+
+  // Steps 3 to 5 for one curve: every segment is tested against the horizons as the
+  // curves in front left them, and only then does the curve raise them.
+  void drawCurve(const CurveFamily& family, double position, std::size_t curve, const std::vector<Sample>& samples) {
+    std::vector<std::pair<dvec2, dvec2>> drawn;
+    for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
+      const Sample &a = samples[i], &b = samples[i + 1];
+      if (!a.defined || !b.defined) continue;
+      // A hole or a jump between the samples: nothing is drawn across it, and it raises
+      // no horizon (the near-vertical chord would hide what lies behind the gap).
+      if (view_.breaksBetween(SurfaceView::ground(family, position, a.along), SurfaceView::ground(family, position, b.along))) {
+        stats_.add("breaks", 1);
+        continue;
+      }
+      std::vector<Interval> visible;
+      if (knobs_.interpolate) {
+        visible = horizons_.visibleParts(a.pixel, b.pixel, crossings_);
+      } else if (horizons_.visible(a.pixel) && horizons_.visible(b.pixel)) {
+        visible = {{0.0, 1.0}};
+      } else if (horizons_.visible(a.pixel) || horizons_.visible(b.pixel)) {
+        stats_.add("segments dropped", 1);  // the classic ragged end: visibility changes between samples
+      }
+      addEdge(a, b, static_cast<std::uint32_t>(curve), visible);
+      drawn.emplace_back(a.pixel, b.pixel);
+    }
+    for (const auto& [a, b] : drawn) horizons_.raise(a, b);
+  }
+
+  // The segment a-b as an edge of the drawing: its visible parts, and hidden ones between.
+  void addEdge(const Sample& a, const Sample& b, std::uint32_t curve, const std::vector<Interval>& visible) {
+    const auto edge = static_cast<std::uint32_t>(lines_.edges.size());
+    lines_.edges.push_back(projectEdge(view_.camera(), a.world, b.world, EdgeKind::curve));
+    lines_.curvePlaces.push_back({curve, a.along, b.along});
+    appendPieces(lines_, edge, visible);
+  }
+
+  SurfaceView view_;
+  const Knobs& knobs_;
+  Stats& stats_;
+  Horizons horizons_;
+  LineSet lines_;
+  std::int64_t crossings_ = 0;
+};
+
+}  // namespace
+
+std::string refusal(const PreparedScene& scene) { return viewRefusal(scene); }
+
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
+  const PhaseTimer timer(stats, "floating horizon");
+  return FloatingHorizon(scene, knobs, stats).run();
+}
+
+}  // namespace hsr::floating_horizon
