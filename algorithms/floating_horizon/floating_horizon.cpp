@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "algorithms/floating_horizon/curves.hpp"
 
@@ -10,16 +11,23 @@ namespace hsr::floating_horizon {
 namespace {
 
 // The upper and lower horizons, in pixel coordinates (y grows down the image, so the
-// upper horizon is the smallest y drawn so far). Each is known at the centers of
-// `columns` equal screen columns and taken as straight between them; beyond the first
-// and last centers it stays level.
+// upper horizon is the smallest y drawn so far). Each is known at the centers of equal
+// screen columns, `columns` of them across the image, and taken as straight between
+// them. They extend past the image's sides as far as the drawing does (at most
+// kMaxWidths image widths each way), since what is hidden there counts too.
 class Horizons {
  public:
-  Horizons(int columns, double width, bool keepLower)
-      : spacing_(width / columns),
-        keepLower_(keepLower),
-        upper_(std::size_t(columns), kNothingDrawn),
-        lower_(std::size_t(columns), -kNothingDrawn) {}
+  static constexpr double kMaxWidths = 16;
+
+  Horizons(int columns, double width, double drawnFrom, double drawnTo, bool keepLower)
+      : spacing_(width / columns), keepLower_(keepLower) {
+    const double from = std::max(drawnFrom, -kMaxWidths * width), to = std::min(drawnTo, (kMaxWidths + 1) * width);
+    first_ = std::floor(from / spacing_ - 0.5);
+    const double count = std::max(1.0, std::ceil(to / spacing_ - 0.5) - first_ + 1);
+    upper_.assign(static_cast<std::size_t>(count), kNothingDrawn);
+    lower_.assign(upper_.size(), -kNothingDrawn);
+  }
+  std::size_t columnCount() const { return upper_.size(); }
 
   // Step 3: visible above the upper horizon, or below the lower one.
   bool visible(const dvec2& p) const { return p.y < at(upper_, p.x) || (keepLower_ && p.y > at(lower_, p.x)); }
@@ -69,8 +77,9 @@ class Horizons {
   // toward it stays arithmetic.
   static constexpr double kNothingDrawn = 1e300;
 
+  // The center of column i (counted from the first kept) is at (first_ + i + 0.5) spacing_.
   double at(const std::vector<double>& horizon, double x) const {
-    const double column = std::clamp(x / spacing_ - 0.5, 0.0, double(horizon.size() - 1));
+    const double column = std::clamp(x / spacing_ - 0.5 - first_, 0.0, double(horizon.size() - 1));
     const std::size_t left = std::min(static_cast<std::size_t>(column), horizon.size() - 1);
     const std::size_t right = std::min(left + 1, horizon.size() - 1);
     const double f = column - double(left);
@@ -83,9 +92,10 @@ class Horizons {
   void forEachCenterBetween(double x0, double x1, Visit visit) const {
     const double lo = std::min(x0, x1), hi = std::max(x0, x1);
     if (!(hi > lo)) return;  // a vertical segment meets no center line, except by chance
-    const double first = std::max(0.0, std::ceil(lo / spacing_ - 0.5));
-    const double last = std::min(double(upper_.size() - 1), std::floor(hi / spacing_ - 0.5));
-    for (double column = first; column <= last; ++column) visit(static_cast<std::size_t>(column), (column + 0.5) * spacing_);
+    const double first = std::max(0.0, std::ceil(lo / spacing_ - 0.5 - first_));
+    const double last = std::min(double(upper_.size() - 1), std::floor(hi / spacing_ - 0.5 - first_));
+    for (double column = first; column <= last; ++column)
+      visit(static_cast<std::size_t>(column), (first_ + column + 0.5) * spacing_);
   }
 
   // Where, in [t0, t1], a quantity going linearly from g0 to g1 is positive.
@@ -99,6 +109,7 @@ class Horizons {
 
   double spacing_;
   bool keepLower_;
+  double first_ = 0;  // the first kept column's index, counted from the image's left side
   std::vector<double> upper_, lower_;
 };
 
@@ -113,29 +124,32 @@ struct Sample {
 class FloatingHorizon {
  public:
   FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
-      : view_(scene),
-        knobs_(knobs),
-        stats_(stats),
-        horizons_(knobs.columns, double(scene.width()), knobs.lowerHorizon) {
+      : view_(scene), knobs_(knobs), stats_(stats), layout_(view_.layout(knobs.mesh)) {
     lines_.width = scene.width();
     lines_.height = scene.height();
-    stats.add("horizon columns", knobs.columns);
   }
 
   LineSet run() {
-    // Step 1: the order. Each row is drawn after the cross pieces between it and the row
-    // in front, which lie in front of it.
-    const CurveLayout layout = view_.layout(knobs_.mesh);
-    const CurveFamily& rows = layout.rows;
-    const CurveFamily& cross = layout.cross;
-    stats_.add("curves", static_cast<std::int64_t>(layout.curveCount()));
-    const dvec2 half = view_.halfFootprint();
+    const CurveFamily& rows = layout_.rows;
+    const CurveFamily& cross = layout_.cross;
+    stats_.add("curves", static_cast<std::int64_t>(layout_.curveCount()));
     // Step 2: the samples; a mesh's curves also pass through every crossing with the other family.
+    const dvec2 half = view_.halfFootprint();
     const std::vector<double> alongRows = coordinatesAcross(half[1 - rows.fixedAxis], knobs_.samples, cross.positions);
     const std::vector<double> alongCross = coordinatesAcross(half[rows.fixedAxis], knobs_.samples, rows.positions);
-    std::vector<std::vector<Sample>> crossSamples;
+    std::vector<std::vector<Sample>> rowSamples, crossSamples;
+    for (const double position : rows.positions) rowSamples.push_back(sample(rows, position, alongRows));
     for (const double position : cross.positions) crossSamples.push_back(sample(cross, position, alongCross));
+    double drawnFrom = 0, drawnTo = lines_.width;
+    for (const auto* family : {&rowSamples, &crossSamples})
+      for (const std::vector<Sample>& curve : *family)
+        for (const Sample& s : curve)
+          if (s.defined) drawnFrom = std::min(drawnFrom, s.pixel.x), drawnTo = std::max(drawnTo, s.pixel.x);
+    horizons_.emplace(knobs_.columns, double(lines_.width), drawnFrom, drawnTo, knobs_.lowerHorizon);
+    stats_.add("horizon columns", static_cast<std::int64_t>(horizons_->columnCount()));
 
+    // Step 1: the order. Each row is drawn after the cross pieces between it and the row
+    // in front, which lie in front of it.
     for (std::size_t row = 0; row < rows.positions.size(); ++row) {
       if (row > 0)
         for (std::size_t c = 0; c < cross.positions.size(); ++c) {
@@ -145,7 +159,7 @@ class FloatingHorizon {
             if (s.along >= from && s.along <= to) piece.push_back(s);
           drawCurve(cross, cross.positions[c], rows.positions.size() + c, piece);
         }
-      drawCurve(rows, rows.positions[row], row, sample(rows, rows.positions[row], alongRows));
+      drawCurve(rows, rows.positions[row], row, rowSamples[row]);
     }
     stats_.add("horizon crossings", crossings_);
     return std::move(lines_);
@@ -185,16 +199,16 @@ class FloatingHorizon {
       }
       std::vector<Interval> visible;
       if (knobs_.interpolate) {
-        visible = horizons_.visibleParts(a.pixel, b.pixel, crossings_);
-      } else if (horizons_.visible(a.pixel) && horizons_.visible(b.pixel)) {
+        visible = horizons_->visibleParts(a.pixel, b.pixel, crossings_);
+      } else if (horizons_->visible(a.pixel) && horizons_->visible(b.pixel)) {
         visible = {{0.0, 1.0}};
-      } else if (horizons_.visible(a.pixel) || horizons_.visible(b.pixel)) {
+      } else if (horizons_->visible(a.pixel) || horizons_->visible(b.pixel)) {
         stats_.add("segments dropped", 1);  // the classic ragged end: visibility changes between samples
       }
       addEdge(a, b, static_cast<std::uint32_t>(curve), visible);
       drawn.emplace_back(a.pixel, b.pixel);
     }
-    for (const auto& [a, b] : drawn) horizons_.raise(a, b);
+    for (const auto& [a, b] : drawn) horizons_->raise(a, b);
   }
 
   // The segment a-b as an edge of the drawing: its visible parts, and hidden ones between.
@@ -208,7 +222,8 @@ class FloatingHorizon {
   SurfaceView view_;
   const Knobs& knobs_;
   Stats& stats_;
-  Horizons horizons_;
+  CurveLayout layout_;
+  std::optional<Horizons> horizons_;  // once the drawing's extent is known
   LineSet lines_;
   std::int64_t crossings_ = 0;
 };
