@@ -97,6 +97,16 @@ std::string lineErrorWithinATenthOfAPercent(const GoldenCase& golden, const Prep
          " px, of " + std::to_string(error.visibleLength) + " px visible";
 }
 
+// The floating horizon's drawing against the exact drawing of the same curves: within the
+// 10% its hardest shipped case (the mesh on the edge-on ripple, 8.8% at 320 wide) is documented to stay within
+// (algorithms/floating_horizon/README.md).
+std::string curveErrorWithinItsDocumentedBound(const GoldenCase& golden, const PreparedScene& scene, const Frame&) {
+  Stats stats;
+  const LineSet lines = golden.entry().drawLines(scene, golden.values(), 1, stats);
+  const LineError error = golden.entry().judgeLines(scene, golden.values(), lines, 2, stats).error;
+  return error.error <= 0.10 ? "" : "line error " + std::to_string(100 * error.error) + "% against the exact drawing";
+}
+
 const std::vector<GoldenCase>& goldenCases() {
   static const std::vector<GoldenCase> cases = {
         {"zbuffer", "zbuffer", "zbuffer", {},
@@ -117,6 +127,8 @@ const std::vector<GoldenCase>& goldenCases() {
         {"painter_sort", "painter-sort", "painter", {{"variant", "sort"}}, sameBitsOnThreeThreads},
         {"roberts", "roberts", "roberts", {}, lineErrorWithinATenthOfAPercent},
         {"appel", "appel", "appel", {}, lineErrorWithinATenthOfAPercent},
+        {"floating_horizon", "floating_horizon", "floating_horizon", {}, curveErrorWithinItsDocumentedBound},
+        {"floating_horizon_mesh", "floating_horizon-mesh", "floating_horizon", {{"mesh", "on"}}, curveErrorWithinItsDocumentedBound},
   };
   return cases;
 }
@@ -131,6 +143,11 @@ TEST_P(Golden, MatchesTheGoldenImage) {
   prepared.setSize(kGoldenWidth, std::max(1, kGoldenWidth * scene.height / scene.width));
   if (const std::string refusal = golden.entry().refusal(prepared, golden.values()); !refusal.empty())
     GTEST_SKIP() << golden.name << " refuses this scene: " << refusal;
+  // A scene the floating horizon draws is a function plot, made for it: the other
+  // algorithms' goldens cover the scenes of solids.
+  const AlgorithmEntry& floatingHorizon = findAlgorithm("floating_horizon");
+  if (golden.algorithm != floatingHorizon.name && floatingHorizon.refusal(prepared, resolveKnobs(floatingHorizon, {})).empty())
+    GTEST_SKIP() << "a function plot: the floating horizon's scene";
   const Frame frame = golden.render(prepared, 1);
   const std::filesystem::path path = test::sourcePath("images/golden/" + golden.folder + "/" + name + ".png");
 
