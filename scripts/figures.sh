@@ -53,5 +53,20 @@ mkdir -p images/figures/lines
   -o images/figures/lines/junctions-roberts.png
 ./build/hsr render scenes/hard/torus.toml --algo appel --line-style qi --size 480x360 -o images/figures/lines/torus-qi.png
 ./build/hsr render scenes/dragon.toml --algo appel --knob surfaces=any --size 960x540 -o images/figures/lines/dragon-appel.png
+# The floating horizon: the ripple as rows and as a mesh, its lessons as error maps, the
+# sweep at 1280 wide, and gnuplot's hidden3d beside it (bench/gnuplot_peer keeps both).
+mkdir -p images/figures/floating_horizon
+./build/hsr render scenes/ripple.toml --algo floating_horizon -o "$study/rows.png"
+./build/hsr render scenes/ripple.toml --algo floating_horizon --knob mesh=on -o "$study/mesh.png"
+oiiotool "$study/rows.png" "$study/mesh.png" --mosaic 2x1 -o images/figures/floating_horizon/ripple.png
+./build/hsr compare scenes/ripple.toml scenes/hard/fh_below_first.toml --size 480x360 --repeat 1 \
+  --algos "floating_horizon,floating_horizon:samples=5%:interpolate=off,floating_horizon:lower=off" --out "$study" > /dev/null
+cp "$study/contact_sheet.png" images/figures/floating_horizon/lessons.png
+./build/hsr sweep scenes/ripple.toml --algo floating_horizon --size 1280x960 --knob columns=10%,25%,100%,200% \
+  --knob samples=2%,5%,10%,25%,100% --knob interpolate=on,off --repeat 3 --threads 1 --out "$study" > /dev/null
+cp "$study/sweep.png" images/figures/floating_horizon/sweep-ripple-1280.png
+./build/bench/gnuplot_peer --runs 5 --out "$study" > /dev/null
+oiiotool "$study/ripple40_gnuplot.png" "$study/ripple40_hsr.png" "$study/ripple100_gnuplot.png" "$study/ripple100_hsr.png" \
+  --mosaic 2x2 -o images/figures/floating_horizon/gnuplot-side-by-side.png
 rm -r "$study"
 echo "figures are in images/figures/"

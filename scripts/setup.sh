@@ -12,7 +12,8 @@ packages=(
   libtomlplusplus-dev          # TOML scenes
   libcli11-dev                 # the hsr command line
   libgmp-dev                   # exact rational arithmetic in the reference
-  gnuplot-nox                  # hsr sweep's plots
+  gnuplot-nox                  # hsr sweep's plots; the floating horizon's peer (bench/gnuplot_peer)
+  openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
   fonts-dejavu-core            # labels on hsr compare's contact sheet
   libgtest-dev libgmock-dev    # tests
   libbenchmark-dev             # bench/
