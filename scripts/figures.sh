@@ -66,7 +66,7 @@ cp "$study/contact_sheet.png" images/figures/floating_horizon/lessons.png
   --knob samples=2%,5%,10%,25%,100% --knob interpolate=on,off --repeat 3 --threads 1 --out "$study" > /dev/null
 cp "$study/sweep.png" images/figures/floating_horizon/sweep-ripple-1280.png
 ./build/bench/gnuplot_peer --runs 5 --out "$study" > /dev/null
-oiiotool "$study/ripple40_gnuplot.png" "$study/ripple40_hsr.png" "$study/ripple100_gnuplot.png" "$study/ripple100_hsr.png" \
+oiiotool "$study/ripple40_gnuplot.png" "$study/ripple40_hsr.png" --ch R,G,B "$study/ripple100_gnuplot.png" "$study/ripple100_hsr.png" --ch R,G,B \
   --mosaic 2x2 -o images/figures/floating_horizon/gnuplot-side-by-side.png
 rm -r "$study"
 echo "figures are in images/figures/"

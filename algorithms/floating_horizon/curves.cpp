@@ -67,9 +67,9 @@ double SurfaceView::height(const dvec2& ground) const {
   return h;
 }
 
-bool SurfaceView::breaksBetween(const dvec2& p, const dvec2& q) const {
+bool SurfaceView::breaksBetween(const dvec2& p, double heightP, const dvec2& q, double heightQ) const {
   dvec2 a = p, b = q;
-  double ha = height(a), hb = height(b);
+  double ha = heightP, hb = heightQ;
   dvec2 middle = 0.5 * (a + b);
   double hm = height(middle);
   if (std::isnan(ha) || std::isnan(hb) || std::isnan(hm)) return true;

@@ -49,7 +49,9 @@ class SurfaceView {
   // A jump is told from a steep slope by bisection: following the half where the height
   // changes more, a continuous function's change shrinks with the interval, a jump's
   // does not. Costs one evaluation of f where the middle lies near the chord.
-  bool breaksBetween(const dvec2& p, const dvec2& q) const;
+  bool breaksBetween(const dvec2& p, const dvec2& q) const { return breaksBetween(p, height(p), q, height(q)); }
+  // The same, with the heights at p and q already known.
+  bool breaksBetween(const dvec2& p, double heightP, const dvec2& q, double heightQ) const;
 
   // The curves and their front-to-back order for this view (see refusal for when one exists).
   CurveLayout layout(bool mesh) const;

@@ -116,6 +116,7 @@ class Horizons {
 // One sampled point of a curve.
 struct Sample {
   double along;   // running coordinate on the curve
+  double height;  // f there
   dvec3 world;
   dvec2 pixel;
   bool defined;   // f is defined there (and it lies beyond the near plane)
@@ -172,7 +173,7 @@ class FloatingHorizon {
     for (const double a : along) {
       const dvec2 ground = SurfaceView::ground(family, position, a);
       const double h = view_.height(ground);
-      Sample s{a, dvec3(0), dvec2(0), !std::isnan(h)};
+      Sample s{a, h, dvec3(0), dvec2(0), !std::isnan(h)};
       if (s.defined) {
         s.world = view_.world(ground, h);
         s.pixel = view_.camera().pixelFromClip(view_.camera().clipFromWorld(s.world));
@@ -193,7 +194,8 @@ class FloatingHorizon {
       if (!a.defined || !b.defined) continue;
       // A hole or a jump between the samples: nothing is drawn across it, and it raises
       // no horizon (the near-vertical chord would hide what lies behind the gap).
-      if (view_.breaksBetween(SurfaceView::ground(family, position, a.along), SurfaceView::ground(family, position, b.along))) {
+      if (view_.breaksBetween(SurfaceView::ground(family, position, a.along), a.height,
+                              SurfaceView::ground(family, position, b.along), b.height)) {
         stats_.add("breaks", 1);
         continue;
       }
