@@ -12,7 +12,12 @@ namespace {
 
 LineStyle lineStyleOf(const std::string& name, bool lineAlgorithm) {
   if (name.empty()) return LineStyle::visible;
-  if (!lineAlgorithm) throw InputError("--line-style " + name + ": applies only to line algorithms (appel, roberts)");
+  if (!lineAlgorithm) {
+    std::string names;
+    for (const AlgorithmEntry& entry : algorithms())
+      if (entry.kind == "line") names += (names.empty() ? "" : ", ") + entry.name;
+    throw InputError("--line-style " + name + ": applies only to line algorithms (" + names + ")");
+  }
   if (name == "visible") return LineStyle::visible;
   if (name == "hidden") return LineStyle::hidden;
   if (name == "qi") return LineStyle::qi;

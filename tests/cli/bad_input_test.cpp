@@ -93,7 +93,7 @@ INSTANTIATE_TEST_SUITE_P(
              "march ray casting would run 640 x 480 pixels x"},
         Case{"svg-for-surface-algorithm", kCube + " -o OUT.svg", "SVG is for line drawings, and zbuffer draws surfaces; expected a .png file"},
         Case{"line-style-for-surface-algorithm", kCube + " --line-style hidden -o OUT",
-             "--line-style hidden: applies only to line algorithms (appel, roberts)"},
+             "--line-style hidden: applies only to line algorithms (roberts, appel, floating_horizon)"},
         Case{"line-style-unknown", kCube + " --algo appel --line-style dotted -o OUT", "--line-style dotted: expected visible, hidden or qi"},
         Case{"depth-image-of-a-drawing", kCube + " --algo roberts --depth OUT.exr -o OUT",
              "--depth: roberts draws lines, which have no depth or id image"},
@@ -103,6 +103,13 @@ INSTANTIATE_TEST_SUITE_P(
              write("fine-sphere.toml", kCamera + "[[objects]]\nname = \"ball\"\nshape = \"sphere\"\nsegments = 128\nrings = 64\n") +
                  " --algo roberts -o OUT",
              "object 'ball' has 16128 triangles, more than the 8192 a Roberts body may have"},
+        Case{"floating-horizon-not-a-height-field", kCube + " --algo floating_horizon -o OUT",
+             "floating_horizon cannot render it: the floating horizon draws one height-field object"},
+        Case{"floating-horizon-eye-above-the-footprint",
+             write("plot-from-above.toml", "[camera]\neye = [0, 10, 0.5]\ntarget = [0, 0, 0]\n"
+                                           "[[objects]]\nshape = \"heightfield\"\nfunction = \"gauss\"\n") +
+                 " --algo floating_horizon -o OUT",
+             "under perspective the floating horizon needs the eye outside the height field's footprint"},
         Case{"appel-open-surface", std::string(HSR_SOURCE_DIR) + "/scenes/hard/coplanar.toml --algo appel -o OUT",
              "bounds one triangle (the surface is open); quantitative invisibility by front faces needs closed"},
         Case{"appel-interpenetrating", std::string(HSR_SOURCE_DIR) + "/scenes/hard/box_junctions.toml --algo appel -o OUT",
