@@ -54,12 +54,6 @@ void addWall(Mesh& mesh, std::uint32_t lower, std::uint32_t upper, int segments)
   }
 }
 
-// n + 1 evenly spaced coordinates across a centered extent.
-std::vector<double> evenlySpaced(double extent, int n) {
-  std::vector<double> coordinates(std::size_t(n) + 1);
-  for (int i = 0; i <= n; ++i) coordinates[std::size_t(i)] = extent * (double(i) / n - 0.5);
-  return coordinates;
-}
 
 }  // namespace
 
@@ -123,6 +117,12 @@ Mesh makeFrustum(double bottomRadius, double topRadius, double height, int segme
 Mesh makeCylinder(double radius, double height, int segments) { return makeFrustum(radius, radius, height, segments); }
 
 Mesh makeCone(double radius, double height, int segments) { return makeFrustum(radius, 0, height, segments); }
+
+std::vector<double> evenlySpaced(double extent, int n) {
+  std::vector<double> coordinates(std::size_t(n) + 1);
+  for (int i = 0; i <= n; ++i) coordinates[std::size_t(i)] = extent * (double(i) / n - 0.5);
+  return coordinates;
+}
 
 Lattice makeLattice(std::span<const double> us, std::span<const double> vs, const std::function<double(double, double)>& height,
                     const std::function<bool(dvec2, dvec2)>& broken) {

@@ -41,6 +41,9 @@ struct HeightFunction {
 const std::vector<std::string>& heightFunctionNames();
 Mesh makeHeightField(const dvec2& size, int segmentsX, int segmentsZ, const HeightFunction& function);
 
+// n + 1 evenly spaced coordinates across an extent centered at 0: a grid's lines.
+std::vector<double> evenlySpaced(double extent, int n);
+
 // A height field over the lattice us x vs (each ascending): lattice point (i, k) is the
 // vertex (us[i], height(us[i], vs[k]), vs[k]), rows of constant v one after the other,
 // and each cell is two triangles facing +y, split as the grid's. Where the height is

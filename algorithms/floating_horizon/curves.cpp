@@ -10,8 +10,6 @@ namespace hsr::floating_horizon {
 
 namespace {
 
-dmat3 linearPart(const dmat4& m) { return dmat3(m); }
-
 // The ground (object x, z) part of an object-space direction.
 dvec2 groundOf(const dvec3& direction) { return {direction.x, direction.z}; }
 
@@ -22,7 +20,7 @@ struct ObjectView {
 };
 
 ObjectView objectView(const CameraTransform& camera, const dmat4& worldFromObject) {
-  const dmat3 linear = linearPart(worldFromObject);
+  const dmat3 linear(worldFromObject);
   const dmat3 objectFromWorld = glm::inverse(linear);
   const dvec3 translation(worldFromObject[3]);
   return {objectFromWorld * (camera.camera().eye - translation), objectFromWorld * camera.forward(),
@@ -31,7 +29,7 @@ ObjectView objectView(const CameraTransform& camera, const dmat4& worldFromObjec
 
 }  // namespace
 
-std::string viewRefusal(const PreparedScene& scene) {
+std::string refusal(const PreparedScene& scene) {
   const std::vector<Instance>& instances = scene.instances();
   if (instances.size() != 1 || scene.scene().objects[instances[0].object].solid.kind != Solid::Kind::heightField)
     return "the floating horizon draws one height-field object (shape = \"heightfield\" or \"grid\", no copies); this scene has " +
@@ -98,15 +96,14 @@ CurveLayout SurfaceView::layout(bool mesh) const {
   dvec2 away = groundOf(view.forward);
   if (glm::length(away) <= 1e-12 * glm::length(view.forward)) away = groundOf(view.up);
   // The rows are the curves the view looks across. Under perspective only a family whose
-  // lines the eye lies beyond can be ordered front to back (viewRefusal).
+  // lines the eye lies beyond can be ordered front to back (refusal).
   int rowAxis = std::abs(away.x) > std::abs(away.y) ? 0 : 1;
   if (camera_.perspective() && !(std::abs(eye[rowAxis]) > half[rowAxis])) rowAxis = 1 - rowAxis;
 
   const auto family = [&](int fixedAxis) {
     CurveFamily result;
     result.fixedAxis = fixedAxis;
-    const int cells = solid_->cells[fixedAxis];
-    for (int i = 0; i <= cells; ++i) result.positions.push_back(solid_->footprint[fixedAxis] * (double(i) / cells - 0.5));
+    result.positions = evenlySpaced(solid_->footprint[fixedAxis], solid_->cells[fixedAxis]);  // the grid lines
     // Front first: nearest the eye under perspective, least far along `away` otherwise.
     const auto distance = [&](double position) {
       return camera_.perspective() ? std::abs(position - eye[fixedAxis]) : (away[fixedAxis] < 0 ? -position : position);

@@ -67,9 +67,6 @@ class SurfaceView {
   CameraTransform camera_;
 };
 
-// Why the floating horizon cannot draw this scene, or "".
-std::string viewRefusal(const PreparedScene& scene);
-
 // n evenly spaced coordinates over [-half, half], merged with `extra` (sorted, unique).
 std::vector<double> coordinatesAcross(double half, int n, const std::vector<double>& extra);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include "algorithms/floating_horizon/curves.hpp"
 
@@ -154,11 +155,13 @@ class FloatingHorizon {
     for (std::size_t row = 0; row < rows.positions.size(); ++row) {
       if (row > 0)
         for (std::size_t c = 0; c < cross.positions.size(); ++c) {
+          // The samples are in increasing `along` and include both rows' positions.
           const auto [from, to] = std::minmax(rows.positions[row - 1], rows.positions[row]);
-          std::vector<Sample> piece;
-          for (const Sample& s : crossSamples[c])
-            if (s.along >= from && s.along <= to) piece.push_back(s);
-          drawCurve(cross, cross.positions[c], rows.positions.size() + c, piece);
+          const std::vector<Sample>& curve = crossSamples[c];
+          const auto alongLess = [](const Sample& s, double along) { return s.along < along; };
+          const auto first = std::lower_bound(curve.begin(), curve.end(), from, alongLess);
+          const auto last = std::lower_bound(first, curve.end(), to, alongLess);
+          drawCurve(cross, cross.positions[c], rows.positions.size() + c, std::span<const Sample>(first, last + 1));
         }
       drawCurve(rows, rows.positions[row], row, rowSamples[row]);
     }
@@ -187,7 +190,7 @@ class FloatingHorizon {
 
   // Steps 3 to 5 for one curve: every segment is tested against the horizons as the
   // curves in front left them, and only then does the curve raise them.
-  void drawCurve(const CurveFamily& family, double position, std::size_t curve, const std::vector<Sample>& samples) {
+  void drawCurve(const CurveFamily& family, double position, std::size_t curve, std::span<const Sample> samples) {
     std::vector<std::pair<dvec2, dvec2>> drawn;
     for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
       const Sample &a = samples[i], &b = samples[i + 1];
@@ -231,8 +234,6 @@ class FloatingHorizon {
 };
 
 }  // namespace
-
-std::string refusal(const PreparedScene& scene) { return viewRefusal(scene); }
 
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
   const PhaseTimer timer(stats, "floating horizon");
