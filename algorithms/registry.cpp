@@ -77,16 +77,24 @@ AlgorithmEntry zbufferEntry() {
       {"variant", "full: whole-image depth buffer, tile-parallel; scanline: one row of depth, active-triangle list",
        {"full", "scanline"}},
       {"depth-format", "what the depth buffer stores (conventions.hpp)", depthFormatNames()},
+      {"depth-test", "off: no depth test, every fragment is drawn and the last triangle drawn at a pixel wins (wrong "
+       "wherever surfaces overlap; kept to show what the depth buffer buys)", {"on", "off"}},
   };
   entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
   entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
   entry.refusal = [](const PreparedScene& scene, const KnobValues&) { return transparencyRefusal(scene, "the z-buffer"); };
-  entry.render = [entry](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
-    zbuffer::Knobs typed;
-    typed.variant = choiceOf<zbuffer::Variant>(entry, values, "variant");
-    typed.depthFormat = choiceOf<DepthFormat>(entry, values, "depth-format");
-    return zbuffer::run(scene, typed, threads, stats);
+  const auto typed = [entry](const KnobValues& values) {
+    zbuffer::Knobs knobs;
+    knobs.variant = choiceOf<zbuffer::Variant>(entry, values, "variant");
+    knobs.depthFormat = choiceOf<DepthFormat>(entry, values, "depth-format");
+    knobs.depthTest = values.at("depth-test") == "on";
+    return knobs;
   };
+  entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
+    return zbuffer::run(scene, typed(values), threads, stats);
+  };
+  entry.renderVisible = [typed](const PreparedScene& scene, const KnobValues& values, const VisibleSet& visible, int threads,
+                                Stats& stats) { return zbuffer::run(scene, typed(values), threads, stats, &visible); };
   return entry;
 }
 
@@ -176,6 +184,8 @@ AlgorithmEntry painterEntry() {
   entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
     return painter::run(scene, typed(values), threads, stats);
   };
+  entry.renderVisible = [typed](const PreparedScene& scene, const KnobValues& values, const VisibleSet& visible, int threads,
+                                Stats& stats) { return painter::run(scene, typed(values), threads, stats, &visible); };
   return entry;
 }
 

@@ -14,6 +14,7 @@
 #include "renderer/lines.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/visible_set.hpp"
 
 namespace hsr {
 
@@ -67,6 +68,9 @@ struct AlgorithmEntry {
   };
   // threads: 0 = all cores. A line algorithm's frame is its drawing rasterized.
   std::function<Frame(const PreparedScene&, const KnobValues&, int threads, Stats&)> render;
+  // Surface algorithms that can draw just what culling stages kept (algorithms/culling,
+  // hsr render --cull): render, on those triangles only. Unset for the others.
+  std::function<Frame(const PreparedScene&, const KnobValues&, const VisibleSet&, int threads, Stats&)> renderVisible;
   // Line algorithms: the drawing itself, and how it is judged (by default, the line
   // reference on the drawing's own edges; a drawing of curves, against the exact drawing
   // of the same curves).

@@ -16,6 +16,7 @@ struct RenderOptions {
   int threads = 0;
   std::string output, depth, ids;
   std::string lineStyle;  // line algorithms: visible | hidden | qi (default visible)
+  std::string cull;       // culling stages before the algorithm: "backface,frustum:sphere"
   bool stats = false;
 };
 int render(const RenderOptions& options);

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   renderCommand->add_option("-o,--output", render.output, "color image (.png), or for a line algorithm a drawing (.svg)")->required();
   renderCommand->add_option("--line-style", render.lineStyle,
                             "line algorithms: visible (default), hidden (hidden parts dashed grey), qi (shade by quantitative invisibility)");
+  renderCommand->add_option("--cull", render.cull,
+                            "culling stages run before the algorithm, in order: STAGE[:VARIANT],... (see `hsr list`)");
   renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
   renderCommand->add_flag("--stats", render.stats, "print counters and phase times");

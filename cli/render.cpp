@@ -1,6 +1,7 @@
 // hsr render and hsr list.
 #include <cstdio>
 
+#include "algorithms/culling/culling.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "renderer/error.hpp"
@@ -24,6 +25,24 @@ LineStyle lineStyleOf(const std::string& name, bool lineAlgorithm) {
   throw InputError("--line-style " + name + ": expected visible, hidden or qi");
 }
 
+// The algorithms that can draw a culled set of triangles: "zbuffer or painter".
+std::string cullableAlgorithms() {
+  std::string names;
+  for (const AlgorithmEntry& entry : algorithms())
+    if (entry.renderVisible) names += (names.empty() ? "" : " or ") + entry.name;
+  return names;
+}
+
+// The culling stages asked for, checked against what the algorithm can take.
+culling::Pipeline cullingPipelineOf(const std::string& text, const AlgorithmEntry& algorithm) {
+  if (text.empty()) return {};
+  culling::Pipeline pipeline = culling::parsePipeline(text, "--cull");
+  if (!algorithm.renderVisible)
+    throw InputError("--cull: " + algorithm.name + " does not draw from a culled set of triangles; expected --algo " +
+                     cullableAlgorithms());
+  return pipeline;
+}
+
 }  // namespace
 
 int render(const RenderOptions& options) {
@@ -37,6 +56,7 @@ int render(const RenderOptions& options) {
   const bool lines = algorithm.kind == "line";
   const std::filesystem::path output = options.output;
   const LineStyle style = lineStyleOf(options.lineStyle, lines);
+  const culling::Pipeline pipeline = cullingPipelineOf(options.cull, algorithm);
   if (output.extension() == ".svg" && !lines)
     throw InputError("-o " + options.output + ": SVG is for line drawings, and " + algorithm.name +
                      " draws surfaces; expected a .png file");
@@ -53,6 +73,9 @@ int render(const RenderOptions& options) {
     const LineSet drawing = algorithm.drawLines(*scene.prepared, knobs, options.threads, stats);
     if (output.extension() == ".svg") outputs.addText(output, lineSetSvg(drawing, style));
     else outputs.addColorPng(output, lineSetFrame(drawing, style));
+  } else if (!pipeline.empty()) {
+    const VisibleSet visible = culling::runPipeline(*scene.prepared, pipeline, options.threads, stats);
+    frame = algorithm.renderVisible(*scene.prepared, knobs, visible, options.threads, stats);
   } else {
     frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
     outputs.addColorPng(output, frame);
@@ -83,6 +106,13 @@ int list() {
       std::printf("    --knob %s=%s   (default %s%s)\n      %s\n", knob.name.c_str(), choices.c_str(),
                   knob.choices.front().c_str(), applies.c_str(), knob.help.c_str());
     }
+  }
+  std::printf("culling stages (hsr render --cull STAGE[:VARIANT],...; before %s):\n", cullableAlgorithms().c_str());
+  for (const auto& stage : culling::stages()) {
+    std::printf("  %-12s %s\n", stage.name.c_str(), stage.summary.c_str());
+    for (const auto& [variant, help] : stage.variants)
+      std::printf("    %s:%-16s %s%s\n", stage.name.c_str(), variant.c_str(), help.c_str(),
+                  variant == stage.variants.front().first ? " (default)" : "");
   }
   std::printf("scenes (in %s):\n", HSR_SCENES_DIR);
   for (const auto& scene : shippedScenes()) std::printf("  %s\n", scene.string().c_str());

@@ -32,6 +32,30 @@ ClipVertex CameraTransform::clipFromWorld(const dvec3& p) const {
   return {scaleX_ * v.x, scaleY_ * v.y, d, perspective() ? d : 1.0};
 }
 
+dmat4 CameraTransform::clipFromWorldMatrix() const {
+  // Each clip coordinate is a scaled view axis applied to p - eye: a row (axis, -axis . eye).
+  const auto row = [&](const dvec3& axis, double scale) { return dvec4(axis * scale, -glm::dot(axis, camera_.eye) * scale); };
+  const dvec4 x = row(right_, scaleX_), y = row(up_, scaleY_), d = row(forward_, 1.0);
+  const dvec4 w = perspective() ? d : dvec4(0, 0, 0, 1);
+  return glm::transpose(dmat4(x, y, d, w));  // glm's constructor takes columns
+}
+
+std::array<Plane, 6> CameraTransform::frustumPlanes() const {
+  // Gribb and Hartmann: a point is inside the side -w <= x when (row w + row x) . (p, 1)
+  // >= 0, and so on; every side is a sum of rows, so its plane is read off the matrix.
+  // Here d itself is the distance along the view axis, so near <= d <= far are rows
+  // d - near and far - d (the same method, for a matrix that keeps d unprojected).
+  const dmat4 transposed = glm::transpose(clipFromWorldMatrix());  // its columns are the matrix's rows
+  const dvec4 x = transposed[0], y = transposed[1], d = transposed[2], w = transposed[3], one(0, 0, 0, 1);
+  const dvec4 sides[6] = {w + x, w - x, w + y, w - y, d - camera_.near * one, camera_.far * one - d};
+  std::array<Plane, 6> planes;
+  for (int i = 0; i < 6; ++i) {
+    const double length = glm::length(dvec3(sides[i]));
+    planes[i] = {dvec3(sides[i]) / length, sides[i].w / length};
+  }
+  return planes;
+}
+
 dvec2 CameraTransform::pixelFromClip(const ClipVertex& v) const {
   return {(v.x / v.w * 0.5 + 0.5) * width_, (0.5 - v.y / v.w * 0.5) * height_};
 }

@@ -2,6 +2,8 @@
 // Names say what they map (viewFromWorld: a world point into view space).
 #pragma once
 
+#include <array>
+
 #include "renderer/scene.hpp"
 
 namespace hsr {
@@ -14,6 +16,16 @@ struct ClipVertex {
   double x, y, d, w;
 };
 
+// The half-space normal . p + offset >= 0; with a unit normal, distance() is in world units.
+struct Plane {
+  dvec3 normal{0};
+  double offset = 0;
+  double distance(const dvec3& p) const { return glm::dot(normal, p) + offset; }
+};
+
+// The view volume's sides, in the order frustumPlanes() returns them.
+enum FrustumSide { kLeftSide, kRightSide, kBottomSide, kTopSide, kNearSide, kFarSide };
+
 struct Ray {
   dvec3 origin, direction;  // world space; direction not normalized
 };
@@ -25,6 +37,12 @@ class CameraTransform {
   // Rotation of (p - eye): subtracting the eye first keeps precision far from the origin.
   dvec3 viewFromWorld(const dvec3& p) const;
   ClipVertex clipFromWorld(const dvec3& p) const;
+  // clipFromWorld as one matrix: (x, y, d, w) = clipFromWorldMatrix() * (p, 1).
+  dmat4 clipFromWorldMatrix() const;
+  // The six planes bounding what the camera sees (the image's four sides, the near and
+  // far planes), inside >= 0, unit normals, extracted from the rows of the clip matrix
+  // (Gribb and Hartmann 2001); indexed by FrustumSide.
+  std::array<Plane, 6> frustumPlanes() const;
   // Pixel coordinates (x right, y down, conventions.hpp) of a clip vertex with w > 0.
   dvec2 pixelFromClip(const ClipVertex& v) const;
   // The world-space ray through a point in pixel coordinates: from the eye under

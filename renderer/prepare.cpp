@@ -3,10 +3,28 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "renderer/error.hpp"
 
 namespace hsr {
+namespace {
+
+// The box of the vertices, and the sphere about its center through the farthest one.
+// The radius is rounded up by far more than its own rounding error (a few units in the
+// last place of the distances): a sphere that misses a vertex by a rounding error would
+// let a culling stage drop a visible object.
+void setBounds(std::span<const dvec3> vertices, Instance& instance) {
+  for (const dvec3& p : vertices) instance.box.grow(p);
+  if (instance.box.empty()) return;
+  instance.sphereCenter = instance.box.center();
+  double farthest = 0;
+  for (const dvec3& p : vertices) farthest = std::max(farthest, glm::length(p - instance.sphereCenter));
+  const double magnitude = glm::length(glm::abs(instance.sphereCenter)) + farthest;
+  instance.sphereRadius = farthest + magnitude * 0x1p-40;
+}
+
+}  // namespace
 
 PreparedScene::PreparedScene(const Scene& scene) : PreparedScene(scene, {dmat4(1.0)}) {}
 
@@ -24,6 +42,9 @@ PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& scene
         const auto firstVertex = static_cast<std::uint32_t>(positions_.size());
         for (const dvec3& p : object.mesh->positions) positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
         Instance instance;
+        instance.firstVertex = firstVertex;
+        instance.vertexCount = static_cast<std::uint32_t>(object.mesh->positions.size());
+        setBounds(std::span(positions_).subspan(firstVertex), instance);
         instance.object = objectIndex;
         instance.copy = copy;
         instance.firstTriangle = static_cast<std::uint32_t>(triangles_.size());
@@ -111,6 +132,18 @@ const Bvh& PreparedScene::triangleBvh(Stats& stats) const {
     }
   });
   return triangleBvh_;
+}
+
+const Bvh& PreparedScene::objectBvh(Stats& stats) const {
+  std::call_once(objectBvhBuilt_, [&] {
+    PhaseTimer timer(stats, "object bvh build");
+    std::vector<Aabb> boxes;
+    boxes.reserve(instances_.size());
+    for (const Instance& instance : instances_) boxes.push_back(instance.box);
+    objectBvh_ = Bvh(boxes);
+    stats.add("object bvh nodes built", static_cast<std::int64_t>(objectBvh_.nodes().size()));
+  });
+  return objectBvh_;
 }
 
 const EdgeAdjacency& PreparedScene::edgeAdjacency(Stats& stats) const {

@@ -20,6 +20,13 @@ struct Instance {
   std::uint32_t copy = 0;           // index among the object's copies
   std::uint32_t firstTriangle = 0;  // global index of its first triangle
   std::uint32_t triangleCount = 0;
+  std::uint32_t firstVertex = 0;    // its vertices are positions()[firstVertex, firstVertex + vertexCount)
+  std::uint32_t vertexCount = 0;
+  // World-space bounds of its vertices, for the culling stages: the box is exact; the
+  // sphere is centered on the box and its radius rounded up, so both contain every vertex.
+  Aabb box;
+  dvec3 sphereCenter{0};
+  double sphereRadius = 0;
   vec3 color{0.8f};
   double opacity = 1;
   dmat4 worldFromObject{1.0};  // the copy's placement: its triangles are the object's mesh moved by it
@@ -69,6 +76,11 @@ class PreparedScene {
   };
   const std::vector<LeafTriangle>& leafTriangles(Stats& stats) const;
 
+  // A BVH over the instances' boxes (primitive i = instances()[i]) for culling whole
+  // objects hierarchically, built on first use (phase "object bvh build", counter
+  // "object bvh nodes built").
+  const Bvh& objectBvh(Stats& stats) const;
+
   // Edge and vertex adjacency for the line algorithms, built on first use (phase
   // "edge adjacency", counter "mesh edges built").
   const EdgeAdjacency& edgeAdjacency(Stats& stats) const;
@@ -84,6 +96,8 @@ class PreparedScene {
   mutable std::once_flag bvhBuilt_;
   mutable Bvh triangleBvh_;
   mutable std::vector<LeafTriangle> leafTriangles_;
+  mutable std::once_flag objectBvhBuilt_;
+  mutable Bvh objectBvh_;
   mutable std::once_flag adjacencyBuilt_;
   mutable EdgeAdjacency edgeAdjacency_;
 };

@@ -1,7 +1,9 @@
 #include "renderer/screen_triangles.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "renderer/clip.hpp"
 #include "renderer/parallel.hpp"
@@ -49,20 +51,44 @@ void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std:
   }
 }
 
+// The vertices the triangle stage will read, as runs [first, end) of positions() cut
+// into pieces of at most kPiece, so that threads share the work evenly whichever
+// objects survived culling: every vertex without a VisibleSet, else the vertices of each
+// object that still has a triangle in it.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> vertexPieces(const PreparedScene& scene, const VisibleSet* submitted) {
+  constexpr std::uint32_t kPiece = 16384;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pieces;
+  const auto cut = [&](std::uint32_t first, std::uint32_t end) {
+    for (std::uint32_t begin = first; begin < end; begin += std::min(kPiece, end - begin))
+      pieces.emplace_back(begin, begin + std::min(kPiece, end - begin));
+  };
+  if (!submitted) {
+    cut(0, static_cast<std::uint32_t>(scene.positions().size()));
+    return pieces;
+  }
+  auto next = submitted->triangles.begin();
+  for (const Instance& instance : scene.instances()) {
+    next = std::lower_bound(next, submitted->triangles.end(), instance.firstTriangle);
+    if (next != submitted->triangles.end() && *next < instance.firstTriangle + instance.triangleCount)
+      cut(instance.firstVertex, instance.firstVertex + instance.vertexCount);
+  }
+  return pieces;
+}
+
 }  // namespace
 
 ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
-                                    bool keepCorners) {
+                                    bool keepCorners, const VisibleSet* submitted) {
   PhaseTimer timer(stats, "geometry");
   ScreenGeometry geometry{CameraTransform(scene.scene().camera, scene.width(), scene.height()), {}, {}};
   const CameraTransform& camera = geometry.camera;
   const ClipVolume volume(camera, clipFar);
 
-  // Vertex stage: every vertex once, into clip space.
+  // Vertex stage: every vertex the triangles will read, once, into clip space.
   const std::vector<dvec3>& positions = scene.positions();
-  // Left uninitialized: every element is written by the loop below, in parallel.
-  // A vertex in front of the near plane is also projected here, once, however many
-  // triangles share it (on a closed mesh, about six).
+  // Left uninitialized: every element a triangle reads is written by the loop below, in
+  // parallel. A vertex in front of the near plane is also projected here, once, however
+  // many triangles share it (on a closed mesh, about six).
   const auto clip = std::make_unique_for_overwrite<ClipVertex[]>(positions.size());
   const auto outcodes = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
   const auto pixels = std::make_unique_for_overwrite<dvec2[]>(positions.size());
@@ -70,9 +96,9 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
   const int workers = resolveThreadCount(threads);
   {
     PhaseTimer vertexTimer(stats, "geometry: vertices");
-    parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t part, int) {
-      const auto [begin, end] = partRange(positions.size(), static_cast<std::size_t>(workers), part);
-      for (std::size_t v = begin; v < end; ++v) {
+    const auto pieces = vertexPieces(scene, submitted);
+    parallelFor(pieces.size(), workers, [&](std::size_t piece, int) {
+      for (std::uint32_t v = pieces[piece].first; v < pieces[piece].second; ++v) {
         clip[v] = camera.clipFromWorld(positions[v]);
         outcodes[v] = volume.outside(clip[v]);
         if (!(outcodes[v] & kNearPlane)) {
@@ -81,6 +107,9 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
         }
       }
     });
+    std::int64_t transformed = 0;
+    for (const auto& [first, end] : pieces) transformed += end - first;
+    stats.add("vertices transformed", transformed);
   }
 
   // Triangle stage, in fixed chunks claimed by whichever thread is free (the visible
@@ -88,17 +117,19 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
   // in chunk order afterwards: the output order, and so every tie, is the same for any
   // thread count.
   const std::vector<Triangle>& triangles = scene.triangles();
+  const std::size_t submittedCount = submitted ? submitted->triangles.size() : triangles.size();
   constexpr std::size_t kChunkSize = 4096;
-  const std::size_t chunks = (triangles.size() + kChunkSize - 1) / kChunkSize;
+  const std::size_t chunks = (submittedCount + kChunkSize - 1) / kChunkSize;
   std::vector<Part> parts(chunks);
   std::vector<Counts> counts(chunks);
   PhaseTimer triangleTimer(stats, "geometry: triangles");
   parallelFor(chunks, workers, [&](std::size_t part, int) {
-    const std::size_t begin = part * kChunkSize, end = std::min(begin + kChunkSize, triangles.size());
+    const std::size_t begin = part * kChunkSize, end = std::min(begin + kChunkSize, submittedCount);
     Part& out = parts[part];
     out.keepCorners = keepCorners;
     out.triangles.reserve(end - begin);  // one triangle in, at most one out unless clipped: no regrowth in the common case
-    for (std::size_t i = begin; i < end; ++i) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t i = submitted ? submitted->triangles[k] : k;
       const Triangle& t = triangles[i];
       const std::uint32_t codes[3] = {outcodes[t[0]], outcodes[t[1]], outcodes[t[2]]};
       // All three vertices outside one plane: no point of the triangle is visible.
@@ -135,7 +166,7 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, in
     sum.clipped += counts[part].clipped;
     sum.empty += counts[part].empty;
   }
-  stats.add("triangles in", static_cast<std::int64_t>(triangles.size()));
+  stats.add("triangles in", static_cast<std::int64_t>(submittedCount));
   stats.add("triangles outside view", sum.outside);
   stats.add("triangles clipped", sum.clipped);
   stats.add("triangles between pixel centers", sum.empty);

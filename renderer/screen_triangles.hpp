@@ -11,6 +11,7 @@
 #include "renderer/prepare.hpp"
 #include "renderer/raster.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/visible_set.hpp"
 
 namespace hsr {
 
@@ -27,8 +28,10 @@ struct ScreenGeometry {
 
 // Counts in stats: "triangles in", "triangles outside view" (rejected whole),
 // "triangles clipped", "triangles between pixel centers" (zero area or no center
-// inside), "screen triangles" (what the rasterizer receives).
+// inside), "screen triangles" (what the rasterizer receives), "vertices transformed".
+// With a VisibleSet only its triangles go in, and only the vertices of objects that
+// still have a triangle in it are transformed: what a culling stage saves.
 ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
-                                    bool keepCorners = false);
+                                    bool keepCorners = false, const VisibleSet* submitted = nullptr);
 
 }  // namespace hsr

@@ -40,11 +40,11 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
   return "";
 }
 
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
+Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible) {
   // Step 1: the screen triangles, clipped at the near and far planes as the reference
   // sees the scene. Sort and Newell order them by their corners.
   const bool needsCorners = knobs.variant != Variant::bsp;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, true, threads, stats, needsCorners);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, true, threads, stats, needsCorners, visible);
   // Step 2: back to front.
   PaintOrder order;
   switch (knobs.variant) {

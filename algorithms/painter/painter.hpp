@@ -30,6 +30,7 @@
 #include "renderer/frame.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/visible_set.hpp"
 
 namespace hsr::painter {
 
@@ -53,7 +54,9 @@ struct Knobs {
 std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 
 // threads: 0 = all cores (painting is tile-parallel; the ordering runs on one thread).
-// The image bits are the same for every thread count.
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
+// The image bits are the same for every thread count. `visible`: only these triangles
+// are painted (what culling stages kept; the BSP tree is still built over all of them,
+// once per scene); nullptr: all of them.
+Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible = nullptr);
 
 }  // namespace hsr::painter

@@ -8,7 +8,8 @@
 
 namespace hsr::zbuffer {
 
-void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats) {
+void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
+                    bool depthTest) {
   PhaseTimer timer(stats, "rasterization");
   const auto& triangles = geometry.triangles;
 
@@ -20,7 +21,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
   // active list, and writes only its own rows.
   const int workers = std::min(resolveThreadCount(threads), frame.height);
   const DepthEncoding encoding = depthEncoding(format, geometry.camera);
-  withDepthFormat(format, [&]<typename Format>() {
+  withDepthTest(format, depthTest, [&]<typename Format>() {
     std::vector<DepthTest<Format>> bandResults(static_cast<std::size_t>(workers));
     parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t band, int) {
       const auto [first, last] = partRange(static_cast<std::size_t>(frame.height), static_cast<std::size_t>(workers), band);

@@ -9,7 +9,8 @@
 #include "renderer/tiles.hpp"
 
 namespace hsr::zbuffer {
-void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats) {
+void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
+                     bool depthTest) {
   // Binning: each tile gets the triangles whose pixel box overlaps it, in submission
   // order, so that within a tile triangles are drawn in the same order as on one thread.
   const TileGrid tiles(frame.width, frame.height);
@@ -20,7 +21,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
   }
 
   PhaseTimer timer(stats, "rasterization");
-  withDepthFormat(format, [&]<typename Format>() {
+  withDepthTest(format, depthTest, [&]<typename Format>() {
     const DepthEncoding encoding = depthEncoding(format, geometry.camera);
     // Left uninitialized here: each tile clears its own part, on the thread that will use it.
     const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(frame.pixelCount());
@@ -59,14 +60,14 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
   });
 }
 
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
+Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible) {
   Frame frame(scene.width(), scene.height());
   const bool clipFar = clipsFarPlane(knobs.depthFormat, scene.scene().camera.projection);
-  const ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats, false, visible);
   if (knobs.variant == Variant::full)
-    renderFullFrame(geometry, knobs.depthFormat, threads, frame, stats);
+    renderFullFrame(geometry, knobs.depthFormat, threads, frame, stats, knobs.depthTest);
   else
-    renderScanline(geometry, knobs.depthFormat, threads, frame, stats);
+    renderScanline(geometry, knobs.depthFormat, threads, frame, stats, knobs.depthTest);
   shadeFrame(scene, geometry.camera, frame, threads, stats);
   return frame;
 }

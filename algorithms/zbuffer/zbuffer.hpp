@@ -24,15 +24,40 @@ enum class Variant {
 struct Knobs {
   Variant variant = Variant::full;
   DepthFormat depthFormat = DepthFormat::float32;
+  // Off: no depth test at all, so every fragment is written and the order of submission
+  // alone decides what a pixel shows (the last triangle drawn there). Kept to show what
+  // the depth buffer buys, as the culling study's modes "without a z-buffer" do.
+  bool depthTest = true;
 };
 
 // threads: 0 = all cores. The image bits are the same for every thread count.
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
+// `visible`: only these triangles (what culling stages kept); nullptr: all of them.
+Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible = nullptr);
 
 // The variants' visibility passes: they overwrite every pixel of frame.ids and
 // frame.depth (a Frame of the scene's size may be reused) and leave frame.color alone.
-void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats);
-void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats);
+void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
+                     bool depthTest = true);
+void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
+                    bool depthTest = true);
+
+// A format whose test always passes: the buffer still records each fragment's depth
+// (the frame's depth is that of the triangle shown), but nothing is ever rejected.
+template <typename Format>
+struct WithoutDepthTest : Format {
+  static bool nearer(typename Format::Stored, typename Format::Stored) { return true; }
+};
+
+// withDepthFormat, with the test switched off when depthTest is false.
+template <typename Visitor>
+void withDepthTest(DepthFormat format, bool depthTest, Visitor&& visit) {
+  withDepthFormat(format, [&]<typename Format>() {
+    if (depthTest)
+      visit.template operator()<Format>();
+    else
+      visit.template operator()<WithoutDepthTest<Format>>();
+  });
+}
 
 // The depth test shared by both variants: encodes the fragment's depth in the format
 // and keeps it if nearer. Ties keep the earlier triangle ("less", not "less or equal").

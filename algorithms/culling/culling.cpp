@@ -1,0 +1,123 @@
+// The culling stages by name, and the pipeline that runs them in order.
+#include "algorithms/culling/culling.hpp"
+
+#include "algorithms/culling/backface.hpp"
+#include "algorithms/culling/frustum.hpp"
+#include "renderer/error.hpp"
+
+namespace hsr::culling {
+namespace {
+
+// The index of a variant among the stage's, as the stage's enum lists them in the same order.
+template <typename Variant>
+Variant variantOf(const StageEntry& stage, const std::string& name) {
+  for (std::size_t i = 0; i < stage.variants.size(); ++i)
+    if (stage.variants[i].first == name) return static_cast<Variant>(i);
+  HSR_CHECK(false && "variant validated by parsePipeline");
+  return Variant{};
+}
+
+std::string variantList(const StageEntry& stage) {
+  std::string text;
+  for (std::size_t i = 0; i < stage.variants.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == stage.variants.size() ? " or " : ", ") + stage.variants[i].first;
+  return text;
+}
+
+}  // namespace
+
+const std::vector<StageEntry>& stages() {
+  static const std::vector<StageEntry> entries = [] {
+    std::vector<StageEntry> list;
+    StageEntry backfaceStage{
+        "backface",
+        "drop triangles facing away from the eye (right for closed surfaces only)",
+        {{"object", "the eye against the triangle's plane, an exact sign"},
+         {"screen", "the sign of the projected area, after clipping at the near plane"},
+         {"view-direction", "the normal against the view direction only: wrong under perspective, kept to show why"}},
+        {"view-direction"},
+        nullptr};
+    backfaceStage.run = [stage = backfaceStage](const PreparedScene& scene, const CameraTransform& camera,
+                                                const std::string& variant, const VisibleSet& in, int threads, Stats& stats) {
+      return backface::cull(scene, camera, variantOf<backface::Variant>(stage, variant), in, threads, stats);
+    };
+    StageEntry frustumStage{
+        "frustum",
+        "drop objects or triangles wholly outside the view volume",
+        {{"sphere", "per object: its bounding sphere against the six planes"},
+         {"aabb", "per object: its box, by center and extent, against the six planes"},
+         {"bvh", "per object, hierarchically: boxes down the object BVH, with plane masking"},
+         {"triangle", "per triangle: outside when all three corners are outside one plane"},
+         {"any-vertex", "per triangle: kept only if a corner is inside; wrong for big triangles, kept to show why"}},
+        {"any-vertex"},
+        nullptr};
+    frustumStage.run = [stage = frustumStage](const PreparedScene& scene, const CameraTransform& camera,
+                                              const std::string& variant, const VisibleSet& in, int threads, Stats& stats) {
+      return frustum::cull(scene, camera, variantOf<frustum::Variant>(stage, variant), in, threads, stats);
+    };
+    list.push_back(backfaceStage);
+    list.push_back(frustumStage);
+    return list;
+  }();
+  return entries;
+}
+
+bool StageChoice::wrong() const {
+  return std::find(stage->wrongVariants.begin(), stage->wrongVariants.end(), variant) != stage->wrongVariants.end();
+}
+
+Pipeline parsePipeline(const std::string& text, const std::string& where) {
+  std::string names;
+  for (const StageEntry& stage : stages()) names += (names.empty() ? "" : " or ") + stage.name;
+  Pipeline pipeline;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, comma - begin);
+    const std::size_t colon = item.find(':');
+    const std::string name = item.substr(0, colon);
+    const auto stage = std::find_if(stages().begin(), stages().end(), [&](const StageEntry& s) { return s.name == name; });
+    if (stage == stages().end())
+      throw InputError(where + ": unknown culling stage '" + name + "' in '" + text + "'; expected a comma-separated list of " +
+                       names + ", each optionally :VARIANT");
+    const std::string variant = colon == std::string::npos ? stage->variants.front().first : item.substr(colon + 1);
+    if (std::none_of(stage->variants.begin(), stage->variants.end(), [&](const auto& v) { return v.first == variant; }))
+      throw InputError(where + ": culling stage " + name + " has no variant '" + variant + "'; expected " + variantList(*stage));
+    pipeline.push_back({&*stage, variant});
+    if (comma == text.size()) return pipeline;
+    begin = comma + 1;
+  }
+}
+
+std::string describePipeline(const Pipeline& pipeline) {
+  std::string text;
+  for (const StageChoice& choice : pipeline) {
+    if (!text.empty()) text += ',';
+    text += choice.name();
+  }
+  return text;
+}
+
+VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats) {
+  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  VisibleSet set = VisibleSet::everything(scene);
+  for (const StageChoice& choice : pipeline) set = choice.stage->run(scene, camera, choice.variant, set, threads, stats);
+  stats.add("culling: triangles kept", static_cast<std::int64_t>(set.triangles.size()));
+  return set;
+}
+
+VisibleSet keepObjects(const PreparedScene& scene, const VisibleSet& in, const std::function<bool(std::uint32_t)>& keep) {
+  // `in` is sorted and each instance owns one run of ids: find each instance's part of
+  // it by binary search from where the previous one ended.
+  VisibleSet out;
+  auto begin = in.triangles.begin();
+  for (std::uint32_t instance = 0; instance < scene.instances().size() && begin != in.triangles.end(); ++instance) {
+    const Instance& object = scene.instances()[instance];
+    const auto end = std::lower_bound(begin, in.triangles.end(), object.firstTriangle + object.triangleCount);
+    if (begin != end && keep(instance)) out.triangles.insert(out.triangles.end(), begin, end);
+    begin = end;
+  }
+  return out;
+}
+
+}  // namespace hsr::culling

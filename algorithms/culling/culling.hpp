@@ -1,0 +1,90 @@
+// Culling stages: cheap tests that remove triangles before a surface algorithm draws
+// them. A correct stage is conservative: it may keep a triangle nobody will see, never
+// drop one somebody would. The textbooks' wrong versions are kept as variants, so the
+// suite can show where they drop visible triangles.
+//
+//   backface (backface.cpp)  a triangle facing away from the eye is hidden by the front
+//                            of its own closed surface
+//   frustum  (frustum.cpp)   an object or triangle wholly outside the view volume
+//
+// A pipeline runs stages in the order given, each on what the previous one kept, and
+// hands the surviving VisibleSet (renderer/visible_set.hpp) to a surface algorithm.
+#pragma once
+
+#include <algorithm>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "renderer/camera.hpp"
+#include "renderer/parallel.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/stats.hpp"
+#include "renderer/visible_set.hpp"
+
+namespace hsr::culling {
+
+struct StageEntry {
+  std::string name;
+  std::string summary;
+  // The variants, the default first, each with a line of help.
+  std::vector<std::pair<std::string, std::string>> variants;
+  // Variants that can drop visible triangles, kept to show why.
+  std::vector<std::string> wrongVariants;
+  std::function<VisibleSet(const PreparedScene&, const CameraTransform&, const std::string& variant, const VisibleSet&,
+                           int threads, Stats&)>
+      run;
+};
+
+const std::vector<StageEntry>& stages();
+
+// One stage of a pipeline with its variant chosen.
+struct StageChoice {
+  const StageEntry* stage;
+  std::string variant;
+  bool wrong() const;
+  std::string name() const { return stage->name + ":" + variant; }
+};
+using Pipeline = std::vector<StageChoice>;
+
+// "backface,frustum:sphere": stages separated by commas, each NAME or NAME:VARIANT.
+// Throws InputError naming `where` and what was expected.
+Pipeline parsePipeline(const std::string& text, const std::string& where = "--cull");
+std::string describePipeline(const Pipeline& pipeline);  // "backface:object,frustum:sphere"
+
+// Runs the stages in order on the scene's camera and size. threads: 0 = all cores; the
+// result is the same for every thread count. Counts "culling: triangles kept".
+VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats);
+
+// The machinery the stages share. The triangles of `in` for which a test holds, in
+// order, tested in parallel chunks: makeTest() gives each chunk its own test (a callable
+// bool(std::uint32_t triangle)), so a test may keep state without sharing it.
+template <typename MakeTest>
+VisibleSet keepTriangles(const VisibleSet& in, int threads, MakeTest&& makeTest);
+// The triangles of `in` whose instance passes keep(instance index); keep is asked once
+// for each instance that has triangles in `in`, in order, and never for the others.
+VisibleSet keepObjects(const PreparedScene& scene, const VisibleSet& in, const std::function<bool(std::uint32_t)>& keep);
+
+// keepTriangles: each chunk writes its own list, and the lists are joined in chunk
+// order, so the output is the same for any thread count.
+template <typename MakeTest>
+VisibleSet keepTriangles(const VisibleSet& in, int threads, MakeTest&& makeTest) {
+  constexpr std::size_t kChunk = 8192;
+  const std::size_t chunks = (in.triangles.size() + kChunk - 1) / kChunk;
+  std::vector<std::vector<std::uint32_t>> kept(chunks);
+  parallelFor(chunks, threads, [&](std::size_t chunk, int) {
+    auto test = makeTest();
+    const auto begin = in.triangles.begin() + std::ptrdiff_t(chunk * kChunk);
+    const auto end = in.triangles.begin() + std::ptrdiff_t(std::min(in.triangles.size(), (chunk + 1) * kChunk));
+    std::copy_if(begin, end, std::back_inserter(kept[chunk]), test);
+  });
+  VisibleSet out;
+  std::size_t total = 0;
+  for (const auto& part : kept) total += part.size();
+  out.triangles.reserve(total);
+  for (const auto& part : kept) out.triangles.insert(out.triangles.end(), part.begin(), part.end());
+  return out;
+}
+
+}  // namespace hsr::culling

@@ -1,0 +1,177 @@
+// Frustum culling (frustum.hpp has the variants and why two of them are wrong).
+#include "algorithms/culling/frustum.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "algorithms/culling/culling.hpp"
+
+namespace hsr::culling::frustum {
+namespace {
+
+enum class Side { outside, crossing, inside };
+
+// The six planes, and the margin a distance must clear to count as outside: 2^-40 of the
+// largest magnitude in play, thousands of times the rounding error of a distance
+// (a few units in the last place), and far below anything a pixel can show.
+struct Volume {
+  std::array<Plane, 6> planes;
+  double slack = 0;
+  std::int64_t planesTested = 0;
+
+  Volume(const PreparedScene& scene, const CameraTransform& camera) : planes(camera.frustumPlanes()) {
+    double magnitude = 0;
+    for (const Instance& instance : scene.instances())
+      magnitude = std::max({magnitude, glm::length(glm::abs(instance.box.lo)), glm::length(glm::abs(instance.box.hi))});
+    for (const Plane& plane : planes) magnitude = std::max(magnitude, std::abs(plane.offset));
+    slack = 0x1p-40 * 2 * magnitude;
+  }
+
+  // A box given by its center and half extent, against one plane: outside when even its
+  // corner farthest along the normal is behind the plane (Akenine-Möller et al., Real-Time
+  // Rendering, "plane/box" by projected extent).
+  Side boxSide(int side, const dvec3& center, const dvec3& halfExtent) {
+    ++planesTested;
+    const Plane& plane = planes[std::size_t(side)];
+    const double reach = glm::dot(halfExtent, glm::abs(plane.normal)), distance = plane.distance(center);
+    if (distance < -(reach + slack)) return Side::outside;
+    return distance > reach ? Side::inside : Side::crossing;
+  }
+
+  bool sphereOutside(const dvec3& center, double radius) {
+    for (const Plane& plane : planes) {
+      ++planesTested;
+      if (plane.distance(center) < -(radius + slack)) return true;
+    }
+    return false;
+  }
+
+  // The box against the planes still in `mask` (bit i: plane i unsettled); clears the
+  // bits of the planes the box is wholly inside. False when it is outside one.
+  bool boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask) {
+    for (int side = 0; side < 6; ++side) {
+      if (!(mask & (1u << side))) continue;
+      const Side result = boxSide(side, center, halfExtent);
+      if (result == Side::outside) return false;
+      if (result == Side::inside) mask &= ~(1u << side);
+    }
+    return true;
+  }
+};
+
+constexpr std::uint32_t kAllPlanes = 0b111111;
+
+dvec3 centerOf(const Aabb& box) { return box.center(); }
+dvec3 halfExtentOf(const Aabb& box) { return (box.hi - box.lo) * 0.5; }
+
+// The hierarchical test: down the object BVH with plane masking. Marks the instances not
+// proven outside; counts the objects tested in the leaves reached.
+std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, Volume& volume, std::int64_t& objectsTested,
+                                            Stats& stats) {
+  const Bvh& bvh = scene.objectBvh(stats);
+  std::vector<std::uint8_t> keep(scene.instances().size(), 0);
+  struct Visit {
+    std::uint32_t node, mask;
+  };
+  std::vector<Visit> stack;
+  if (!bvh.empty()) stack.push_back({0, kAllPlanes});
+  std::int64_t visited = 0;
+  while (!stack.empty()) {
+    auto [index, mask] = stack.back();
+    stack.pop_back();
+    ++visited;
+    const BvhNode& node = bvh.nodes()[index];
+    const dvec3 lo(node.bounds[0][0], node.bounds[0][1], node.bounds[0][2]);
+    const dvec3 hi(node.bounds[1][0], node.bounds[1][1], node.bounds[1][2]);
+    // The node's box (rounded outward from its contents) outside a plane: nothing
+    // below it can be seen. Wholly inside a plane: nothing below it needs that plane.
+    if (!volume.boxMayBeInside((lo + hi) * 0.5, (hi - lo) * 0.5, mask)) continue;
+    if (!node.leaf()) {
+      stack.push_back({node.index + 1, mask});
+      stack.push_back({node.index, mask});
+      continue;
+    }
+    // A leaf's objects, each by its own (tighter) box against the planes still open.
+    for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) {
+      const std::uint32_t instance = bvh.order()[slot];
+      std::uint32_t objectMask = mask;
+      ++objectsTested;
+      const Aabb& box = scene.instances()[instance].box;
+      keep[instance] = volume.boxMayBeInside(centerOf(box), halfExtentOf(box), objectMask);
+    }
+  }
+  stats.add("frustum: bvh nodes visited", visited);
+  return keep;
+}
+
+}  // namespace
+
+VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
+                int threads, Stats& stats) {
+  PhaseTimer timer(stats, "culling: frustum");
+  Volume volume(scene, camera);
+  VisibleSet out;
+  // Per object: each object that still has triangles in `in` is tested once.
+  std::int64_t objectsTested = 0, objectsCulled = 0;
+  const auto keepObjectsThat = [&](auto&& mayBeVisible) {
+    return keepObjects(scene, in, [&](std::uint32_t instance) {
+      const bool kept = mayBeVisible(scene.instances()[instance]);
+      objectsCulled += !kept;
+      return kept;
+    });
+  };
+  switch (variant) {
+    case Variant::sphere:
+      out = keepObjectsThat([&](const Instance& instance) {
+        ++objectsTested;
+        return !volume.sphereOutside(instance.sphereCenter, instance.sphereRadius);
+      });
+      break;
+    case Variant::aabb:
+      out = keepObjectsThat([&](const Instance& instance) {
+        ++objectsTested;
+        std::uint32_t mask = kAllPlanes;
+        return volume.boxMayBeInside(centerOf(instance.box), halfExtentOf(instance.box), mask);
+      });
+      break;
+    case Variant::bvh: {
+      const std::vector<std::uint8_t> keep = traverseObjectBvh(scene, volume, objectsTested, stats);
+      out = keepObjectsThat([&](const Instance& instance) { return keep[std::size_t(&instance - scene.instances().data())] != 0; });
+      break;
+    }
+    case Variant::triangle:
+    case Variant::anyVertex: {
+      const std::vector<dvec3>& positions = scene.positions();
+      const std::vector<Triangle>& triangles = scene.triangles();
+      const std::array<Plane, 6>& planes = volume.planes;
+      const double slack = volume.slack;
+      out = keepTriangles(in, threads, [&] {
+        return [&](std::uint32_t index) {
+          const Triangle& t = triangles[index];
+          const dvec3 corners[3] = {positions[t[0]], positions[t[1]], positions[t[2]]};
+          if (variant == Variant::triangle) {
+            // Outside only when all three corners are behind the same plane.
+            return std::none_of(planes.begin(), planes.end(), [&](const Plane& plane) {
+              return std::all_of(corners, corners + 3, [&](const dvec3& p) { return plane.distance(p) < -slack; });
+            });
+          }
+          // Any vertex inside: some corner in front of all six planes.
+          return std::any_of(corners, corners + 3, [&](const dvec3& p) {
+            return std::all_of(planes.begin(), planes.end(), [&](const Plane& plane) { return plane.distance(p) >= -slack; });
+          });
+        };
+      });
+      stats.add("frustum: triangles tested", static_cast<std::int64_t>(in.triangles.size()));
+      stats.add("frustum: triangles culled", static_cast<std::int64_t>(in.triangles.size() - out.triangles.size()));
+      return out;
+    }
+  }
+  stats.add("frustum: objects tested", objectsTested);
+  stats.add("frustum: objects culled", objectsCulled);
+  stats.add("frustum: planes tested", volume.planesTested);
+  stats.add("frustum: triangles culled", static_cast<std::int64_t>(in.triangles.size() - out.triangles.size()));
+  return out;
+}
+
+}  // namespace hsr::culling::frustum

@@ -1,0 +1,40 @@
+// Frustum culling: whatever lies wholly outside the view volume (the six planes of
+// CameraTransform::frustumPlanes, Gribb and Hartmann's extraction) cannot be seen.
+//
+// Per object, with the bounds the prepared scene keeps for each copy (Instance):
+//   sphere    outside when the center is farther than the radius behind some plane
+//   aabb      outside when the box's center is farther behind some plane than the box
+//             reaches towards it (its extent projected on the plane's normal)
+//   bvh       the aabb test down the object BVH (renderer/bvh): a node outside a plane
+//             drops its whole subtree; a node wholly inside a plane passes that plane on
+//             to its children as already settled, so they do not test it again (plane
+//             masking). Keeps exactly what aabb keeps, with fewer tests on big scenes.
+// Per triangle:
+//   triangle     outside when all three corners are outside one and the same plane:
+//                conservative, as the geometry stage's own rejection is
+//   any-vertex   kept only when some corner is inside the volume, the test of many
+//                shader tutorials. Wrong: a big triangle can cross the view with every
+//                corner outside (a floor under the camera). Kept to show why.
+//
+// Every "outside" is decided with a margin far above the rounding of the distances, so
+// a test never drops what is exactly on a plane; all the correct variants keep every
+// triangle the reference sees (a false cull is a bug).
+#pragma once
+
+#include "renderer/camera.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/stats.hpp"
+#include "renderer/visible_set.hpp"
+
+namespace hsr::culling::frustum {
+
+// In the order of the stage's variants (culling.cpp).
+enum class Variant { sphere, aabb, bvh, triangle, anyVertex };
+
+// The triangles of `in` not proven outside the view volume. Counts, as they apply:
+// "frustum: objects tested", "frustum: objects culled", "frustum: planes tested",
+// "frustum: bvh nodes visited", "frustum: triangles tested", "frustum: triangles culled".
+VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
+                int threads, Stats& stats);
+
+}  // namespace hsr::culling::frustum
