@@ -73,11 +73,13 @@ int render(const RenderOptions& options) {
     const LineSet drawing = algorithm.drawLines(*scene.prepared, knobs, options.threads, stats);
     if (output.extension() == ".svg") outputs.addText(output, lineSetSvg(drawing, style));
     else outputs.addColorPng(output, lineSetFrame(drawing, style));
-  } else if (!pipeline.empty()) {
-    const VisibleSet visible = culling::runPipeline(*scene.prepared, pipeline, options.threads, stats);
-    frame = algorithm.renderVisible(*scene.prepared, knobs, visible, options.threads, stats);
   } else {
-    frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
+    if (pipeline.empty()) {
+      frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
+    } else {
+      const VisibleSet visible = culling::runPipeline(*scene.prepared, pipeline, options.threads, stats);
+      frame = algorithm.renderVisible(*scene.prepared, knobs, visible, options.threads, stats);
+    }
     outputs.addColorPng(output, frame);
   }
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);

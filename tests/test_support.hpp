@@ -24,6 +24,15 @@ namespace hsr::test {
 
 inline std::filesystem::path sourcePath(const std::string& relative) { return std::filesystem::path(HSR_SOURCE_DIR) / relative; }
 
+// Every scene file under scenes/, sorted.
+inline std::vector<std::filesystem::path> shippedScenes() {
+  std::vector<std::filesystem::path> scenes;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(sourcePath("scenes")))
+    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
 // A scene file loaded and prepared, optionally at another width (same aspect ratio).
 struct LoadedScene {
   Scene scene;

@@ -31,14 +31,6 @@ LineError errorOf(const PreparedScene& scene, const LineSet& lines) {
   return lineError(edgeVisibility(lines), traceLineReference(scene, lines.edges, 2, stats));
 }
 
-std::vector<std::filesystem::path> shippedScenes() {
-  std::vector<std::filesystem::path> scenes;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourcePath("scenes")))
-    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
-  std::sort(scenes.begin(), scenes.end());
-  return scenes;
-}
-
 // Out of surfaces=any's domain: a surface passing through itself (interpenetrating,
 // near_degenerate_splits) or two coincident faces of different objects (touching_boxes),
 // where counting faces along an edge misses the changes inside the surfaces. Their
@@ -56,7 +48,7 @@ bool outsideCountingEveryFace(const std::filesystem::path& scene) {
 
 TEST(LineAlgorithms, WithinATenthOfAPercentOfTheReferenceOnEveryShippedSceneTheyAccept) {
   int judged = 0;
-  for (const auto& path : shippedScenes()) {
+  for (const auto& path : test::shippedScenes()) {
     const test::LoadedScene loaded(path, 320);
     for (const auto& [algorithm, knobs] : std::vector<std::pair<std::string, KnobSettings>>{
              {"roberts", {}}, {"roberts", {{"grid", "off"}}}, {"appel", {}}, {"appel", {{"surfaces", "any"}}}}) {

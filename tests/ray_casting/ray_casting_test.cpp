@@ -20,21 +20,14 @@ using ray_casting::Variant;
 using test::renderRayCasting;
 using test::rayCastingKnobs;
 
-std::vector<std::string> shippedScenes() {
-  std::vector<std::string> scenes;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourcePath("scenes")))
-    if (entry.path().extension() == ".toml") scenes.push_back(entry.path().string());
-  std::sort(scenes.begin(), scenes.end());
-  return scenes;
-}
-
 // 320 pixels wide, the scene's aspect: the size the goldens use.
 void goldenSize(PreparedScene& scene) {
   scene.setSize(320, std::max(1, 320 * scene.scene().height / scene.scene().width));
 }
 
 TEST(RayCasting, BvhHasNoWrongPixelAgainstTheReferenceOnEveryShippedScene) {
-  for (const std::string& path : shippedScenes()) {
+  for (const std::filesystem::path& file : test::shippedScenes()) {
+    const std::string path = file.string();
     const Scene scene = loadScene(path);
     PreparedScene prepared(scene);
     goldenSize(prepared);
@@ -52,7 +45,8 @@ TEST(RayCasting, BvhHasNoWrongPixelAgainstTheReferenceOnEveryShippedScene) {
 TEST(RayCasting, NaiveGivesBvhsImageBitForBit) {
   // dragons (399,136 triangles) is left out: naive would run 4e9 ray-triangle tests even
   // at this size; the other scenes still hold closed meshes, ties and the hard cases.
-  for (const std::string& path : shippedScenes()) {
+  for (const std::filesystem::path& file : test::shippedScenes()) {
+    const std::string path = file.string();
     if (path.find("dragons") != std::string::npos) continue;
     const Scene scene = loadScene(path);
     PreparedScene prepared(scene);

@@ -1,0 +1,310 @@
+// Culling stages: the correct ones never drop a triangle the exact reference sees, and
+// change no pixel of the image; the wrong textbook variants do drop visible triangles,
+// on the scenes built to show it; the counters show the work each one saves.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "algorithms/culling/culling.hpp"
+#include "renderer/clip.hpp"
+#include "renderer/error.hpp"
+#include "renderer/metrics.hpp"
+#include "renderer/predicates.hpp"
+#include "renderer/reference.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+VisibleSet cull(const PreparedScene& scene, const std::string& pipeline, Stats& stats, int threads = 2) {
+  return culling::runPipeline(scene, culling::parsePipeline(pipeline), threads, stats);
+}
+
+VisibleSet cull(const PreparedScene& scene, const std::string& pipeline) {
+  Stats stats;
+  return cull(scene, pipeline, stats);
+}
+
+std::vector<std::uint8_t> keptMask(const VisibleSet& set, std::size_t triangles) {
+  std::vector<std::uint8_t> kept(triangles, 0);
+  for (const std::uint32_t t : set.triangles) kept[t] = 1;
+  return kept;
+}
+
+Frame renderKept(const PreparedScene& scene, const VisibleSet& kept, zbuffer::Knobs knobs = {}) {
+  Stats stats;
+  return zbuffer::run(scene, knobs, 1, stats, &kept);
+}
+
+// The triangle shown at a pixel faces away from the eye (an exact sign).
+bool showsBackFace(const PreparedScene& scene, std::uint32_t id, ExactPredicates& predicates) {
+  if (id == conventions::kBackgroundId) return false;
+  const Triangle& t = scene.triangles()[id - 1];
+  const Camera& camera = scene.scene().camera;
+  const dvec3 &a = scene.positions()[t[0]], &b = scene.positions()[t[1]], &c = scene.positions()[t[2]];
+  if (camera.projection == Projection::perspective) return predicates.orient3d(a, b, c, camera.eye) <= 0;
+  return predicates.facing(a, b, c, camera.eye - camera.target) <= 0;
+}
+
+// ---------------------------------------------------------------------------------
+// The frustum planes
+
+TEST(FrustumPlanes, GribbHartmannPlanesAgreeWithTheClipVolume) {
+  // A point is inside all six planes exactly when its clip coordinates are inside the
+  // view (and the near and far planes): the same volume, two derivations.
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> coordinate(-30, 30);
+  for (const Projection projection : {Projection::perspective, Projection::orthographic}) {
+    Camera camera;
+    camera.projection = projection;
+    camera.eye = {1, 2, 3};
+    camera.target = {-2, 0.5, -4};
+    camera.orthoHeight = 20;
+    camera.near = 0.5;
+    camera.far = 25;
+    const CameraTransform transform(camera, 320, 200);
+    const ClipVolume volume(transform, true);
+    const auto planes = transform.frustumPlanes();
+    constexpr std::uint32_t kViewVolume = kNearPlane | kFarPlane | kViewLeft | kViewRight | kViewBottom | kViewTop;
+    int inside = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const dvec3 p(coordinate(random), coordinate(random), coordinate(random));
+      double nearest = std::numeric_limits<double>::infinity();
+      bool insidePlanes = true;
+      for (const Plane& plane : planes) {
+        nearest = std::min(nearest, std::abs(plane.distance(p)));
+        insidePlanes = insidePlanes && plane.distance(p) >= 0;
+      }
+      if (nearest < 1e-9) continue;  // on a plane: either answer is within rounding
+      const bool insideClip = (volume.outside(transform.clipFromWorld(p)) & kViewVolume) == 0;
+      EXPECT_EQ(insidePlanes, insideClip) << "projection " << int(projection) << " point " << p.x << " " << p.y << " " << p.z;
+      inside += insideClip;
+    }
+    EXPECT_GT(inside, 200);  // the sample reaches into the volume, not only around it
+    for (const Plane& plane : planes) EXPECT_NEAR(glm::length(plane.normal), 1.0, 1e-12);
+  }
+}
+
+// ---------------------------------------------------------------------------------
+// Backface culling
+
+// Eyes all around a solid, near and far, including the six axis directions, from which
+// some faces are seen exactly edge-on.
+std::vector<dvec3> eyesAround() {
+  std::vector<dvec3> eyes = {{3, 0, 0}, {-3, 0, 0}, {0, 3, 0}, {0, -3, 0}, {0, 0, 3}, {0, 0, -3}};
+  const double golden = 2.399963229728653;  // the golden angle: directions spread evenly over the sphere
+  for (int i = 0; i < 24; ++i) {
+    const double y = 1 - (i + 0.5) / 12, r = std::sqrt(1 - y * y);
+    const dvec3 direction(r * std::cos(golden * i), y, r * std::sin(golden * i));
+    eyes.push_back(direction * (i % 2 ? 1.6 : 4.0));
+  }
+  return eyes;
+}
+
+TEST(Backface, ObjectAndScreenCullTheSameSetOnEveryClosedSolid) {
+  const std::vector<std::pair<std::string, Mesh>> solids = {{"box", makeBox({1, 0.6, 0.8})},
+                                                            {"sphere", makeSphere(0.7, 24, 12)},
+                                                            {"cylinder", makeCylinder(0.5, 1.2, 20)},
+                                                            {"cone", makeCone(0.6, 1.0, 16)}};
+  for (const auto& [name, mesh] : solids) {
+    for (const Projection projection : {Projection::perspective, Projection::orthographic}) {
+      for (const dvec3& eye : eyesAround()) {
+        Camera camera;
+        camera.projection = projection;
+        camera.eye = eye;
+        camera.up = std::abs(eye.y) > 0.99 * glm::length(eye) ? dvec3(0, 0, 1) : dvec3(0, 1, 0);
+        camera.orthoHeight = 3;
+        camera.near = 0.05;
+        const Scene scene = test::sceneOf(camera, 64, 64, {mesh});
+        const PreparedScene prepared(scene);
+        const VisibleSet object = cull(prepared, "backface:object"), screen = cull(prepared, "backface:screen");
+        const auto objectKept = keptMask(object, prepared.triangleCount()), screenKept = keptMask(screen, prepared.triangleCount());
+        int culled = 0;
+        for (std::uint32_t t = 0; t < prepared.triangleCount(); ++t) {
+          culled += !objectKept[t];
+          if (objectKept[t] == screenKept[t]) continue;
+          // They may differ only on a triangle seen edge-on to within rounding (the eye
+          // within 1e-9, relatively, of its plane), which covers no pixel: the object
+          // test's exact sign and the screen test's rounded area may then disagree.
+          const Triangle& tri = prepared.triangles()[t];
+          const dvec3 &a = prepared.positions()[tri[0]], &b = prepared.positions()[tri[1]], &c = prepared.positions()[tri[2]];
+          const dvec3 normal = glm::cross(b - a, c - a);
+          const dvec3 towardsEye = projection == Projection::perspective ? eye - a : eye;
+          EXPECT_LE(std::abs(glm::dot(normal, towardsEye)), 1e-9 * glm::length(normal) * glm::length(towardsEye))
+              << name << " triangle " << t << " eye " << eye.x << " " << eye.y << " " << eye.z << " projection " << int(projection);
+        }
+        // Seen from outside, a closed solid shows some of its triangles, never all.
+        EXPECT_GT(culled, 0) << name;
+        EXPECT_LT(culled, int(prepared.triangleCount())) << name;
+      }
+    }
+  }
+}
+
+TEST(Backface, ViewDirectionCullsVisibleSidesOfOffCenterCubes) {
+  // hard/cull_off_center: each cube's inner side faces the eye, but its normal points
+  // away from the view direction.
+  test::LoadedScene loaded(test::sourcePath("scenes/hard/cull_off_center.toml"));
+  const PreparedScene& scene = loaded.prepared;
+  Stats stats;
+  const ReferenceImage truth = traceReference(scene, 2, stats);
+  const auto visible = visibleTriangles(truth, scene.triangleCount());
+  const Frame unculled = test::renderZBuffer(scene);
+  for (const std::string variant : {"object", "screen", "view-direction"}) {
+    const VisibleSet kept = cull(scene, "backface:" + variant);
+    const CullingError error = cullingError(keptMask(kept, scene.triangleCount()), visible);
+    const SurfaceError pixels = surfaceError(renderKept(scene, kept), truth);
+    if (variant == "view-direction") {
+      EXPECT_EQ(error.falseCulls, 4) << "the two inner sides, two triangles each";
+      EXPECT_GT(pixels.pixelError, 0.03) << "the sides are gone from the image";
+    } else {
+      EXPECT_EQ(error.falseCulls, 0) << variant;
+      EXPECT_EQ(pixels.wrongPixels, surfaceError(unculled, truth).wrongPixels) << variant;
+    }
+  }
+  // Seen through an orthographic camera every sight line is parallel to the view axis,
+  // and the shortcut is exact: it culls what the eye-position test culls.
+  loaded.scene.camera.projection = Projection::orthographic;
+  loaded.scene.camera.orthoHeight = 5;
+  EXPECT_EQ(cull(scene, "backface:view-direction").triangles, cull(scene, "backface:object").triangles);
+}
+
+TEST(Backface, HalvesTheWorkOnAClosedSolidAndDepthTestingIsThenUnneeded) {
+  // A single convex solid: what backface culling keeps never overlaps itself on screen,
+  // so even drawing with no depth test gives the z-buffer's image.
+  test::LoadedScene loaded(test::sourcePath("scenes/cube.toml"));
+  const PreparedScene& scene = loaded.prepared;
+  const Frame zbuffer = test::renderZBuffer(scene);
+  zbuffer::Knobs noDepthTest;
+  noDepthTest.depthTest = false;
+  Stats stats;
+  const VisibleSet kept = cull(scene, "backface", stats);
+  EXPECT_EQ(stats.counter("backface: triangles tested"), 12);
+  EXPECT_EQ(stats.counter("backface: triangles culled"), 6);  // three faces seen, three not
+  EXPECT_EQ(renderKept(scene, kept, noDepthTest).ids, zbuffer.ids);
+  // Without the culling, the back faces drawn last paint over the front.
+  const VisibleSet all = VisibleSet::everything(scene);
+  const Frame painted = renderKept(scene, all, noDepthTest);
+  std::int64_t differing = 0;
+  for (std::size_t i = 0; i < painted.ids.size(); ++i) differing += painted.ids[i] != zbuffer.ids[i];
+  EXPECT_GT(differing, 1000);
+  Stats noTest;
+  zbuffer::run(scene, noDepthTest, 1, noTest);
+  EXPECT_EQ(noTest.counter("fragments written"), noTest.counter("fragments tested"));
+}
+
+// ---------------------------------------------------------------------------------
+// Frustum culling
+
+TEST(Frustum, AnyVertexDropsAFloorBiggerThanTheView) {
+  // hard/cull_big_floor: two floor triangles with every corner outside the view volume.
+  test::LoadedScene loaded(test::sourcePath("scenes/hard/cull_big_floor.toml"));
+  const PreparedScene& scene = loaded.prepared;
+  Stats stats;
+  const ReferenceImage truth = traceReference(scene, 2, stats);
+  const auto visible = visibleTriangles(truth, scene.triangleCount());
+  const VisibleSet anyVertex = cull(scene, "frustum:any-vertex"), perTriangle = cull(scene, "frustum:triangle");
+  EXPECT_EQ(cullingError(keptMask(anyVertex, scene.triangleCount()), visible).falseCulls, 2);
+  EXPECT_GT(surfaceError(renderKept(scene, anyVertex), truth).pixelError, 0.4);
+  EXPECT_EQ(cullingError(keptMask(perTriangle, scene.triangleCount()), visible).falseCulls, 0);
+  EXPECT_EQ(renderKept(scene, perTriangle).ids, test::renderZBuffer(scene).ids);
+}
+
+TEST(Frustum, PlaneMaskingTestsFewerPlanesAndKeepsWhatTheBoxTestKeeps) {
+  // trees: 136 objects around the camera, most outside the view.
+  test::LoadedScene loaded(test::sourcePath("scenes/trees.toml"));
+  Stats boxStats, bvhStats;
+  const VisibleSet box = cull(loaded.prepared, "frustum:aabb", boxStats);
+  const VisibleSet hierarchical = cull(loaded.prepared, "frustum:bvh", bvhStats);
+  EXPECT_EQ(hierarchical.triangles, box.triangles);
+  EXPECT_EQ(boxStats.counter("frustum: objects tested"), 136);
+  EXPECT_GT(boxStats.counter("frustum: objects culled"), 60);
+  EXPECT_GT(bvhStats.counter("frustum: bvh nodes visited"), 0);
+  EXPECT_LT(bvhStats.counter("frustum: planes tested"), boxStats.counter("frustum: planes tested") / 2);
+  EXPECT_LT(bvhStats.counter("frustum: objects tested"), 136);
+}
+
+TEST(Frustum, ObjectsOutOfViewCostNoVertexWork) {
+  // dragons: four dragons around the camera, one in view.
+  test::LoadedScene loaded(test::sourcePath("scenes/dragons.toml"));
+  const PreparedScene& scene = loaded.prepared;
+  Stats culled, unculled;
+  const VisibleSet kept = cull(scene, "frustum:sphere", culled);
+  const Frame frame = zbuffer::run(scene, {}, 2, culled, &kept);
+  const Frame reference = zbuffer::run(scene, {}, 2, unculled);
+  EXPECT_EQ(culled.counter("frustum: objects tested"), 4);
+  EXPECT_EQ(culled.counter("frustum: objects culled"), 3);
+  EXPECT_EQ(culled.counter("vertices transformed"), unculled.counter("vertices transformed") / 4);
+  EXPECT_EQ(culled.counter("triangles in"), unculled.counter("triangles in") / 4);
+  EXPECT_EQ(culled.counter("screen triangles"), unculled.counter("screen triangles"));
+  EXPECT_EQ(frame.ids, reference.ids);
+}
+
+TEST(Culling, TheSameSetForAnyThreadCount) {
+  test::LoadedScene loaded(test::sourcePath("scenes/counters.toml"));
+  for (const std::string pipeline : {"backface:object", "backface:screen", "frustum:triangle", "backface,frustum:bvh"}) {
+    Stats one, three;
+    EXPECT_EQ(cull(loaded.prepared, pipeline, one, 1).triangles, cull(loaded.prepared, pipeline, three, 3).triangles) << pipeline;
+  }
+}
+
+TEST(Culling, PipelineSyntax) {
+  EXPECT_EQ(culling::describePipeline(culling::parsePipeline("backface,frustum")), "backface:object,frustum:sphere");
+  EXPECT_EQ(culling::describePipeline(culling::parsePipeline("frustum:bvh,backface:screen")), "frustum:bvh,backface:screen");
+  EXPECT_TRUE(culling::parsePipeline("frustum:any-vertex").front().wrong());
+  EXPECT_FALSE(culling::parsePipeline("frustum:triangle").front().wrong());
+  for (const std::string bad : {"", "backfaces", "frustum:cone", "backface,", "backface:object:screen"})
+    EXPECT_THROW(culling::parsePipeline(bad), InputError) << bad;
+}
+
+// ---------------------------------------------------------------------------------
+// Every shipped scene, against the exact reference (320 pixels wide, as the goldens)
+
+class ShippedScene : public testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(ShippedScene, CorrectStagesDropNothingVisibleAndChangeNoPixel) {
+  test::LoadedScene loaded(GetParam(), 320);
+  const PreparedScene& scene = loaded.prepared;
+  Stats stats;
+  const ReferenceImage truth = traceReference(scene, 2, stats);
+  const auto visible = visibleTriangles(truth, scene.triangleCount());
+  const Frame unculled = test::renderZBuffer(scene);
+
+  // Frustum culling: no false cull, and (as it removes only what the geometry stage
+  // would reject) not one pixel changes.
+  for (const std::string variant : {"sphere", "aabb", "bvh", "triangle"}) {
+    const VisibleSet kept = cull(scene, "frustum:" + variant);
+    EXPECT_EQ(cullingError(keptMask(kept, scene.triangleCount()), visible).falseCulls, 0) << variant;
+    EXPECT_EQ(renderKept(scene, kept).ids, unculled.ids) << variant;
+  }
+
+  // Backface culling is right exactly where its premise holds: every triangle it drops
+  // that the reference sees is one whose back the reference sees (an open surface from
+  // behind), and a pixel changes only where the unculled image showed such a back.
+  ExactPredicates predicates;
+  for (const std::string variant : {"object", "screen"}) {
+    const VisibleSet kept = cull(scene, "backface:" + variant);
+    const auto keptTriangles = keptMask(kept, scene.triangleCount());
+    for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) {
+      const bool falseCull = visible[t] && !keptTriangles[t];
+      EXPECT_TRUE(!falseCull || showsBackFace(scene, t + 1, predicates)) << variant << " triangle " << t;
+    }
+    const Frame frame = renderKept(scene, kept);
+    for (std::size_t i = 0; i < frame.ids.size(); ++i) {
+      const bool changed = frame.ids[i] != unculled.ids[i];
+      EXPECT_TRUE(!changed || showsBackFace(scene, unculled.ids[i], predicates)) << variant << " pixel " << i;
+    }
+  }
+}
+
+std::string sceneName(const testing::TestParamInfo<std::filesystem::path>& info) {
+  std::string name = std::filesystem::relative(info.param, test::sourcePath("scenes")).replace_extension().string();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Culling, ShippedScene, testing::ValuesIn(test::shippedScenes()), sceneName);
+
+}  // namespace
+}  // namespace hsr
