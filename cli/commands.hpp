@@ -45,6 +45,17 @@ struct SweepOptions {
 };
 int sweep(const SweepOptions& options);
 
+struct StudyOptions {
+  std::string name;    // "culling-combos"
+  std::string scenes;  // a subset of the study's scenes, "cube,counters"; empty: all four
+  int frames = 360;    // over a full turn
+  int errorFrames = 4; // frames whose images are compared with the exact reference
+  int threads = 1;
+  std::string size;
+  std::string out = "out/study/culling-combos";
+};
+int study(const StudyOptions& options);
+
 struct DiffOptions {
   std::string first, second;
   std::string heatmap;

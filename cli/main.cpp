@@ -59,6 +59,18 @@ int main(int argc, char** argv) {
   threadsOption(sweepCommand, sweep.threads);
   sweepCommand->add_option("--out", sweep.out, "folder for the CSV, JSON and plots")->capture_default_str();
 
+  hsr::cli::StudyOptions study;
+  CLI::App* studyCommand = app.add_subcommand("study", "a published experiment, reproduced: culling-combos");
+  studyCommand->add_option("name", study.name, "the study: culling-combos")->required();
+  studyCommand->add_option("--scenes", study.scenes, "some of the study's scenes: cube,counters,trees,dragons (default all)");
+  studyCommand->add_option("--frames", study.frames, "frames over a full turn at 60 degrees/s")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  studyCommand->add_option("--error-frames", study.errorFrames, "frames compared with the exact reference, evenly spread")
+      ->check(CLI::Range(0, 100000))->capture_default_str();
+  studyCommand->add_option("--size", study.size, "WIDTHxHEIGHT for every scene");
+  threadsOption(studyCommand, study.threads);
+  studyCommand->add_option("--out", study.out, "folder for culling_combos.csv, .json and the plot")->capture_default_str();
+
   hsr::cli::DiffOptions diff;
   CLI::App* diffCommand = app.add_subcommand("diff", "compare two images: exit 0 within tolerance, 1 beyond");
   diffCommand->add_option("first", diff.first, "image A")->required();
@@ -81,6 +93,7 @@ int main(int argc, char** argv) {
     if (*renderCommand) return hsr::cli::render(render);
     if (*compareCommand) return hsr::cli::compare(compare);
     if (*sweepCommand) return hsr::cli::sweep(sweep);
+    if (*studyCommand) return hsr::cli::study(study);
     if (*diffCommand) return hsr::cli::diff(diff);
     if (*listCommand) return hsr::cli::list();
   } catch (const hsr::InputError& error) {

@@ -72,6 +72,10 @@ std::string resultsJson(const std::vector<ResultRow>& rows);
 // The terminal table: one line per row.
 std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
 
+// A CSV field, quoted when it holds a comma, quote or newline; a JSON string literal.
+std::string csvField(const std::string& text);
+std::string jsonString(const std::string& text);
+
 // Marks the rows no other row beats in both time (median) and error (errorValue).
 void markParetoFront(std::vector<ResultRow>& rows);
 

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <span>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "renderer/error.hpp"
 
 namespace hsr {
@@ -28,7 +30,7 @@ void setBounds(std::span<const dvec3> vertices, Instance& instance) {
 
 PreparedScene::PreparedScene(const Scene& scene) : PreparedScene(scene, {dmat4(1.0)}) {}
 
-PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies)
+PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies, const dmat4& objectMotion)
     : scene_(&scene), width_(scene.width), height_(scene.height) {
   // Flatten every copy of every object into world space, in id order. Transforms are
   // composed in double so a model far from the origin keeps its float precision.
@@ -36,9 +38,12 @@ PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& scene
     for (std::uint32_t objectIndex = 0; objectIndex < scene.objects.size(); ++objectIndex) {
       const SceneObject& object = scene.objects[objectIndex];
       const dmat4 objectToWorld = object.transform.worldFromObject();
+      // The motion about the object's own origin, where its transform placed it.
+      const dmat4 motion = glm::translate(dmat4(1.0), object.transform.translate) * objectMotion *
+                           glm::translate(dmat4(1.0), -object.transform.translate);
       const std::vector<dmat4> copies = object.instancing.copies();
       for (std::uint32_t copy = 0; copy < copies.size(); ++copy) {
-        const dmat4 worldFromObject = sceneCopy * copies[copy] * objectToWorld;
+        const dmat4 worldFromObject = sceneCopy * copies[copy] * motion * objectToWorld;
         const auto firstVertex = static_cast<std::uint32_t>(positions_.size());
         for (const dvec3& p : object.mesh->positions) positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
         Instance instance;

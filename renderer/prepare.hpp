@@ -36,8 +36,11 @@ class PreparedScene {
  public:
   explicit PreparedScene(const Scene& scene);
   // The whole scene repeated once per transform (world from scene copy), copy by copy:
-  // how hsr sweep --scale triangles grows a scene by instancing.
-  PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies);
+  // how hsr sweep --scale triangles grows a scene by instancing. `objectMotion` moves
+  // every object copy about its own origin (where the object's transform put it, before
+  // its copy's placement): how hsr study culling-combos turns each object about its own
+  // vertical axis.
+  PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies, const dmat4& objectMotion = dmat4(1.0));
 
   const Scene& scene() const { return *scene_; }
   int width() const { return width_; }
