@@ -68,5 +68,16 @@ cp "$study/sweep.png" images/figures/floating_horizon/sweep-ripple-1280.png
 ./build/bench/gnuplot_peer --runs 5 --out "$study" > /dev/null
 oiiotool "$study/ripple40_gnuplot.png" "$study/ripple40_hsr.png" --ch R,G,B "$study/ripple100_gnuplot.png" "$study/ripple100_hsr.png" --ch R,G,B \
   --mosaic 2x2 -o images/figures/floating_horizon/gnuplot-side-by-side.png
+# Culling: the two wrong variants on the scenes built to show them, and the
+# culling-combinations study's plot (about 90 s).
+mkdir -p images/figures/culling
+./build/hsr render scenes/hard/cull_off_center.toml -o "$study/right.png"
+./build/hsr render scenes/hard/cull_off_center.toml --cull backface:view-direction -o "$study/wrong.png"
+oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figures/culling/view-direction.png
+./build/hsr render scenes/hard/cull_big_floor.toml --cull frustum:triangle -o "$study/right.png"
+./build/hsr render scenes/hard/cull_big_floor.toml --cull frustum:any-vertex -o "$study/wrong.png"
+oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figures/culling/any-vertex.png
+./build/hsr study culling-combos --out "$study" > /dev/null
+cp "$study/culling_combos.png" images/figures/culling/culling-combos.png
 rm -r "$study"
 echo "figures are in images/figures/"
