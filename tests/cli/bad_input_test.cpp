@@ -167,6 +167,12 @@ INSTANTIATE_TEST_SUITE_P(
         // hsr sweep
         Case{"sweep-no-knob", kCube + " --out OUT", "give at least one --knob", "sweep"},
         Case{"sweep-unknown-knob", kCube + " --knob precision=1,2 --out OUT", "zbuffer has no knob 'precision'", "sweep"},
+        Case{"study-unknown", "culling-combo --out OUT", "study culling-combo: unknown study; expected culling-combos", "study"},
+        Case{"study-unknown-scene", "culling-combos --scenes cube,teapot --out OUT",
+             "--scenes cube,teapot: 'teapot' is not one of the study's scenes; expected some of cube, counters, trees, dragons", "study"},
+        Case{"study-error-frames", "culling-combos --frames 4 --error-frames 5 --out OUT",
+             "--error-frames 5: more than the 4 frames; expected at most --frames", "study"},
+        Case{"study-bad-size", "culling-combos --size 0x10 --out OUT", "--size 0x10: image size 0x10 is out of range", "study"},
         Case{"sweep-bad-value", kCube + " --knob depth-format=float32,float16 --out OUT", "depth-format must be one of", "sweep"},
         Case{"sweep-bad-size", kCube + " --knob size=64x48,big --out OUT", "--knob size: big: expected WIDTHxHEIGHT", "sweep"},
         Case{"sweep-variant-twice", kCube + " --algo ray_casting --variant march --knob variant=bvh,naive --out OUT",

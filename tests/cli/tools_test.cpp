@@ -150,6 +150,43 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
 }
 
+TEST(Study, CullingCombosWritesItsTableAndCountsTheWorkEachModeSaves) {
+  const auto folder = freshFolder("study");
+  const test::CommandResult result =
+      test::runCommand(std::string(HSR_BINARY) + " study culling-combos --scenes cube,counters --frames 4 --error-frames 1 " +
+                       "--size 320x180 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("per-object spheres beat per-triangle tests"), std::string::npos) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "culling_combos.csv", header);
+  ASSERT_EQ(rows.size(), 16u);  // two scenes, eight modes
+  std::map<std::string, Row> at;
+  for (const Row& row : rows) {
+    EXPECT_EQ(number(row, "frames"), 4);
+    EXPECT_EQ(number(row, "error_frames"), 1);
+    EXPECT_LE(number(row, "time_best5_ms"), number(row, "time_mean_ms"));
+    EXPECT_LE(number(row, "time_mean_ms"), number(row, "time_worst5_ms"));
+    at[row.at("scene") + "/" + row.at("mode")] = row;
+  }
+  for (const std::string scene : {"cube", "counters"}) {
+    const auto value = [&](const std::string& mode, const std::string& column) { return number(at.at(scene + "/" + mode), column); };
+    // Backface culling halves what is rasterized; the z-buffer modes are right but for
+    // snapping, the modes without a depth test are not.
+    EXPECT_LT(value("backface", "triangles_rasterized"), 0.6 * value("none", "triangles_rasterized")) << scene;
+    EXPECT_LT(value("z-buffer", "pixel_error"), 1e-3) << scene;
+    EXPECT_LT(value("backface + z-buffer + frustum (sphere)", "pixel_error"), 1e-3) << scene;
+    EXPECT_GT(value("none", "pixel_error"), 1e-3) << scene;
+    // The frustum stages leave the rasterizer the same triangles.
+    EXPECT_EQ(value("frustum (sphere)", "triangles_rasterized"), value("none", "triangles_rasterized")) << scene;
+  }
+  // On the counters, the sphere test removes the counters out of view before any vertex work.
+  const auto counters = [&](const std::string& mode, const std::string& column) { return number(at.at("counters/" + mode), column); };
+  EXPECT_LT(counters("frustum (sphere)", "vertices_transformed"), 0.5 * counters("none", "vertices_transformed"));
+  EXPECT_LT(counters("frustum (sphere)", "triangles_submitted"), 0.5 * counters("none", "triangles_submitted"));
+  EXPECT_EQ(test::parseJson(readText(folder / "culling_combos.json")).array().size(), 16u);
+  EXPECT_GT(readImage(folder / "culling_combos.png").width, 0);
+}
+
 TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
   const auto folder = freshFolder("sweep");
   const test::CommandResult result =
