@@ -24,41 +24,37 @@ std::string variantList(const StageEntry& stage) {
   return text;
 }
 
+// A stage whose variants are named in the order of its enum, run by `cull`.
+template <typename Variant, typename Cull>
+StageEntry stageEntry(std::string name, std::string summary, std::vector<std::pair<std::string, std::string>> variants,
+                      std::vector<std::string> wrongVariants, Cull cull) {
+  StageEntry stage{std::move(name), std::move(summary), std::move(variants), std::move(wrongVariants), nullptr};
+  stage.run = [stage, cull](const PreparedScene& scene, const CameraTransform& camera, const std::string& variant,
+                            const VisibleSet& in, int threads, Stats& stats) {
+    return cull(scene, camera, variantOf<Variant>(stage, variant), in, threads, stats);
+  };
+  return stage;
+}
+
 }  // namespace
 
 const std::vector<StageEntry>& stages() {
-  static const std::vector<StageEntry> entries = [] {
-    std::vector<StageEntry> list;
-    StageEntry backfaceStage{
-        "backface",
-        "drop triangles facing away from the eye (right for closed surfaces only)",
-        {{"object", "the eye against the triangle's plane, an exact sign"},
-         {"screen", "the sign of the projected area, after clipping at the near plane"},
-         {"view-direction", "the normal against the view direction only: wrong under perspective, kept to show why"}},
-        {"view-direction"},
-        nullptr};
-    backfaceStage.run = [stage = backfaceStage](const PreparedScene& scene, const CameraTransform& camera,
-                                                const std::string& variant, const VisibleSet& in, int threads, Stats& stats) {
-      return backface::cull(scene, camera, variantOf<backface::Variant>(stage, variant), in, threads, stats);
-    };
-    StageEntry frustumStage{
-        "frustum",
-        "drop objects or triangles wholly outside the view volume",
-        {{"sphere", "per object: its bounding sphere against the six planes"},
-         {"aabb", "per object: its box, by center and extent, against the six planes"},
-         {"bvh", "per object, hierarchically: boxes down the object BVH, with plane masking"},
-         {"triangle", "per triangle: outside when all three corners are outside one plane"},
-         {"any-vertex", "per triangle: kept only if a corner is inside; wrong for big triangles, kept to show why"}},
-        {"any-vertex"},
-        nullptr};
-    frustumStage.run = [stage = frustumStage](const PreparedScene& scene, const CameraTransform& camera,
-                                              const std::string& variant, const VisibleSet& in, int threads, Stats& stats) {
-      return frustum::cull(scene, camera, variantOf<frustum::Variant>(stage, variant), in, threads, stats);
-    };
-    list.push_back(backfaceStage);
-    list.push_back(frustumStage);
-    return list;
-  }();
+  static const std::vector<StageEntry> entries = {
+      stageEntry<backface::Variant>(
+          "backface", "drop triangles facing away from the eye (right for closed surfaces only)",
+          {{"object", "the eye against the triangle's plane, an exact sign"},
+           {"screen", "the sign of the projected area, after clipping at the near plane"},
+           {"view-direction", "the normal against the view direction only: wrong under perspective, kept to show why"}},
+          {"view-direction"}, backface::cull),
+      stageEntry<frustum::Variant>(
+          "frustum", "drop objects or triangles wholly outside the view volume",
+          {{"sphere", "per object: its bounding sphere against the six planes"},
+           {"aabb", "per object: its box, by center and extent, against the six planes"},
+           {"bvh", "per object, hierarchically: boxes down the object BVH, with plane masking"},
+           {"triangle", "per triangle: outside when all three corners are outside one plane"},
+           {"any-vertex", "per triangle: kept only if a corner is inside; wrong for big triangles, kept to show why"}},
+          {"any-vertex"}, frustum::cull),
+  };
   return entries;
 }
 

@@ -36,6 +36,21 @@ Frame renderKept(const PreparedScene& scene, const VisibleSet& kept, zbuffer::Kn
   return zbuffer::run(scene, knobs, 1, stats, &kept);
 }
 
+// A scene with its exact reference and the triangles the reference shows.
+struct Judged {
+  test::LoadedScene loaded;
+  ReferenceImage truth;
+  std::vector<std::uint8_t> visible;
+  explicit Judged(const std::filesystem::path& file, int width = 0) : loaded(file, width) {
+    Stats stats;
+    truth = traceReference(loaded.prepared, 2, stats);
+    visible = visibleTriangles(truth, loaded.prepared.triangleCount());
+  }
+  std::int64_t falseCulls(const VisibleSet& kept) const {
+    return cullingError(keptMask(kept, loaded.prepared.triangleCount()), visible).falseCulls;
+  }
+};
+
 // The triangle shown at a pixel faces away from the eye (an exact sign).
 bool showsBackFace(const PreparedScene& scene, std::uint32_t id, ExactPredicates& predicates) {
   if (id == conventions::kBackgroundId) return false;
@@ -144,28 +159,25 @@ TEST(Backface, ObjectAndScreenCullTheSameSetOnEveryClosedSolid) {
 TEST(Backface, ViewDirectionCullsVisibleSidesOfOffCenterCubes) {
   // hard/cull_off_center: each cube's inner side faces the eye, but its normal points
   // away from the view direction.
-  test::LoadedScene loaded(test::sourcePath("scenes/hard/cull_off_center.toml"));
-  const PreparedScene& scene = loaded.prepared;
-  Stats stats;
-  const ReferenceImage truth = traceReference(scene, 2, stats);
-  const auto visible = visibleTriangles(truth, scene.triangleCount());
+  Judged judged(test::sourcePath("scenes/hard/cull_off_center.toml"));
+  const PreparedScene& scene = judged.loaded.prepared;
+  const ReferenceImage& truth = judged.truth;
   const Frame unculled = test::renderZBuffer(scene);
   for (const std::string variant : {"object", "screen", "view-direction"}) {
     const VisibleSet kept = cull(scene, "backface:" + variant);
-    const CullingError error = cullingError(keptMask(kept, scene.triangleCount()), visible);
     const SurfaceError pixels = surfaceError(renderKept(scene, kept), truth);
     if (variant == "view-direction") {
-      EXPECT_EQ(error.falseCulls, 4) << "the two inner sides, two triangles each";
+      EXPECT_EQ(judged.falseCulls(kept), 4) << "the two inner sides, two triangles each";
       EXPECT_GT(pixels.pixelError, 0.03) << "the sides are gone from the image";
     } else {
-      EXPECT_EQ(error.falseCulls, 0) << variant;
+      EXPECT_EQ(judged.falseCulls(kept), 0) << variant;
       EXPECT_EQ(pixels.wrongPixels, surfaceError(unculled, truth).wrongPixels) << variant;
     }
   }
   // Seen through an orthographic camera every sight line is parallel to the view axis,
   // and the shortcut is exact: it culls what the eye-position test culls.
-  loaded.scene.camera.projection = Projection::orthographic;
-  loaded.scene.camera.orthoHeight = 5;
+  judged.loaded.scene.camera.projection = Projection::orthographic;
+  judged.loaded.scene.camera.orthoHeight = 5;
   EXPECT_EQ(cull(scene, "backface:view-direction").triangles, cull(scene, "backface:object").triangles);
 }
 
@@ -198,15 +210,12 @@ TEST(Backface, HalvesTheWorkOnAClosedSolidAndDepthTestingIsThenUnneeded) {
 
 TEST(Frustum, AnyVertexDropsAFloorBiggerThanTheView) {
   // hard/cull_big_floor: two floor triangles with every corner outside the view volume.
-  test::LoadedScene loaded(test::sourcePath("scenes/hard/cull_big_floor.toml"));
-  const PreparedScene& scene = loaded.prepared;
-  Stats stats;
-  const ReferenceImage truth = traceReference(scene, 2, stats);
-  const auto visible = visibleTriangles(truth, scene.triangleCount());
+  Judged judged(test::sourcePath("scenes/hard/cull_big_floor.toml"));
+  const PreparedScene& scene = judged.loaded.prepared;
   const VisibleSet anyVertex = cull(scene, "frustum:any-vertex"), perTriangle = cull(scene, "frustum:triangle");
-  EXPECT_EQ(cullingError(keptMask(anyVertex, scene.triangleCount()), visible).falseCulls, 2);
-  EXPECT_GT(surfaceError(renderKept(scene, anyVertex), truth).pixelError, 0.4);
-  EXPECT_EQ(cullingError(keptMask(perTriangle, scene.triangleCount()), visible).falseCulls, 0);
+  EXPECT_EQ(judged.falseCulls(anyVertex), 2);
+  EXPECT_GT(surfaceError(renderKept(scene, anyVertex), judged.truth).pixelError, 0.4);
+  EXPECT_EQ(judged.falseCulls(perTriangle), 0);
   EXPECT_EQ(renderKept(scene, perTriangle).ids, test::renderZBuffer(scene).ids);
 }
 
@@ -263,18 +272,16 @@ TEST(Culling, PipelineSyntax) {
 class ShippedScene : public testing::TestWithParam<std::filesystem::path> {};
 
 TEST_P(ShippedScene, CorrectStagesDropNothingVisibleAndChangeNoPixel) {
-  test::LoadedScene loaded(GetParam(), 320);
-  const PreparedScene& scene = loaded.prepared;
-  Stats stats;
-  const ReferenceImage truth = traceReference(scene, 2, stats);
-  const auto visible = visibleTriangles(truth, scene.triangleCount());
+  Judged judged(GetParam(), 320);
+  const PreparedScene& scene = judged.loaded.prepared;
+  const std::vector<std::uint8_t>& visible = judged.visible;
   const Frame unculled = test::renderZBuffer(scene);
 
   // Frustum culling: no false cull, and (as it removes only what the geometry stage
   // would reject) not one pixel changes.
   for (const std::string variant : {"sphere", "aabb", "bvh", "triangle"}) {
     const VisibleSet kept = cull(scene, "frustum:" + variant);
-    EXPECT_EQ(cullingError(keptMask(kept, scene.triangleCount()), visible).falseCulls, 0) << variant;
+    EXPECT_EQ(judged.falseCulls(kept), 0) << variant;
     EXPECT_EQ(renderKept(scene, kept).ids, unculled.ids) << variant;
   }
 
