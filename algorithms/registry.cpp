@@ -68,6 +68,18 @@ Enum choiceOf(const AlgorithmEntry& entry, const KnobValues& values, const std::
   return static_cast<Enum>(choiceIndex(*findKnob(entry, name), values.at(name)));
 }
 
+// A surface algorithm that can draw a culled set: render (every triangle) and
+// renderVisible (the kept ones) from one run, given the set or nullptr for all.
+void setCullableRender(
+    AlgorithmEntry& entry,
+    const std::function<Frame(const PreparedScene&, const KnobValues&, int, Stats&, const VisibleSet*)>& run) {
+  entry.render = [run](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
+    return run(scene, values, threads, stats, nullptr);
+  };
+  entry.renderVisible = [run](const PreparedScene& scene, const KnobValues& values, const VisibleSet& visible, int threads,
+                              Stats& stats) { return run(scene, values, threads, stats, &visible); };
+}
+
 AlgorithmEntry zbufferEntry() {
   AlgorithmEntry entry;
   entry.name = "zbuffer";
@@ -90,11 +102,8 @@ AlgorithmEntry zbufferEntry() {
     knobs.depthTest = values.at("depth-test") == "on";
     return knobs;
   };
-  entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
-    return zbuffer::run(scene, typed(values), threads, stats);
-  };
-  entry.renderVisible = [typed](const PreparedScene& scene, const KnobValues& values, const VisibleSet& visible, int threads,
-                                Stats& stats) { return zbuffer::run(scene, typed(values), threads, stats, &visible); };
+  setCullableRender(entry, [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats,
+                                    const VisibleSet* visible) { return zbuffer::run(scene, typed(values), threads, stats, visible); });
   return entry;
 }
 
@@ -181,11 +190,8 @@ AlgorithmEntry painterEntry() {
     return knobs;
   };
   entry.refusal = [typed](const PreparedScene& scene, const KnobValues& values) { return painter::refusal(scene, typed(values)); };
-  entry.render = [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats) {
-    return painter::run(scene, typed(values), threads, stats);
-  };
-  entry.renderVisible = [typed](const PreparedScene& scene, const KnobValues& values, const VisibleSet& visible, int threads,
-                                Stats& stats) { return painter::run(scene, typed(values), threads, stats, &visible); };
+  setCullableRender(entry, [typed](const PreparedScene& scene, const KnobValues& values, int threads, Stats& stats,
+                                    const VisibleSet* visible) { return painter::run(scene, typed(values), threads, stats, visible); });
   return entry;
 }
 
