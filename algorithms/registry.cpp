@@ -342,33 +342,40 @@ const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& 
   throw InputError(where + " " + name + ": unknown algorithm; expected one of " + joined(names));
 }
 
-const KnobSpec* findKnob(const AlgorithmEntry& algorithm, const std::string& name) {
-  for (const KnobSpec& knob : algorithm.knobs)
+const KnobSpec* findKnob(const AlgorithmEntry& algorithm, const std::string& name) { return findKnob(algorithm.knobs, name); }
+
+const KnobSpec* findKnob(const std::vector<KnobSpec>& knobs, const std::string& name) {
+  for (const KnobSpec& knob : knobs)
     if (knob.name == name) return &knob;
   return nullptr;
 }
 
 KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where) {
+  return resolveKnobs(algorithm.name, algorithm.knobs, settings, where);
+}
+
+KnobValues resolveKnobs(const std::string& owner, const std::vector<KnobSpec>& knobs, const KnobSettings& settings,
+                        const std::string& where) {
   KnobValues values;
-  for (const auto& knob : algorithm.knobs) values[knob.name] = knob.choices.front();
+  for (const auto& knob : knobs) values[knob.name] = knob.choices.front();
   for (const auto& [name, value] : settings) {
-    const KnobSpec* knob = findKnob(algorithm, name);
+    const KnobSpec* knob = findKnob(knobs, name);
     if (!knob) {
       std::vector<std::string> names;
-      for (const auto& k : algorithm.knobs) names.push_back(k.name);
-      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " has no knob '" + name +
-                       "'; expected one of " + joined(names));
+      for (const auto& k : knobs) names.push_back(k.name);
+      throw InputError(where + " " + name + "=" + value + ": " + owner + " has no knob '" + name + "'; expected one of " +
+                       joined(names));
     }
     if (knob->range ? !parseNumber(*knob->range, value) : choiceIndex(*knob, value) == knob->choices.size())
-      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " must be " +
+      throw InputError(where + " " + name + "=" + value + ": " + owner + " " + name + " must be " +
                        (knob->range ? describeRange(*knob->range) : "one of " + joined(knob->choices)));
     values[name] = value;
   }
   // A knob of one variant given with another is a mistake, not something to ignore.
   for (const auto& [name, value] : settings) {
-    const KnobSpec& knob = *findKnob(algorithm, name);
+    const KnobSpec& knob = *findKnob(knobs, name);
     if (!knob.variants.empty() && !knob.appliesTo(values.at("variant")))
-      throw InputError(where + " " + name + "=" + value + ": " + algorithm.name + " " + name + " applies only to variant " +
+      throw InputError(where + " " + name + "=" + value + ": " + owner + " " + name + " applies only to variant " +
                        joined(knob.variants) + ", not to variant " + values.at("variant"));
   }
   return values;

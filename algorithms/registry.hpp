@@ -86,11 +86,15 @@ const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& 
 
 // The algorithm's knob of that name, or nullptr.
 const KnobSpec* findKnob(const AlgorithmEntry& algorithm, const std::string& name);
+const KnobSpec* findKnob(const std::vector<KnobSpec>& knobs, const std::string& name);
 
 // Fills in defaults and checks every setting; throws InputError for an unknown knob, a
 // value outside its choices or range, or a knob the chosen variant does not have,
 // naming the algorithm, the knob and what is allowed.
 KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where = "--knob");
+// The same for any owner of knobs (a culling stage): `owner` names it in the messages.
+KnobValues resolveKnobs(const std::string& owner, const std::vector<KnobSpec>& knobs, const KnobSettings& settings,
+                        const std::string& where);
 
 // "NAME=VALUE" split at the first '='; throws InputError naming `where` otherwise.
 std::pair<std::string, std::string> parseKnobSetting(const std::string& text, const std::string& where);

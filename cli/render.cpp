@@ -43,6 +43,25 @@ culling::Pipeline cullingPipelineOf(const std::string& text, const AlgorithmEntr
   return pipeline;
 }
 
+// Each knob with its values, default and help; `prefix` is how it is given ("--knob "
+// for an algorithm, ":" after a culling stage).
+void printKnobs(const std::vector<KnobSpec>& knobs, const std::string& prefix) {
+  for (const auto& knob : knobs) {
+    std::string choices;
+    for (const auto& choice : knob.choices) choices += (choices.empty() ? "" : " | ") + choice;
+    if (knob.range) {
+      char range[96];
+      std::snprintf(range, sizeof range, "%s in [%g, %g]%s, e.g. ", knob.range->integer ? "INTEGER" : "NUMBER",
+                    knob.range->minimum, knob.range->maximum, knob.range->percent ? " or P%" : "");
+      choices = range + choices;
+    }
+    std::string applies;
+    for (const auto& variant : knob.variants) applies += (applies.empty() ? ", variant " : " or ") + variant;
+    std::printf("    %s%s=%s   (default %s%s)\n      %s\n", prefix.c_str(), knob.name.c_str(), choices.c_str(),
+                knob.choices.front().c_str(), applies.c_str(), knob.help.c_str());
+  }
+}
+
 }  // namespace
 
 int render(const RenderOptions& options) {
@@ -94,27 +113,15 @@ int list() {
   std::printf("algorithms:\n");
   for (const auto& algorithm : algorithms()) {
     std::printf("  %-12s %-9s %s\n", algorithm.name.c_str(), algorithm.kind.c_str(), algorithm.summary.c_str());
-    for (const auto& knob : algorithm.knobs) {
-      std::string choices;
-      for (const auto& choice : knob.choices) choices += (choices.empty() ? "" : " | ") + choice;
-      if (knob.range) {
-        char range[96];
-        std::snprintf(range, sizeof range, "%s in [%g, %g]%s, e.g. ", knob.range->integer ? "INTEGER" : "NUMBER",
-                      knob.range->minimum, knob.range->maximum, knob.range->percent ? " or P%" : "");
-        choices = range + choices;
-      }
-      std::string applies;
-      for (const auto& variant : knob.variants) applies += (applies.empty() ? ", variant " : " or ") + variant;
-      std::printf("    --knob %s=%s   (default %s%s)\n      %s\n", knob.name.c_str(), choices.c_str(),
-                  knob.choices.front().c_str(), applies.c_str(), knob.help.c_str());
-    }
+    printKnobs(algorithm.knobs, "--knob ");
   }
-  std::printf("culling stages (hsr render --cull STAGE[:VARIANT],...; before %s):\n", cullableAlgorithms().c_str());
+  std::printf("culling stages (hsr render --cull STAGE[:VARIANT][:KNOB=VALUE...],...; before %s):\n", cullableAlgorithms().c_str());
   for (const auto& stage : culling::stages()) {
     std::printf("  %-12s %s\n", stage.name.c_str(), stage.summary.c_str());
     for (const auto& [variant, help] : stage.variants)
       std::printf("    %s:%-16s %s%s\n", stage.name.c_str(), variant.c_str(), help.c_str(),
                   variant == stage.variants.front().first ? " (default)" : "");
+    printKnobs(stage.knobs, ":");
   }
   std::printf("scenes (in %s):\n", HSR_SCENES_DIR);
   for (const auto& scene : shippedScenes()) std::printf("  %s\n", scene.string().c_str());

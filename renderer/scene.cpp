@@ -245,7 +245,7 @@ void readLight(TableReader& light, Scene& scene) {
 
 Instancing readInstancing(TableReader& copies) {
   Instancing result;
-  const std::string kind = copies.choice("kind", std::nullopt, {"grid", "ring", "scatter"});
+  const std::string kind = copies.choice("kind", std::nullopt, {"grid", "ring", "scatter", "area"});
   if (kind == "grid") {
     result.kind = Instancing::Kind::grid;
     result.gridCount = glm::ivec3(copies.vector3("count", std::nullopt, 1, 1000));
@@ -254,6 +254,21 @@ Instancing readInstancing(TableReader& copies) {
     return result;
   }
   result.count = copies.integer("count", std::nullopt, 1, 1000000);
+  if (kind == "area") {
+    result.kind = Instancing::Kind::area;
+    result.from = copies.vector3("from", std::nullopt, -kHuge, kHuge);
+    result.to = copies.vector3("to", std::nullopt, -kHuge, kHuge);
+    result.seed = static_cast<std::uint64_t>(copies.integer("seed", 1, 0, 2147483647));
+    result.minScales = copies.vector3("min_scale", dvec3(1), 1e-6, 1e6);
+    result.maxScales = copies.vector3("max_scale", result.minScales, 1e-6, 1e6);
+    copies.finish({"kind", "count", "from", "to", "seed", "min_scale", "max_scale"});
+    for (int axis = 0; axis < 3; ++axis) {
+      if (result.from[axis] > result.to[axis]) copies.fail(nullptr, "from", "must not exceed `to` on any axis");
+      if (result.minScales[axis] > result.maxScales[axis])
+        copies.fail(nullptr, "min_scale", "must not exceed max_scale on any axis");
+    }
+    return result;
+  }
   result.center = copies.vector3("center", dvec3(0), -kHuge, kHuge);
   if (kind == "ring") {
     result.kind = Instancing::Kind::ring;
@@ -408,13 +423,22 @@ std::size_t Instancing::copyCount() const {
     case Kind::single: return 1;
     case Kind::grid: return std::size_t(gridCount.x) * std::size_t(gridCount.y) * std::size_t(gridCount.z);
     case Kind::ring:
-    case Kind::scatter: return std::size_t(count);
+    case Kind::scatter:
+    case Kind::area: return std::size_t(count);
   }
   return 1;
 }
 
 std::vector<dmat4> Instancing::copies() const {
   std::vector<dmat4> result;
+  // splitmix64: the same copies on every platform (std distributions are not portable).
+  std::uint64_t state = seed;
+  const auto uniform = [&state]() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
   switch (kind) {
     case Kind::single: result.push_back(dmat4(1)); break;
     case Kind::grid: {
@@ -435,15 +459,7 @@ std::vector<dmat4> Instancing::copies() const {
         result.push_back(glm::translate(m, dvec3(0, 0, -radius)));
       }
       break;
-    case Kind::scatter: {
-      // splitmix64: the same copies on every platform (std distributions are not portable).
-      std::uint64_t state = seed;
-      const auto uniform = [&state]() {
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-      };
+    case Kind::scatter:
       for (int k = 0; k < count; ++k) {
         // Uniform over the annulus' area: radius from the square root of a uniform area fraction.
         const double r2 = innerRadius * innerRadius + uniform() * (radius * radius - innerRadius * innerRadius);
@@ -456,7 +472,14 @@ std::vector<dmat4> Instancing::copies() const {
         result.push_back(glm::scale(m, dvec3(scale)));
       }
       break;
-    }
+    case Kind::area:
+      for (int k = 0; k < count; ++k) {
+        dvec3 position, scale;
+        for (int axis = 0; axis < 3; ++axis) position[axis] = from[axis] + uniform() * (to[axis] - from[axis]);
+        for (int axis = 0; axis < 3; ++axis) scale[axis] = minScales[axis] + uniform() * (maxScales[axis] - minScales[axis]);
+        result.push_back(glm::scale(glm::translate(dmat4(1), position), scale));
+      }
+      break;
   }
   return result;
 }

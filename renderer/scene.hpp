@@ -35,7 +35,7 @@ struct Transform {
 
 // How an object is copied. Each copy gets its own object id.
 struct Instancing {
-  enum class Kind { single, grid, ring, scatter } kind = Kind::single;
+  enum class Kind { single, grid, ring, scatter, area } kind = Kind::single;
   // grid: count per axis and spacing; copies centered on the object's own position.
   glm::ivec3 gridCount{1};
   dvec3 gridSpacing{0};
@@ -48,6 +48,10 @@ struct Instancing {
   double innerRadius = 0;
   std::uint64_t seed = 1;
   double minScale = 1, maxScale = 1;
+  // area: seeded uniform positions in the box [from, to], no rotation, each axis scaled
+  // uniformly in [minScales, maxScales] (a city of random boxes).
+  dvec3 from{0}, to{0};
+  dvec3 minScales{1}, maxScales{1};
 
   std::size_t copyCount() const;
   std::vector<dmat4> copies() const;  // worldFromObject of each copy, applied after the object's transform

@@ -6,6 +6,8 @@
 //   backface (backface.cpp)  a triangle facing away from the eye is hidden by the front
 //                            of its own closed surface
 //   frustum  (frustum.cpp)   an object or triangle wholly outside the view volume
+//   occlusion (occlusion/)   an object behind what nearer objects drew into a small
+//                            depth map (or what the previous frame left in its depth)
 //
 // A pipeline runs stages in the order given, each on what the previous one kept, and
 // hands the surviving VisibleSet (renderer/visible_set.hpp) to a surface algorithm.
@@ -17,7 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/registry.hpp"
 #include "renderer/camera.hpp"
+#include "renderer/frame.hpp"
 #include "renderer/parallel.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
@@ -25,37 +29,66 @@
 
 namespace hsr::culling {
 
+// What the previous frame left behind, for a stage that reuses it
+// (occlusion:previous-frame): its camera and its image, whose depth it reads.
+struct PreviousFrame {
+  Camera camera;
+  const Frame* frame = nullptr;
+};
+
+// What a stage works on: the scene seen from its camera, and what earlier stages kept.
+struct StageInput {
+  const PreparedScene& scene;
+  const CameraTransform& camera;
+  const VisibleSet& in;
+  int threads;
+  Stats& stats;
+  const PreviousFrame* previous;  // nullptr: none (the first frame, or a single image)
+};
+
+struct StageChoice;
+
 struct StageEntry {
   std::string name;
   std::string summary;
   // The variants, the default first, each with a line of help.
   std::vector<std::pair<std::string, std::string>> variants;
-  // Variants that can drop visible triangles, kept to show why.
+  // Variants that can drop visible triangles, kept to show why or for their speed.
   std::vector<std::string> wrongVariants;
-  std::function<VisibleSet(const PreparedScene&, const CameraTransform&, const std::string& variant, const VisibleSet&,
-                           int threads, Stats&)>
-      run;
+  std::function<VisibleSet(const StageChoice&, const StageInput&)> run;
+  // Knobs beyond the variant (NAME=VALUE after it), and which of their settings can drop
+  // visible triangles.
+  std::vector<KnobSpec> knobs = {};
+  std::function<bool(const KnobValues&)> knobsMayDropVisible = [](const KnobValues&) { return false; };
+  // Why these settings do not go together, or "" when they do.
+  std::function<std::string(const std::string& variant, const KnobValues&)> conflict = [](const std::string&, const KnobValues&) {
+    return std::string();
+  };
 };
 
 const std::vector<StageEntry>& stages();
 
-// One stage of a pipeline with its variant chosen.
+// One stage of a pipeline with its variant and knobs chosen.
 struct StageChoice {
   const StageEntry* stage;
   std::string variant;
+  KnobValues knobs;  // every knob of the stage, validated
   bool wrong() const;
-  std::string name() const { return stage->name + ":" + variant; }
+  // "occlusion:depth-map:raster=center": the knobs that differ from their defaults.
+  std::string name() const;
 };
 using Pipeline = std::vector<StageChoice>;
 
-// "backface,frustum:sphere": stages separated by commas, each NAME or NAME:VARIANT.
-// Throws InputError naming `where` and what was expected.
+// "backface,frustum:sphere,occlusion:depth-map:raster=center": stages separated by
+// commas, each NAME, NAME:VARIANT or either followed by :KNOB=VALUE settings. Throws
+// InputError naming `where` and what was expected.
 Pipeline parsePipeline(const std::string& text, const std::string& where = "--cull");
 std::string describePipeline(const Pipeline& pipeline);  // "backface:object,frustum:sphere"
 
 // Runs the stages in order on the scene's camera and size. threads: 0 = all cores; the
 // result is the same for every thread count. Counts "culling: triangles kept".
-VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats);
+VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
+                       const PreviousFrame* previous = nullptr);
 
 // The machinery the stages share. The triangles of `in` for which a test holds, in
 // order, tested in parallel chunks: makeTest() gives each chunk its own test (a callable
@@ -65,6 +98,8 @@ VisibleSet keepTriangles(const VisibleSet& in, int threads, MakeTest&& makeTest)
 // The triangles of `in` whose instance passes keep(instance index); keep is asked once
 // for each instance that has triangles in `in`, in order, and never for the others.
 VisibleSet keepObjects(const PreparedScene& scene, const VisibleSet& in, const std::function<bool(std::uint32_t)>& keep);
+// The instances that have triangles in `in`, ascending.
+std::vector<std::uint32_t> instancesIn(const PreparedScene& scene, const VisibleSet& in);
 
 // keepTriangles: each chunk writes its own list, and the lists are joined in chunk
 // order, so the output is the same for any thread count.

@@ -11,45 +11,11 @@
 #include "renderer/metrics.hpp"
 #include "renderer/predicates.hpp"
 #include "renderer/reference.hpp"
+#include "culling/culling_support.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
 namespace {
-
-VisibleSet cull(const PreparedScene& scene, const std::string& pipeline, Stats& stats, int threads = 2) {
-  return culling::runPipeline(scene, culling::parsePipeline(pipeline), threads, stats);
-}
-
-VisibleSet cull(const PreparedScene& scene, const std::string& pipeline) {
-  Stats stats;
-  return cull(scene, pipeline, stats);
-}
-
-std::vector<std::uint8_t> keptMask(const VisibleSet& set, std::size_t triangles) {
-  std::vector<std::uint8_t> kept(triangles, 0);
-  for (const std::uint32_t t : set.triangles) kept[t] = 1;
-  return kept;
-}
-
-Frame renderKept(const PreparedScene& scene, const VisibleSet& kept, zbuffer::Knobs knobs = {}) {
-  Stats stats;
-  return zbuffer::run(scene, knobs, 1, stats, &kept);
-}
-
-// A scene with its exact reference and the triangles the reference shows.
-struct Judged {
-  test::LoadedScene loaded;
-  ReferenceImage truth;
-  std::vector<std::uint8_t> visible;
-  explicit Judged(const std::filesystem::path& file, int width = 0) : loaded(file, width) {
-    Stats stats;
-    truth = traceReference(loaded.prepared, 2, stats);
-    visible = visibleTriangles(truth, loaded.prepared.triangleCount());
-  }
-  std::int64_t falseCulls(const VisibleSet& kept) const {
-    return cullingError(keptMask(kept, loaded.prepared.triangleCount()), visible).falseCulls;
-  }
-};
 
 // The triangle shown at a pixel faces away from the eye (an exact sign).
 bool showsBackFace(const PreparedScene& scene, std::uint32_t id, ExactPredicates& predicates) {

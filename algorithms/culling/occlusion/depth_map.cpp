@@ -1,0 +1,361 @@
+// The occluder depth map (depth_map.hpp has the two rasterization rules).
+#include "algorithms/culling/occlusion/depth_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "renderer/conventions.hpp"
+#include "renderer/raster.hpp"
+
+namespace hsr::culling::occlusion {
+namespace {
+
+constexpr float kEmpty = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kNearAndGuard = kNearPlane | kGuardLeft | kGuardRight | kGuardBottom | kGuardTop;
+
+double cross(const dvec2& u, const dvec2& v) { return u.x * v.y - u.y * v.x; }
+
+// Andrew's monotone chain: the convex hull of up to 8 points, counter-clockwise in
+// (x, y) as the numbers go (clockwise as seen on a y-down image); returns its size.
+int convexHull(std::array<dvec2, 8> points, int count, dvec2* hull) {
+  std::sort(points.begin(), points.begin() + count,
+            [](const dvec2& a, const dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  int size = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const int start = size;
+    for (int k = 0; k < count; ++k) {
+      const dvec2& p = points[std::size_t(pass == 0 ? k : count - 1 - k)];
+      while (size >= start + 2 && cross(hull[size - 1] - hull[size - 2], p - hull[size - 2]) <= 0) --size;
+      hull[size++] = p;
+    }
+    --size;  // each chain's last point starts the other
+  }
+  return size;
+}
+
+}  // namespace
+
+DepthMap::DepthMap(int w, int h) : width(w), height(h), keys(std::size_t(w) * std::size_t(h), kEmpty) {}
+
+float roundedUp(double value) {
+  if (std::isinf(value)) return static_cast<float>(value);
+  float f = static_cast<float>(value);
+  if (static_cast<double>(f) < value) f = std::nextafter(f, kEmpty);
+  return std::nextafter(f, kEmpty);
+}
+
+float roundedDown(double value) {
+  if (std::isinf(value)) return static_cast<float>(value);
+  float f = static_cast<float>(value);
+  if (static_cast<double>(f) > value) f = std::nextafter(f, -kEmpty);
+  return std::nextafter(f, -kEmpty);
+}
+
+MapView::MapView(const CameraTransform& viewCamera, int mapWidth, int mapHeight)
+    : camera(viewCamera),
+      width(mapWidth),
+      height(mapHeight),
+      scale(double(mapWidth) / viewCamera.width(), double(mapHeight) / viewCamera.height()),
+      volume(viewCamera, false) {
+  // The guard band in the map's own texels, where the rasterizer's fixed point needs it.
+  volume.guardX = conventions::kGuardBandPixels / (0.5 * mapWidth);
+  volume.guardY = conventions::kGuardBandPixels / (0.5 * mapHeight);
+}
+
+std::array<dvec3, 8> cornersOf(const Aabb& box) {
+  std::array<dvec3, 8> corners;
+  for (int i = 0; i < 8; ++i)
+    corners[std::size_t(i)] = dvec3(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z);
+  return corners;
+}
+
+BoxFootprint footprint(const MapView& view, const std::array<dvec3, 8>& corners) {
+  BoxFootprint box;
+  dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const dvec3& corner : corners) {
+    const ClipVertex v = view.camera.clipFromWorld(corner);
+    if (v.d < view.volume.near) {
+      box.crossesNear = true;
+      return box;
+    }
+    const dvec2 texel = view.texel(v);
+    lo = glm::min(lo, texel), hi = glm::max(hi, texel);
+    nearest = std::min(nearest, v.d);
+  }
+  // The box's projection lies within its corners' rectangle (it is their convex hull);
+  // the margin, far above the rounding of a projection, keeps a pixel center on the
+  // rectangle's edge inside it.
+  constexpr double kMargin = 1e-6;
+  const auto clampedFloor = [](double value, int limit) {
+    return static_cast<int>(std::clamp(std::floor(value), 0.0, double(limit)));
+  };
+  box.x0 = clampedFloor(lo.x - kMargin, view.width), box.x1 = clampedFloor(hi.x + kMargin + 1, view.width);
+  box.y0 = clampedFloor(lo.y - kMargin, view.height), box.y1 = clampedFloor(hi.y + kMargin + 1, view.height);
+  box.nearest = roundedDown(view.key(nearest));
+  return box;
+}
+
+bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead) {
+  if (box.crossesNear || box.empty()) return false;
+  for (int y = box.y0; y < box.y1; ++y)
+    for (int x = box.x0; x < box.x1; ++x) {
+      ++texelsRead;
+      if (map.at(x, y) >= box.nearest) return false;  // something of the box may show here
+    }
+  return true;
+}
+
+TileMaxima::TileMaxima(const DepthMap& map)
+    : map_(map),
+      columns_((map.width + kTile - 1) / kTile),
+      rows_((map.height + kTile - 1) / kTile),
+      maxima_(std::size_t(columns_) * std::size_t(rows_), kEmpty),
+      stale_(maxima_.size(), 1) {}
+
+void TileMaxima::invalidate(const BoxFootprint& box) {
+  if (box.crossesNear) {
+    std::fill(stale_.begin(), stale_.end(), 1);
+    return;
+  }
+  if (box.empty()) return;
+  for (int ty = box.y0 / kTile; ty <= (box.y1 - 1) / kTile; ++ty)
+    for (int tx = box.x0 / kTile; tx <= (box.x1 - 1) / kTile; ++tx) stale_[std::size_t(ty) * std::size_t(columns_) + std::size_t(tx)] = 1;
+}
+
+float TileMaxima::maximum(int tileX, int tileY) {
+  const std::size_t index = std::size_t(tileY) * std::size_t(columns_) + std::size_t(tileX);
+  if (stale_[index]) {
+    float largest = -kEmpty;
+    for (int y = tileY * kTile; y < std::min(map_.height, (tileY + 1) * kTile); ++y)
+      for (int x = tileX * kTile; x < std::min(map_.width, (tileX + 1) * kTile); ++x) largest = std::max(largest, map_.at(x, y));
+    maxima_[index] = largest;
+    stale_[index] = 0;
+  }
+  return maxima_[index];
+}
+
+bool TileMaxima::hidden(const BoxFootprint& box, std::int64_t& texelsRead) {
+  if (box.crossesNear || box.empty()) return false;
+  for (int ty = box.y0 / kTile; ty <= (box.y1 - 1) / kTile; ++ty)
+    for (int tx = box.x0 / kTile; tx <= (box.x1 - 1) / kTile; ++tx) {
+      ++texelsRead;
+      if (maximum(tx, ty) < box.nearest) continue;  // the whole tile is nearer
+      // The tile holds something at least as far: look at the box's own texels in it.
+      const BoxFootprint part{false, std::max(box.x0, tx * kTile), std::min(box.x1, (tx + 1) * kTile),
+                              std::max(box.y0, ty * kTile), std::min(box.y1, (ty + 1) * kTile), box.nearest};
+      if (!hiddenOnMap(map_, part, texelsRead)) return false;
+    }
+  return true;
+}
+
+Pyramid::Pyramid(const DepthMap& map) {
+  levels_.push_back(map);
+  while (levels_.back().width > 1 || levels_.back().height > 1) {
+    const DepthMap& below = levels_.back();
+    DepthMap level((below.width + 1) / 2, (below.height + 1) / 2);
+    for (int y = 0; y < level.height; ++y) {
+      const int y0 = 2 * y, y1 = std::min(2 * y + 1, below.height - 1);
+      for (int x = 0; x < level.width; ++x) {
+        const int x0 = 2 * x, x1 = std::min(2 * x + 1, below.width - 1);
+        level.at(x, y) = std::max({below.at(x0, y0), below.at(x1, y0), below.at(x0, y1), below.at(x1, y1)});
+      }
+    }
+    levels_.push_back(std::move(level));
+  }
+}
+
+bool Pyramid::hidden(const BoxFootprint& box, std::int64_t& texelsRead) const {
+  if (box.crossesNear || box.empty()) return false;
+  // Texel i of a level covers texels 2i and 2i + 1 below it, so level k's texel over
+  // level-0 texel x is x >> k.
+  int level = 0;
+  while (((box.x1 - 1) >> level) - (box.x0 >> level) > 1 || ((box.y1 - 1) >> level) - (box.y0 >> level) > 1) ++level;
+  const BoxFootprint coarse{false, box.x0 >> level, ((box.x1 - 1) >> level) + 1, box.y0 >> level, ((box.y1 - 1) >> level) + 1,
+                            box.nearest};
+  return hiddenOnMap(levels_[std::size_t(level)], coarse, texelsRead);
+}
+
+void OccluderRasterizer::triangle(const dvec3& a, const dvec3& b, const dvec3& c) {
+  const std::array<ClipVertex, 3> clip = {view_.camera.clipFromWorld(a), view_.camera.clipFromWorld(b),
+                                          view_.camera.clipFromWorld(c)};
+  ++trianglesRasterized;
+  if (rule_ == Rule::center) centerTriangle(clip);
+  else conservativeTriangle(clip);
+}
+
+// A face of the box faces the eye when the eye is outside its plane. Decided in double
+// with a tolerance that leans towards "faces the eye": an extra face only raises the
+// depth written (farther: safe), a missing one could lower it.
+bool OccluderRasterizer::facesEye(const std::array<dvec3, 8>& corners, int axis, int side) const {
+  const int u = 1 << ((axis + 1) % 3), v = 1 << ((axis + 2) % 3), base = side << axis;
+  const dvec3& origin = corners[std::size_t(base)];
+  dvec3 normal = glm::cross(corners[std::size_t(base | u)] - origin, corners[std::size_t(base | v)] - origin);
+  const dvec3 inward = corners[std::size_t(base ^ (1 << axis))] - origin;
+  if (glm::dot(normal, inward) > 0) normal = -normal;
+  const dvec3 towardsEye = view_.camera.perspective() ? view_.camera.camera().eye - origin : -view_.camera.forward();
+  return glm::dot(normal, towardsEye) >= -1e-9 * glm::length(normal) * glm::length(towardsEye);
+}
+
+void OccluderRasterizer::box(const std::array<dvec3, 8>& corners) {
+  std::array<ClipVertex, 8> clip;
+  bool crossesNear = false;
+  for (std::size_t i = 0; i < 8; ++i) {
+    clip[i] = view_.camera.clipFromWorld(corners[i]);
+    crossesNear = crossesNear || clip[i].d < view_.volume.near;
+  }
+  const auto eachFrontFace = [&](auto&& face) {
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side)
+        if (facesEye(corners, axis, side)) {
+          const int u = 1 << ((axis + 1) % 3), v = 1 << ((axis + 2) % 3), base = side << axis;
+          face(std::array<int, 4>{base, base | u, base | u | v, base | v});
+        }
+  };
+  if (rule_ == Rule::center || crossesNear) {
+    // The front faces as triangles, clipped where they cross the near plane.
+    eachFrontFace([&](const std::array<int, 4>& quad) {
+      triangle(corners[std::size_t(quad[0])], corners[std::size_t(quad[1])], corners[std::size_t(quad[2])]);
+      triangle(corners[std::size_t(quad[0])], corners[std::size_t(quad[2])], corners[std::size_t(quad[3])]);
+    });
+    return;
+  }
+  // Conservative, the box wholly in front of the near plane: its projection is the hull
+  // of its corners, and over it the front surface is the largest of the front faces'
+  // planes (the box is convex: a sight line enters it through the last front plane it
+  // crosses). So one polygon, and no texel lost along the edges between faces.
+  std::array<dvec2, 8> texels;
+  std::array<double, 8> keys;
+  for (std::size_t i = 0; i < 8; ++i) texels[i] = view_.texel(clip[i]), keys[i] = view_.key(clip[i].d);
+  Plane planes[6];
+  int planeCount = 0;
+  eachFrontFace([&](const std::array<int, 4>& quad) {
+    const std::size_t i0 = std::size_t(quad[0]), i1 = std::size_t(quad[1]), i2 = std::size_t(quad[3]);
+    const dvec2 e1 = texels[i1] - texels[i0], e2 = texels[i2] - texels[i0];
+    const double area = cross(e1, e2);
+    if (area == 0) return;  // seen exactly edge-on: it shows nowhere
+    const double dk1 = keys[i1] - keys[i0], dk2 = keys[i2] - keys[i0];
+    const double kx = (dk1 * e2.y - dk2 * e1.y) / area, ky = (e1.x * dk2 - e2.x * dk1) / area;
+    planes[planeCount++] = {keys[i0] - kx * texels[i0].x - ky * texels[i0].y, kx, ky};
+  });
+  dvec2 hull[16];
+  const int hullSize = convexHull(texels, 8, hull);
+  ++trianglesRasterized;
+  if (planeCount > 0 && hullSize >= 3) conservativePolygon(hull, hullSize, planes, planeCount);
+}
+
+void OccluderRasterizer::centerTriangle(const std::array<ClipVertex, 3>& clip) {
+  ClipPolygon polygon;
+  if ((view_.volume.outside(clip[0]) | view_.volume.outside(clip[1]) | view_.volume.outside(clip[2])) & kNearAndGuard) {
+    polygon = clipTriangle(clip, view_.volume, kNearAndGuard);
+  } else {
+    polygon.count = 3;
+    std::copy(clip.begin(), clip.end(), polygon.vertices.begin());
+  }
+  dvec2 texel[9];
+  double t[9];
+  for (int i = 0; i < polygon.count; ++i) {
+    texel[i] = view_.texel(polygon.vertices[std::size_t(i)]);
+    t[i] = view_.camera.screenAffineDepth(polygon.vertices[std::size_t(i)].d);
+  }
+  // The key is t under orthographic projection and -t under perspective.
+  const double sign = view_.camera.perspective() ? -1.0 : 1.0;
+  for (int i = 1; i + 1 < polygon.count; ++i) {
+    const dvec2 fan[3] = {texel[0], texel[i], texel[i + 1]};
+    const double fanT[3] = {t[0], t[i], t[i + 1]};
+    ScreenTriangle screen;
+    if (!setupScreenTriangle(fan, fanT, map_.width, map_.height, 0, screen)) continue;
+    // Along a row the key steps by a constant: float arithmetic from the row's start
+    // (the center rule is approximate anyway, and this loop is the method's hot spot).
+    const float kx = static_cast<float>(sign * screen.tdx);
+    std::int64_t written = 0;
+    for (int y = screen.minY; y <= screen.maxY; ++y) {
+      const float rowStart =
+          static_cast<float>(sign * screen.depthAt(conventions::kPixelCenterOffset, y + conventions::kPixelCenterOffset));
+      float* row = &map_.at(0, y);
+      rasterizeSpan(screen, y, screen.minX, screen.maxX + 1, [&](int x) {
+        row[x] = std::min(row[x], rowStart + kx * static_cast<float>(x));
+        ++written;
+      });
+    }
+    texelsWritten += written;
+  }
+}
+
+void OccluderRasterizer::conservativeTriangle(const std::array<ClipVertex, 3>& clip) {
+  ClipPolygon polygon = clipTriangle(clip, view_.volume, kNearAndGuard);
+  if (polygon.count < 3) return;
+  dvec2 texel[9];
+  double key[9];
+  for (int i = 0; i < polygon.count; ++i) {
+    texel[i] = view_.texel(polygon.vertices[std::size_t(i)]);
+    key[i] = view_.key(polygon.vertices[std::size_t(i)].d);
+  }
+  // The plane through the polygon's best-conditioned fan triangle (all lie in one plane).
+  int best = 1;
+  double bestArea = 0;
+  for (int i = 1; i + 1 < polygon.count; ++i) {
+    const double area = std::abs(cross(texel[i] - texel[0], texel[i + 1] - texel[0]));
+    if (area > bestArea) best = i, bestArea = area;
+  }
+  if (bestArea == 0) return;
+  const dvec2 e1 = texel[best] - texel[0], e2 = texel[best + 1] - texel[0];
+  const double area = cross(e1, e2), dk1 = key[best] - key[0], dk2 = key[best + 1] - key[0];
+  const double kx = (dk1 * e2.y - dk2 * e1.y) / area, ky = (e1.x * dk2 - e2.x * dk1) / area;
+  const Plane plane{key[0] - kx * texel[0].x - ky * texel[0].y, kx, ky};
+  conservativePolygon(texel, polygon.count, &plane, 1);
+}
+
+void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, const Plane* planes, int planeCount) {
+  // Each edge as E(x, y) = A x + B y + C, positive inside whichever way the polygon runs.
+  double orientation = 0, reach = 1;
+  for (int i = 0; i < count; ++i) {
+    orientation += cross(corners[i], corners[(i + 1) % count]);
+    reach = std::max({reach, std::abs(corners[i].x), std::abs(corners[i].y)});
+  }
+  if (orientation == 0) return;
+  const double sign = orientation > 0 ? 1.0 : -1.0;
+  struct Edge {
+    double a, b, c, margin;
+  };
+  Edge edges[16];
+  double top = corners[0].y, bottom = corners[0].y;
+  for (int i = 0; i < count; ++i) {
+    const dvec2 &p = corners[i], &q = corners[(i + 1) % count];
+    const double a = -sign * (q.y - p.y), b = sign * (q.x - p.x);
+    const double c = -(a * p.x + b * p.y);
+    // Far above the rounding of E at any corner in play: a texel that only touches the
+    // edge, to within rounding, counts as not covered.
+    edges[i] = {a, b, c, 1e-12 * ((std::abs(a) + std::abs(b)) * reach + std::abs(c)) + 1e-9 * (std::abs(a) + std::abs(b))};
+    top = std::min(top, p.y), bottom = std::max(bottom, p.y);
+  }
+  const int firstRow = std::max(0, static_cast<int>(std::floor(top)));
+  const int lastRow = std::min(map_.height - 1, static_cast<int>(std::ceil(bottom)) - 1);
+  for (int y = firstRow; y <= lastRow; ++y) {
+    // Texel (x, y) spans [x, x + 1] x [y, y + 1]; it is wholly inside when every edge
+    // function clears its margin at the texel's worst corner: A x + min(A, 0) + B y +
+    // min(B, 0) + C >= margin, a bound on x from each edge.
+    double lo = 0, hi = map_.width - 1;
+    for (int i = 0; i < count; ++i) {
+      const Edge& e = edges[i];
+      const double rest = e.margin - (e.b * y + std::min(e.b, 0.0) + e.c + std::min(e.a, 0.0));
+      if (e.a > 0) lo = std::max(lo, std::ceil(rest / e.a));
+      else if (e.a < 0) hi = std::min(hi, std::floor(rest / e.a));
+      else if (rest > 0) hi = -1;
+    }
+    float* row = &map_.at(0, y);
+    for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x) {
+      // An affine key is largest over the texel at the corner its slopes point to.
+      double farthest = -std::numeric_limits<double>::infinity();
+      for (int k = 0; k < planeCount; ++k) {
+        const Plane& p = planes[k];
+        farthest = std::max(farthest, p.k0 + p.kx * (x + (p.kx > 0)) + p.ky * (y + (p.ky > 0)));
+      }
+      row[x] = std::min(row[x], roundedUp(farthest));
+      ++texelsWritten;
+    }
+  }
+}
+
+}  // namespace hsr::culling::occlusion

@@ -1,0 +1,136 @@
+// The occluder depth map: a small depth buffer that holds, for each of its texels, a
+// depth no object behind it can be nearer than: the occluders' depth (rasterized into
+// it) or the previous frame's (read back from it). An occludee is hidden when its box,
+// projected, lies behind every texel its screen rectangle touches.
+//
+// Depths are stored as keys that are affine in screen space and grow with distance
+// (-1/d under perspective, d under orthographic), so one plane interpolates a triangle's
+// depth exactly and "nearer" is always "smaller". Empty texels hold +infinity.
+//
+// The two rasterization rules of the published methods:
+//   center        a texel takes a triangle's depth at its center whenever the shared
+//                 rasterizer (renderer/raster) covers that center. Fast; but the texel
+//                 then claims its whole area for the occluder, so an object seen
+//                 through a gap narrower than a texel can be culled.
+//   conservative  a texel is written only where one occluder covers it entirely, with
+//                 the farthest depth the occluder has over it (rounded away from the
+//                 occludee's side). Never culls a visible object.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "renderer/bvh.hpp"
+#include "renderer/camera.hpp"
+#include "renderer/clip.hpp"
+
+namespace hsr::culling::occlusion {
+
+enum class Rule { conservative, center };
+
+struct DepthMap {
+  int width = 0, height = 0;
+  std::vector<float> keys;  // row-major, row 0 at the top
+
+  DepthMap() = default;
+  DepthMap(int w, int h);
+  float at(int x, int y) const { return keys[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+  float& at(int x, int y) { return keys[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+
+// A double rounded to float in a chosen direction, and one ulp further: a key computed in
+// double within a few of its ulps of the truth still lands on the safe side.
+float roundedUp(double value);
+float roundedDown(double value);
+
+// The view's camera, seen at the map's resolution: the same view volume, its pixels scaled.
+struct MapView {
+  MapView(const CameraTransform& camera, int mapWidth, int mapHeight);
+  const CameraTransform& camera;
+  int width, height;
+  dvec2 scale;        // map texels per view pixel
+  ClipVolume volume;  // near plane and the guard band, in map texels
+  double key(double distance) const { return camera.perspective() ? -1.0 / distance : distance; }
+  dvec2 texel(const ClipVertex& v) const { return camera.pixelFromClip(v) * scale; }
+};
+
+// Where an occludee's box lands on the map: the texels [x0, x1) x [y0, y1) its screen
+// rectangle touches, and its nearest key rounded down. `crossesNear`: some corner is
+// nearer than the near plane, so its projection is unbounded: never hidden.
+struct BoxFootprint {
+  bool crossesNear = false;
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  float nearest = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+};
+BoxFootprint footprint(const MapView& view, const std::array<dvec3, 8>& corners);
+std::array<dvec3, 8> cornersOf(const Aabb& box);
+
+// Hidden when every texel of the footprint holds a key nearer than the box's nearest;
+// stops at the first texel that proves it visible. Counts the texels read.
+bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead);
+
+// The largest key of each 8x8 tile of a map that is still being drawn, recomputed only
+// where it was drawn since: the test of an occluder before it is drawn (most are hidden
+// by nearer ones, and a near one covers many texels) reads a tile where it can instead
+// of its 64 texels. Decides exactly as hiddenOnMap does.
+class TileMaxima {
+ public:
+  explicit TileMaxima(const DepthMap& map);
+  // The texels of `box` (all of them if it crosses the near plane) may have changed.
+  void invalidate(const BoxFootprint& box);
+  bool hidden(const BoxFootprint& box, std::int64_t& texelsRead);
+
+ private:
+  static constexpr int kTile = 8;
+  float maximum(int tileX, int tileY);
+  const DepthMap& map_;
+  int columns_, rows_;
+  std::vector<float> maxima_;
+  std::vector<std::uint8_t> stale_;
+};
+
+// The hierarchical-Z pyramid: level 0 is the map, each next level the max of 2x2 texels
+// of the one below. At an odd size the last texel of a row or column covers the one
+// child left (ceil(n / 2) texels), so every level stays a bound on everything below it.
+class Pyramid {
+ public:
+  explicit Pyramid(const DepthMap& map);
+  // The box tested at the finest level where its footprint spans at most 2x2 texels.
+  bool hidden(const BoxFootprint& box, std::int64_t& texelsRead) const;
+  const std::vector<DepthMap>& levels() const { return levels_; }
+
+ private:
+  std::vector<DepthMap> levels_;
+};
+
+// Rasterizes occluders into a map, by one rule. Occluders are given in world space.
+class OccluderRasterizer {
+ public:
+  OccluderRasterizer(const MapView& view, Rule rule, DepthMap& map) : view_(view), rule_(rule), map_(map) {}
+  // A triangle of an occluder's surface: either side of it hides what lies behind.
+  void triangle(const dvec3& a, const dvec3& b, const dvec3& c);
+  // A solid box (corner i at bit 0: +x side, bit 1: +y, bit 2: +z of its own axes, as
+  // cornersOf gives them or any affine image of those): only its front is drawn.
+  void box(const std::array<dvec3, 8>& corners);
+
+  std::int64_t trianglesRasterized = 0, texelsWritten = 0;
+
+ private:
+  struct Plane {
+    double k0, kx, ky;  // key(x, y) = k0 + kx x + ky y, in map texels
+  };
+  void centerTriangle(const std::array<ClipVertex, 3>& clip);
+  void conservativeTriangle(const std::array<ClipVertex, 3>& clip);
+  // The texels wholly inside a convex polygon (map texels, either winding), each written
+  // with the largest of the planes' keys over it.
+  void conservativePolygon(const dvec2* corners, int count, const Plane* planes, int planeCount);
+  bool facesEye(const std::array<dvec3, 8>& corners, int axis, int side) const;
+
+  const MapView& view_;
+  Rule rule_;
+  DepthMap& map_;
+};
+
+}  // namespace hsr::culling::occlusion

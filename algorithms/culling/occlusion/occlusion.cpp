@@ -1,0 +1,216 @@
+// Occlusion culling (occlusion.hpp has the methods and the knobs).
+#include "algorithms/culling/occlusion/occlusion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+
+namespace hsr::culling::occlusion {
+namespace {
+
+std::size_t choiceIndex(const StageEntry& entry, const StageChoice& choice, const std::string& knob) {
+  const KnobSpec& spec = *findKnob(entry.knobs, knob);
+  return std::size_t(std::find(spec.choices.begin(), spec.choices.end(), choice.knobs.at(knob)) - spec.choices.begin());
+}
+
+// How much of the view an object can hide: its world volume, or the solid angle of its
+// bounding sphere from the eye (the projected area under orthographic projection).
+double occluderScore(const CameraTransform& camera, Occluders occluders, const Instance& instance) {
+  if (occluders == Occluders::volume) {
+    const dvec3 size = instance.box.hi - instance.box.lo;
+    return size.x * size.y * size.z;
+  }
+  const double r = instance.sphereRadius;
+  if (!camera.perspective()) return r * r;
+  const double distance = glm::length(instance.sphereCenter - camera.camera().eye);
+  if (distance <= r) return 4 * std::numbers::pi;  // the eye is inside: it fills the view
+  // The cap a sphere of radius r subtends at distance D: 2 pi (1 - cos(asin(r / D))).
+  return 2 * std::numbers::pi * (1 - std::sqrt(1 - (r / distance) * (r / distance)));
+}
+
+}  // namespace
+
+Settings settingsOf(const StageChoice& choice) {
+  const StageEntry& entry = *choice.stage;
+  Settings settings;
+  settings.method = choice.variant == "previous-frame" ? Method::previousFrame : Method::depthMap;
+  settings.rule = static_cast<Rule>(choiceIndex(entry, choice, "raster"));
+  settings.mapWidth = static_cast<int>(knobNumber(choice.knobs, "map-width").value);
+  settings.mapHeight = static_cast<int>(knobNumber(choice.knobs, "map-height").value);
+  settings.pyramid = choice.knobs.at("pyramid") == "on";
+  settings.occluders = static_cast<Occluders>(choiceIndex(entry, choice, "occluders"));
+  settings.fraction = knobNumber(choice.knobs, "fraction").value / 100;
+  return settings;
+}
+
+StageEntry stage() {
+  StageEntry entry{
+      "occlusion",
+      "drop objects hidden behind nearer ones, by their boxes against a small depth map",
+      {{"depth-map", "occluders rasterized into a small depth map, nearest first"},
+       {"previous-frame", "the previous frame's depth, reduced to the map: objects coming into view appear a frame late"}},
+      {"previous-frame"},
+      nullptr,
+      {{"map-width", "the depth map's width in texels", {"256", "64", "128", "512"}, KnobSpec::Range{1, 4096, true}},
+       {"map-height", "the depth map's height in texels", {"128", "64", "256"}, KnobSpec::Range{1, 4096, true}},
+       {"raster",
+        "conservative: a texel only where one occluder covers it entirely, at its farthest depth there; center: the "
+        "rasterizer's pixel-center rule (can cull objects seen through gaps)",
+        {"conservative", "center"},
+        std::nullopt,
+        {"depth-map"}},
+       {"pyramid", "on: each box tested on the hierarchical-Z level where it spans at most 2x2 texels", {"off", "on"}},
+       {"occluders", "which objects are drawn into the map: all, or the largest by world volume or by solid angle",
+        {"all", "volume", "solid-angle"},
+        std::nullopt,
+        {"depth-map"}},
+       {"fraction", "the share of the objects drawn as occluders when occluders is not all, in percent",
+        {"10%", "5%", "20%"},
+        KnobSpec::Range{0.01, 100, false, true},
+        {"depth-map"}}},
+      [](const KnobValues& knobs) { return knobs.at("raster") == "center"; }};
+  entry.run = [](const StageChoice& choice, const StageInput& input) {
+    return cull(input.scene, input.camera, settingsOf(choice), input.in, input.previous, input.stats);
+  };
+  entry.conflict = [](const std::string&, const KnobValues& knobs) {
+    const bool fractionSet = knobs.at("fraction") != "10%";
+    return knobs.at("occluders") == "all" && fractionSet ? "fraction applies only with occluders=volume or solid-angle"
+                                                          : std::string();
+  };
+  return entry;
+}
+
+std::optional<std::array<dvec3, 8>> boxOfSolid(const PreparedScene& scene, const Instance& instance) {
+  const Solid& solid = scene.scene().objects[instance.object].solid;
+  if (solid.kind != Solid::Kind::box) return std::nullopt;
+  Aabb own;
+  own.lo = -0.5 * solid.size, own.hi = 0.5 * solid.size;
+  std::array<dvec3, 8> corners = cornersOf(own);
+  for (dvec3& corner : corners) corner = dvec3(instance.worldFromObject * dvec4(corner, 1));
+  return corners;
+}
+
+std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings,
+                                           const VisibleSet& in) {
+  std::vector<std::uint32_t> candidates = instancesIn(scene, in);
+  if (settings.occluders == Occluders::all || candidates.empty()) return candidates;
+  const std::size_t count =
+      std::clamp<std::size_t>(std::size_t(std::ceil(settings.fraction * double(candidates.size()))), 1, candidates.size());
+  std::vector<double> score(scene.instances().size());
+  for (const std::uint32_t instance : candidates)
+    score[instance] = occluderScore(camera, settings.occluders, scene.instances()[instance]);
+  // The largest first, ties to the earlier object: the same choice on every run.
+  std::stable_sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) { return score[a] > score[b]; });
+  candidates.resize(count);
+  std::sort(candidates.begin(), candidates.end());
+  return candidates;
+}
+
+DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Settings& settings,
+                          const std::vector<std::uint32_t>& occluders, Stats& stats) {
+  PhaseTimer timer(stats, "occlusion: rasterize occluders");
+  DepthMap map(view.width, view.height);
+  // Nearest first, so that an occluder wholly behind what is already drawn can be
+  // skipped: everything it would write is farther than what the map holds.
+  struct Queued {
+    float nearest;
+    std::uint32_t instance;
+    BoxFootprint box;
+  };
+  std::vector<Queued> queue;
+  queue.reserve(occluders.size());
+  for (const std::uint32_t instance : occluders) {
+    const BoxFootprint box = footprint(view, cornersOf(scene.instances()[instance].box));
+    queue.push_back({box.crossesNear ? -std::numeric_limits<float>::infinity() : box.nearest, instance, box});
+  }
+  std::sort(queue.begin(), queue.end(), [](const Queued& a, const Queued& b) {
+    return a.nearest < b.nearest || (a.nearest == b.nearest && a.instance < b.instance);
+  });
+  OccluderRasterizer rasterizer(view, settings.rule, map);
+  TileMaxima tiles(map);
+  std::int64_t rasterized = 0, skipped = 0, texelsRead = 0;
+  const std::vector<dvec3>& positions = scene.positions();
+  for (const Queued& occluder : queue) {
+    if (tiles.hidden(occluder.box, texelsRead)) {
+      ++skipped;
+      continue;
+    }
+    ++rasterized;
+    tiles.invalidate(occluder.box);  // it draws within its box's footprint
+    const Instance& instance = scene.instances()[occluder.instance];
+    if (const auto box = boxOfSolid(scene, instance)) {
+      rasterizer.box(*box);
+      continue;
+    }
+    for (std::uint32_t t = instance.firstTriangle; t < instance.firstTriangle + instance.triangleCount; ++t) {
+      const Triangle& triangle = scene.triangles()[t];
+      rasterizer.triangle(positions[triangle[0]], positions[triangle[1]], positions[triangle[2]]);
+    }
+  }
+  stats.add("occlusion: occluders rasterized", rasterized);
+  stats.add("occlusion: occluders skipped", skipped);
+  stats.add("occlusion: occluder triangles", rasterizer.trianglesRasterized);
+  stats.add("occlusion: texels written", rasterizer.texelsWritten);
+  return map;
+}
+
+DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
+  DepthMap map(view.width, view.height);
+  // Texel x spans view pixels [x / scale, (x + 1) / scale): the pixels it overlaps.
+  const auto pixels = [](int texel, double scale, int size) {
+    const int first = static_cast<int>(std::floor(texel / scale));
+    const int last = static_cast<int>(std::ceil((texel + 1) / scale)) - 1;
+    return std::pair(std::clamp(first, 0, size - 1), std::clamp(last, 0, size - 1));
+  };
+  for (int y = 0; y < map.height; ++y) {
+    const auto [top, bottom] = pixels(y, view.scale.y, frame.height);
+    for (int x = 0; x < map.width; ++x) {
+      const auto [left, right] = pixels(x, view.scale.x, frame.width);
+      double farthest = -std::numeric_limits<double>::infinity();
+      for (int py = top; py <= bottom; ++py)
+        for (int px = left; px <= right; ++px) {
+          const float depth = frame.depth[std::size_t(py) * std::size_t(frame.width) + std::size_t(px)];
+          farthest = std::max(farthest, std::isinf(depth) ? std::numeric_limits<double>::infinity() : view.key(depth));
+        }
+      map.at(x, y) = roundedUp(farthest);
+    }
+  }
+  return map;
+}
+
+VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings, const VisibleSet& in,
+                const PreviousFrame* previous, Stats& stats) {
+  PhaseTimer timer(stats, "culling: occlusion");
+  // The map, and the camera that saw it: this frame's, or the previous frame's.
+  std::optional<CameraTransform> previousCamera;
+  if (settings.method == Method::previousFrame) {
+    if (!previous || !previous->frame) {
+      stats.add("occlusion: no previous frame", 1);
+      return in;
+    }
+    previousCamera.emplace(previous->camera, previous->frame->width, previous->frame->height);
+  }
+  const MapView view(previousCamera ? *previousCamera : camera, settings.mapWidth, settings.mapHeight);
+  const DepthMap map = previousCamera ? depthMapOfFrame(view, *previous->frame)
+                                      : occluderDepthMap(scene, view, settings, chooseOccluders(scene, camera, settings, in), stats);
+  std::optional<Pyramid> pyramid;
+  if (settings.pyramid) pyramid.emplace(map);
+
+  PhaseTimer testing(stats, "occlusion: test occludees");
+  std::int64_t tested = 0, culled = 0, texelsRead = 0;
+  VisibleSet out = keepObjects(scene, in, [&](std::uint32_t instance) {
+    ++tested;
+    const BoxFootprint box = footprint(view, cornersOf(scene.instances()[instance].box));
+    const bool hidden = pyramid ? pyramid->hidden(box, texelsRead) : hiddenOnMap(map, box, texelsRead);
+    culled += hidden;
+    return !hidden;
+  });
+  stats.add("occlusion: occludees tested", tested);
+  stats.add("occlusion: occludees culled", culled);
+  stats.add("occlusion: texels read", texelsRead);
+  stats.add("occlusion: triangles culled", static_cast<std::int64_t>(in.triangles.size() - out.triangles.size()));
+  return out;
+}
+
+}  // namespace hsr::culling::occlusion
