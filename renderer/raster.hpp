@@ -41,6 +41,32 @@ bool setupScreenTriangle(const dvec2 pixel[3], const double t[3], int width, int
 // pixel (three additions beat three integer divisions there). Both are exact.
 inline constexpr int kSolveSpansWiderThan = 16;
 
+// The pixels of `row` in [xBegin, xEnd) whose centers the triangle covers form one run
+// (a triangle is convex): sets [first, last] to it and returns true, or returns false
+// when there is none. Exact integer arithmetic, by solving each edge function for where
+// it turns negative along the row. The caller keeps [xBegin, xEnd) inside [minX, maxX].
+inline bool coveredRun(const ScreenTriangle& tri, int row, int xBegin, int xEnd, int& first, int& last) {
+  using conventions::kSubpixelScale;
+  const std::int64_t py = row * kSubpixelScale + kSubpixelScale / 2;
+  const std::int64_t px = xBegin * kSubpixelScale + kSubpixelScale / 2;
+  // Each edge function is linear along the row, e + step * i for the i-th pixel, so
+  // "e + step * i >= 0" bounds i from below (step > 0) or above (step < 0).
+  std::int64_t lo = 0, hi = xEnd - xBegin - 1;
+  for (int k = 0; k < 3; ++k) {
+    const std::int64_t e = tri.edgeA[k] * px + tri.edgeB[k] * py + tri.edgeC[k], step = tri.edgeA[k] * kSubpixelScale;
+    if (step > 0) {
+      if (e < 0) lo = std::max(lo, (-e + step - 1) / step);  // ceil(-e / step)
+    } else if (step < 0) {
+      if (e < 0) return false;  // negative at the start and falling: never inside on this row
+      hi = std::min(hi, e / -step);  // floor(e / -step)
+    } else if (e < 0) {
+      return false;  // parallel to the row and outside
+    }
+  }
+  first = xBegin + static_cast<int>(lo), last = xBegin + static_cast<int>(hi);
+  return lo <= hi;
+}
+
 // Calls covered(x), in increasing x, for every pixel x in [xBegin, xEnd) of `row` whose
 // center the triangle covers. The caller keeps [xBegin, xEnd) inside [minX, maxX].
 // Everything is exact integer arithmetic evaluated from the span's own start, so the
@@ -48,15 +74,15 @@ inline constexpr int kSolveSpansWiderThan = 16;
 template <typename Covered>
 inline void rasterizeSpan(const ScreenTriangle& tri, int row, int xBegin, int xEnd, Covered&& covered) {
   using conventions::kSubpixelScale;
-  const std::int64_t py = row * kSubpixelScale + kSubpixelScale / 2;
-  const std::int64_t px = xBegin * kSubpixelScale + kSubpixelScale / 2;
-  std::int64_t e[3], step[3];
-  for (int k = 0; k < 3; ++k) {
-    e[k] = tri.edgeA[k] * px + tri.edgeB[k] * py + tri.edgeC[k];
-    step[k] = tri.edgeA[k] * kSubpixelScale;
-  }
   if (xEnd - xBegin <= kSolveSpansWiderThan) {
     // Edge-function test at every pixel center: all three non-negative means no sign bit set.
+    const std::int64_t py = row * kSubpixelScale + kSubpixelScale / 2;
+    const std::int64_t px = xBegin * kSubpixelScale + kSubpixelScale / 2;
+    std::int64_t e[3], step[3];
+    for (int k = 0; k < 3; ++k) {
+      e[k] = tri.edgeA[k] * px + tri.edgeB[k] * py + tri.edgeC[k];
+      step[k] = tri.edgeA[k] * kSubpixelScale;
+    }
     for (int x = xBegin; x < xEnd; ++x) {
       if ((e[0] | e[1] | e[2]) >= 0) covered(x);
       e[0] += step[0];
@@ -65,20 +91,9 @@ inline void rasterizeSpan(const ScreenTriangle& tri, int row, int xBegin, int xE
     }
     return;
   }
-  // Each edge function is linear along the row, e + step * i for the i-th pixel, so
-  // "e + step * i >= 0" bounds i from below (step > 0) or above (step < 0).
-  std::int64_t first = 0, last = xEnd - xBegin - 1;
-  for (int k = 0; k < 3; ++k) {
-    if (step[k] > 0) {
-      if (e[k] < 0) first = std::max(first, (-e[k] + step[k] - 1) / step[k]);  // ceil(-e / step)
-    } else if (step[k] < 0) {
-      if (e[k] < 0) return;  // negative at the start and falling: never inside on this row
-      last = std::min(last, e[k] / -step[k]);  // floor(e / -step)
-    } else if (e[k] < 0) {
-      return;  // parallel to the row and outside
-    }
-  }
-  for (std::int64_t i = first; i <= last; ++i) covered(xBegin + static_cast<int>(i));
+  int first, last;
+  if (!coveredRun(tri, row, xBegin, xEnd, first, last)) return;
+  for (int x = first; x <= last; ++x) covered(x);
 }
 
 // The line rule: a segment of width w covers the pixels whose centers lie within w / 2

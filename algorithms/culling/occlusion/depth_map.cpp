@@ -267,17 +267,18 @@ void OccluderRasterizer::centerTriangle(const std::array<ClipVertex, 3>& clip) {
     ScreenTriangle screen;
     if (!setupScreenTriangle(fan, fanT, map_.width, map_.height, 0, screen)) continue;
     // Along a row the key steps by a constant: float arithmetic from the row's start
-    // (the center rule is approximate anyway, and this loop is the method's hot spot).
+    // (the center rule is approximate anyway), over the row's covered run in one loop
+    // the compiler can vectorize: this is the method's hot spot.
     const float kx = static_cast<float>(sign * screen.tdx);
     std::int64_t written = 0;
     for (int y = screen.minY; y <= screen.maxY; ++y) {
+      int first, last;
+      if (!coveredRun(screen, y, screen.minX, screen.maxX + 1, first, last)) continue;
       const float rowStart =
           static_cast<float>(sign * screen.depthAt(conventions::kPixelCenterOffset, y + conventions::kPixelCenterOffset));
       float* row = &map_.at(0, y);
-      rasterizeSpan(screen, y, screen.minX, screen.maxX + 1, [&](int x) {
-        row[x] = std::min(row[x], rowStart + kx * static_cast<float>(x));
-        ++written;
-      });
+      for (int x = first; x <= last; ++x) row[x] = std::min(row[x], rowStart + kx * static_cast<float>(x));
+      written += last - first + 1;
     }
     texelsWritten += written;
   }
