@@ -3,6 +3,7 @@
 // output files only when all of them are complete.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -46,15 +47,17 @@ struct SweepOptions {
 int sweep(const SweepOptions& options);
 
 struct StudyOptions {
-  std::string name;    // "culling-combos"
+  std::string name;    // "culling-combos", or one of the occlusion studies
   std::string scenes;  // a subset of the study's scenes, "cube,counters"; empty: all four
-  int frames = 360;    // over a full turn
+  int frames = 0;      // 0: the study's own default
   int errorFrames = 4; // frames whose images are compared with the exact reference
   int threads = 1;
   std::string size;
-  std::string out = "out/study/culling-combos";
+  std::string out;     // "": out/study/NAME
 };
 int study(const StudyOptions& options);
+// The occlusion studies (study_occlusion.cpp), into `folder`.
+int occlusionStudy(const StudyOptions& options, const std::filesystem::path& folder);
 
 struct DiffOptions {
   std::string first, second;

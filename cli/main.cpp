@@ -60,16 +60,20 @@ int main(int argc, char** argv) {
   sweepCommand->add_option("--out", sweep.out, "folder for the CSV, JSON and plots")->capture_default_str();
 
   hsr::cli::StudyOptions study;
-  CLI::App* studyCommand = app.add_subcommand("study", "a published experiment, reproduced: culling-combos");
-  studyCommand->add_option("name", study.name, "the study: culling-combos")->required();
+  CLI::App* studyCommand = app.add_subcommand(
+      "study", "a published experiment, reproduced: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction");
+  studyCommand->add_option("name", study.name, "the study: culling-combos, occlusion-walkthrough, hzb-resolution or occluder-fraction")
+      ->required();
   studyCommand->add_option("--scenes", study.scenes, "some of the study's scenes: cube,counters,trees,dragons (default all)");
-  studyCommand->add_option("--frames", study.frames, "frames over a full turn at 60 degrees/s")
-      ->check(CLI::Range(1, 100000))->capture_default_str();
+  studyCommand->add_option("--frames", study.frames,
+                           "frames: culling-combos over a full turn at 60 degrees/s (default 360), occlusion-walkthrough "
+                           "along its path (500); the timing repeats of hzb-resolution (30) and occluder-fraction (20)")
+      ->check(CLI::Range(1, 100000));
   studyCommand->add_option("--error-frames", study.errorFrames, "frames compared with the exact reference, evenly spread")
       ->check(CLI::Range(0, 100000))->capture_default_str();
   studyCommand->add_option("--size", study.size, "WIDTHxHEIGHT for every scene");
   threadsOption(studyCommand, study.threads);
-  studyCommand->add_option("--out", study.out, "folder for culling_combos.csv, .json and the plot")->capture_default_str();
+  studyCommand->add_option("--out", study.out, "folder for the study's CSV and plot (default out/study/NAME)");
 
   hsr::cli::DiffOptions diff;
   CLI::App* diffCommand = app.add_subcommand("diff", "compare two images: exit 0 within tolerance, 1 beyond");

@@ -336,38 +336,49 @@ std::string plot(const std::vector<SceneResult>& scenes) {
 }  // namespace
 
 int study(const StudyOptions& options) {
-  if (options.name != "culling-combos")
-    throw InputError("study " + options.name + ": unknown study; expected culling-combos");
+  const std::vector<std::string> occlusionStudies = {"occlusion-walkthrough", "hzb-resolution", "occluder-fraction"};
+  const bool occlusion = std::find(occlusionStudies.begin(), occlusionStudies.end(), options.name) != occlusionStudies.end();
+  if (options.name != "culling-combos" && !occlusion)
+    throw InputError("study " + options.name +
+                     ": unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution or occluder-fraction");
+  if (!options.size.empty()) parseSize(options.size, "--size");
+  const std::filesystem::path folder = options.out.empty() ? std::filesystem::path("out/study") / options.name : std::filesystem::path(options.out);
+  if (occlusion) {
+    if (!options.scenes.empty()) throw InputError("--scenes: study " + options.name + " has its own scenes; --scenes is for culling-combos");
+    makeFolder(folder, "--out");
+    return occlusionStudy(options, folder);
+  }
+  StudyOptions resolved = options;
+  resolved.frames = options.frames > 0 ? options.frames : 360;
+  const int frames = resolved.frames;
   std::vector<std::string> scenes = kStudyScenes;
-  if (!options.scenes.empty()) {
-    scenes = splitList(options.scenes, "--scenes");
+  if (!resolved.scenes.empty()) {
+    scenes = splitList(resolved.scenes, "--scenes");
     for (const std::string& scene : scenes)
       if (std::find(kStudyScenes.begin(), kStudyScenes.end(), scene) == kStudyScenes.end())
-        throw InputError("--scenes " + options.scenes + ": '" + scene + "' is not one of the study's scenes; expected some of cube, counters, trees, dragons");
+        throw InputError("--scenes " + resolved.scenes + ": '" + scene + "' is not one of the study's scenes; expected some of cube, counters, trees, dragons");
   }
-  if (options.errorFrames > options.frames)
-    throw InputError("--error-frames " + std::to_string(options.errorFrames) + ": more than the " + std::to_string(options.frames) +
+  if (resolved.errorFrames > frames)
+    throw InputError("--error-frames " + std::to_string(resolved.errorFrames) + ": more than the " + std::to_string(frames) +
                      " frames; expected at most --frames");
-  if (!options.size.empty()) parseSize(options.size, "--size");
-  const std::filesystem::path folder = options.out;
   makeFolder(folder, "--out");
 
   std::printf("culling combinations: every object turning at %g degrees/s, %d frames over a full turn (one every %.4g ms of "
               "animation)\n",
-              kDegreesPerSecond, options.frames, 1e3 * 360 / kDegreesPerSecond / options.frames);
-  Progress progress(scenes.size() * std::size_t(options.frames));
+              kDegreesPerSecond, resolved.frames, 1e3 * 360 / kDegreesPerSecond / resolved.frames);
+  Progress progress(scenes.size() * std::size_t(resolved.frames));
   std::size_t done = 0;
   std::vector<SceneResult> results;
   for (const std::string& scene : scenes) {
-    results.push_back(runScene(scene, options, progress, done));
-    std::printf("%s", table(results.back(), options).c_str());
+    results.push_back(runScene(scene, resolved, progress, done));
+    std::printf("%s", table(results.back(), resolved).c_str());
     std::fflush(stdout);
   }
   std::printf("%s", conclusions(results).c_str());
 
   OutputFiles files;
-  files.addText(folder / "culling_combos.csv", csv(results, options));
-  files.addText(folder / "culling_combos.json", json(results, options));
+  files.addText(folder / "culling_combos.csv", csv(results, resolved));
+  files.addText(folder / "culling_combos.json", json(results, resolved));
   addPlot(files, folder, "culling_combos", plot(results));
   files.commit();
   std::printf("wrote %s/culling_combos.{csv,json,png,svg,gp}\n", folder.string().c_str());
