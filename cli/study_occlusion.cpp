@@ -121,7 +121,7 @@ Camera walkCamera(const Camera& base, int frame, int frames) {
 
 int walkthrough(const StudyOptions& options, const std::filesystem::path& folder) {
   const int frames = options.frames > 0 ? options.frames : 500;
-  LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "city_walk.toml").string(), options.size);
+  LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "study" / "city_walk.toml").string(), options.size);
   PreparedScene& scene = *loaded.prepared;
   Scene& world = *loaded.scene;
   const Camera base = world.camera;
@@ -201,7 +201,7 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
 // hzb-resolution
 
 int hzbResolution(const StudyOptions& options, const std::filesystem::path& folder) {
-  LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "walls_doors.toml").string(), options.size);
+  LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "study" / "walls_doors.toml").string(), options.size);
   const PreparedScene& scene = *loaded.prepared;
   Stats referenceStats;
   const ReferenceImage truth = traceReference(scene, 0, referenceStats);
@@ -302,7 +302,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
   std::vector<std::vector<std::pair<std::string, std::string>>> rows;
   std::string data = "$levels << EOD\n";
   for (const auto& [level, description] : levels) {
-    LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / (level + ".toml")).string(), options.size);
+    LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "study" / (level + ".toml")).string(), options.size);
     const PreparedScene& scene = *loaded.prepared;
     Stats referenceStats;
     const ReferenceImage truth = traceReference(scene, 0, referenceStats);

@@ -97,10 +97,15 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"line-style-unknown", kCube + " --algo appel --line-style dotted -o OUT", "--line-style dotted: expected visible, hidden or qi"},
         Case{"cull-unknown-stage", kCube + " --cull backface,occlusionn -o OUT",
              "--cull: unknown culling stage 'occlusionn' in 'backface,occlusionn'; expected a comma-separated list of "
-             "backface or frustum, each optionally :VARIANT"},
+             "backface or frustum or occlusion, each optionally :VARIANT and :KNOB=VALUE"},
         Case{"cull-unknown-variant", kCube + " --cull frustum:cone -o OUT",
              "--cull: culling stage frustum has no variant 'cone'; expected sphere, aabb, bvh, triangle or any-vertex"},
         Case{"cull-empty-stage", kCube + " --cull backface, -o OUT", "--cull: unknown culling stage '' in 'backface,'"},
+        Case{"cull-knob-out-of-range", kCube + " --cull frustum,occlusion:map-width=5000 -o OUT",
+             "--cull map-width=5000: culling stage occlusion map-width must be an integer in [1, 4096]"},
+        Case{"cull-knob-of-another-variant", kCube + " --cull occlusion:previous-frame:occluders=volume -o OUT",
+             "--cull occluders=volume: culling stage occlusion occluders applies only to variant depth-map, not to variant "
+             "previous-frame"},
         Case{"cull-for-ray-casting", kCube + " --algo ray_casting --cull frustum -o OUT",
              "--cull: ray_casting does not draw from a culled set of triangles; expected --algo zbuffer or painter"},
         Case{"cull-for-a-line-algorithm", kCube + " --algo appel --cull backface -o OUT",
@@ -167,7 +172,9 @@ INSTANTIATE_TEST_SUITE_P(
         // hsr sweep
         Case{"sweep-no-knob", kCube + " --out OUT", "give at least one --knob", "sweep"},
         Case{"sweep-unknown-knob", kCube + " --knob precision=1,2 --out OUT", "zbuffer has no knob 'precision'", "sweep"},
-        Case{"study-unknown", "culling-combo --out OUT", "study culling-combo: unknown study; expected culling-combos", "study"},
+        Case{"study-unknown", "culling-combo --out OUT", "study culling-combo: unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution or occluder-fraction", "study"},
+        Case{"study-scenes-of-an-occlusion-study", "hzb-resolution --scenes cube --out OUT",
+             "--scenes: study hzb-resolution has its own scenes; --scenes is for culling-combos", "study"},
         Case{"study-unknown-scene", "culling-combos --scenes cube,teapot --out OUT",
              "--scenes cube,teapot: 'teapot' is not one of the study's scenes; expected some of cube, counters, trees, dragons", "study"},
         Case{"study-error-frames", "culling-combos --frames 4 --error-frames 5 --out OUT",
