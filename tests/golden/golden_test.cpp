@@ -42,11 +42,8 @@ constexpr double kFailingPixelFraction = 0.0005;
 std::vector<std::string> allScenes() {
   std::vector<std::string> scenes;
   const auto root = test::sourcePath("scenes");
-  // scenes/study/ holds the occlusion studies' levels: thousands of objects each, made to
-  // be measured (by the studies, and against the exact reference by the occlusion tests),
-  // too big for Newell's pairs and the line algorithms within the test run's budget.
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
-    if (entry.path().extension() == ".toml" && entry.path().parent_path().filename() != "study")
+    if (entry.path().extension() == ".toml" && !test::isStudyLevel(entry.path()))
       scenes.push_back(std::filesystem::relative(entry.path(), root).replace_extension().string());
   std::sort(scenes.begin(), scenes.end());
   return scenes;

@@ -16,7 +16,7 @@ using painter::Variant;
 
 TEST(PainterAgainstReference, NewellAndBspWrongPixelsAreOnlySnappingOrCoplanarity) {
   for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourcePath("scenes"))) {
-    if (entry.path().extension() != ".toml") continue;
+    if (entry.path().extension() != ".toml" || test::isStudyLevel(entry.path())) continue;
     const test::LoadedScene loaded(entry.path(), 320);
     const PreparedScene& prepared = loaded.prepared;
     Stats stats;

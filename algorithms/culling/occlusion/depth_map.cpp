@@ -331,9 +331,10 @@ void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, co
     edges[i] = {a, b, c, 1e-12 * ((std::abs(a) + std::abs(b)) * reach + std::abs(c)) + 1e-9 * (std::abs(a) + std::abs(b))};
     top = std::min(top, p.y), bottom = std::max(bottom, p.y);
   }
-  const int firstRow = std::max(0, static_cast<int>(std::floor(top)));
-  const int lastRow = std::min(map_.height - 1, static_cast<int>(std::ceil(bottom)) - 1);
-  for (int y = firstRow; y <= lastRow; ++y) {
+  // Bounds are clamped while still doubles: a corner far out in the guard band does not
+  // fit an int.
+  const double firstRow = std::max(0.0, std::floor(top)), lastRow = std::min(double(map_.height - 1), std::ceil(bottom) - 1);
+  for (int y = static_cast<int>(firstRow); y <= lastRow; ++y) {
     // Texel (x, y) spans [x, x + 1] x [y, y + 1]; it is wholly inside when every edge
     // function clears its margin at the texel's worst corner: A x + min(A, 0) + B y +
     // min(B, 0) + C >= margin, a bound on x from each edge.
@@ -345,6 +346,7 @@ void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, co
       else if (e.a < 0) hi = std::min(hi, std::floor(rest / e.a));
       else if (rest > 0) hi = -1;
     }
+    if (!(lo <= hi)) continue;  // no texel of this row, or a bound that is not a number
     float* row = &map_.at(0, y);
     for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x) {
       // An affine key is largest over the texel at the corner its slopes point to.
