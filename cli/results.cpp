@@ -9,17 +9,9 @@
 namespace hsr::cli {
 namespace {
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
+std::string number(double value) { return formatted(value, "%.9g"); }
 
-std::string milliseconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4f", seconds * 1e3);
-  return text;
-}
+std::string milliseconds(double seconds) { return formatted(seconds * 1e3, "%.4f"); }
 
 // The measured fields, in column order, shared by the CSV and the JSON; "" where a
 // field does not apply (CSV: empty, JSON: null).
@@ -186,6 +178,12 @@ void markParetoFront(std::vector<ResultRow>& rows) {
       return noWorse && better;
     });
   }
+}
+
+std::string formatted(double value, const char* format) {
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
 }
 
 std::string csvField(const std::string& text) {

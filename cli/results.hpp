@@ -74,6 +74,8 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
 
 // A CSV field, quoted when it holds a comma, quote or newline; a JSON string literal.
 std::string csvField(const std::string& text);
+// A number in a printf format ("%.4g" unless told).
+std::string formatted(double value, const char* format = "%.4g");
 std::string jsonString(const std::string& text);
 
 // Marks the rows no other row beats in both time (median) and error (errorValue).

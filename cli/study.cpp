@@ -154,12 +154,6 @@ SceneResult runScene(const std::string& name, const StudyOptions& options, Progr
   return result;
 }
 
-std::string number(double value, const char* format = "%.4g") {
-  char text[32];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
-
 // The measured columns of one mode on one scene, shared by the CSV, the JSON and the table.
 std::vector<std::pair<std::string, std::string>> fields(const SceneResult& scene, std::size_t m, const StudyOptions& options) {
   const ModeResult& mode = scene.modes[m];
@@ -175,15 +169,15 @@ std::vector<std::pair<std::string, std::string>> fields(const SceneResult& scene
           {"height", std::to_string(scene.height)},
           {"frames", std::to_string(mode.seconds.size())},
           {"threads", std::to_string(options.threads)},
-          {"time_mean_ms", number(times.mean, "%.4f")},
-          {"time_best5_ms", number(times.best, "%.4f")},
-          {"time_worst5_ms", number(times.worst, "%.4f")},
-          {"culling_ms", number(1e3 * mode.cullingSeconds / frames, "%.4f")},
-          {"triangles_submitted", number(mode.trianglesIn / frames, "%.1f")},
-          {"triangles_rasterized", number(mode.rasterized / frames, "%.1f")},
-          {"vertices_transformed", number(mode.vertices / frames, "%.1f")},
-          {"fragments", number(mode.fragments / frames, "%.1f")},
-          {"pixel_error", mode.errorFrames ? number(mode.errorSum / mode.errorFrames, "%.6f") : ""},
+          {"time_mean_ms", formatted(times.mean, "%.4f")},
+          {"time_best5_ms", formatted(times.best, "%.4f")},
+          {"time_worst5_ms", formatted(times.worst, "%.4f")},
+          {"culling_ms", formatted(1e3 * mode.cullingSeconds / frames, "%.4f")},
+          {"triangles_submitted", formatted(mode.trianglesIn / frames, "%.1f")},
+          {"triangles_rasterized", formatted(mode.rasterized / frames, "%.1f")},
+          {"vertices_transformed", formatted(mode.vertices / frames, "%.1f")},
+          {"fragments", formatted(mode.fragments / frames, "%.1f")},
+          {"pixel_error", mode.errorFrames ? formatted(mode.errorSum / mode.errorFrames, "%.6f") : ""},
           {"error_frames", std::to_string(mode.errorFrames)}};
 }
 
@@ -230,7 +224,7 @@ std::string table(const SceneResult& scene, const StudyOptions& options) {
   for (std::size_t m = 0; m < modes().size(); ++m) {
     const FrameTimes times = frameTimes(scene.modes[m].seconds);
     const ModeResult& mode = scene.modes[m];
-    const std::string error = mode.errorFrames ? number(100 * mode.errorSum / mode.errorFrames, "%.3f%%") : "-";
+    const std::string error = mode.errorFrames ? formatted(100 * mode.errorSum / mode.errorFrames, "%.3f%%") : "-";
     std::snprintf(line, sizeof line, "  %-42s %9.3f %9.3f %9.3f %8.2f %12.0f %11s\n", modes()[m].name.c_str(), times.mean,
                   times.best, times.worst, times.mean / zbuffer, mode.rasterized / double(mode.seconds.size()), error.c_str());
     text += line;
@@ -254,7 +248,7 @@ std::string conclusions(const std::vector<SceneResult>& scenes) {
     const double without = scene.meanMs("backface") / scene.meanMs("none");
     const double with = scene.meanMs("backface + z-buffer") / scene.meanMs("z-buffer");
     helps = helps && without < 1 && with < 1;
-    detail += " " + scene.name + " " + number(without, "%.2f") + "/" + number(with, "%.2f");
+    detail += " " + scene.name + " " + formatted(without, "%.2f") + "/" + formatted(with, "%.2f");
   }
   text += std::string("  backface culling always helps: ") + verdict(helps) +
           " (time with it / without, no depth test / z-buffer:" + detail + ")\n";
@@ -275,9 +269,9 @@ std::string conclusions(const std::vector<SceneResult>& scenes) {
     const auto [triangleNothing, triangleMicroseconds] = stage("triangle");
     text += std::string("  frustum culling costs more than it saves on the cube: ") + verdict(sphereNothing && triangleNothing) +
             " (it removed " + (sphereNothing && triangleNothing ? "nothing" : "some triangles") + "; the frustum stage took " +
-            number(sphereMicroseconds, "%.1f") + " us per frame with the sphere test, " + number(triangleMicroseconds, "%.1f") +
+            formatted(sphereMicroseconds, "%.1f") + " us per frame with the sphere test, " + formatted(triangleMicroseconds, "%.1f") +
             " us with the triangle test; frame time with / without frustum: sphere " +
-            number(frustumRatio(*cube, "sphere"), "%.2f") + ", triangle " + number(frustumRatio(*cube, "triangle"), "%.2f") + ")\n";
+            formatted(frustumRatio(*cube, "sphere"), "%.2f") + ", triangle " + formatted(frustumRatio(*cube, "triangle"), "%.2f") + ")\n";
   }
   if (scenes.size() > 1) {
     const SceneResult* most = &scenes.front();
@@ -285,7 +279,7 @@ std::string conclusions(const std::vector<SceneResult>& scenes) {
     for (const SceneResult& scene : scenes) {
       const double saving = 1 - frustumRatio(scene, "sphere");
       if (saving > 1 - frustumRatio(*most, "sphere")) most = &scene;
-      detail += " " + scene.name + " " + number(100 * saving, "%.0f%%");
+      detail += " " + scene.name + " " + formatted(100 * saving, "%.0f%%");
     }
     text += std::string("  frustum culling saves most on dragons: ") + verdict(most->name == "dragons") + " (saved by sphere:" +
             detail + ")\n";
@@ -297,7 +291,7 @@ std::string conclusions(const std::vector<SceneResult>& scenes) {
     if (scene.objects < 2) continue;
     const double ratio = frustumRatio(scene, "sphere") / frustumRatio(scene, "triangle");
     sphereWins = sphereWins && ratio < 1;
-    detail += " " + scene.name + " " + number(ratio, "%.2f");
+    detail += " " + scene.name + " " + formatted(ratio, "%.2f");
   }
   if (!detail.empty())
     text += std::string("  per-object spheres beat per-triangle tests on scenes of several objects: ") + verdict(sphereWins) +
@@ -315,7 +309,7 @@ std::string plot(const std::vector<SceneResult>& scenes) {
       const FrameTimes times = frameTimes(mode.seconds);
       for (const double value : {times.mean, times.best, times.worst}) {
         data += ' ';
-        data += number(value, "%.6g");
+        data += formatted(value, "%.6g");
       }
     }
     data += "\n";

@@ -33,12 +33,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point start) { return 1e3 * std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::string number(double value, const char* format = "%.4g") {
-  char text[48];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
-
 // One frame of one pipeline: the culling stages then the depth pass, timed apart.
 struct FrameResult {
   double cullMs = 0, renderMs = 0;
@@ -60,13 +54,10 @@ FrameResult renderFrame(const PreparedScene& scene, const culling::Pipeline& pip
 
 // The objects the reference shows of which `kept` has no triangle.
 std::int64_t objectsFalselyCulled(const PreparedScene& scene, const ReferenceImage& truth, const VisibleSet& kept) {
-  std::vector<std::uint8_t> seen(scene.instances().size(), 0), drawn(scene.instances().size(), 0);
-  for (const std::uint32_t id : truth.frame.ids)
-    if (id != 0) seen[std::size_t(&scene.instanceOf(id - 1) - scene.instances().data())] = 1;
-  for (const std::uint32_t t : kept.triangles) drawn[std::size_t(&scene.instanceOf(t) - scene.instances().data())] = 1;
-  std::int64_t count = 0;
-  for (std::size_t i = 0; i < seen.size(); ++i) count += seen[i] && !drawn[i];
-  return count;
+  std::vector<std::uint8_t> keptTriangles(scene.triangleCount(), 0);
+  for (const std::uint32_t t : kept.triangles) keptTriangles[t] = 1;
+  return cullingError(objectsWithAny(scene, keptTriangles), objectsWithAny(scene, visibleTriangles(truth, scene.triangleCount())))
+      .falseCulls;
 }
 
 std::string csvOf(const std::vector<std::vector<std::pair<std::string, std::string>>>& rows) {
@@ -175,8 +166,8 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
     std::printf("  %-26s %9.3f %10.3f %9.2f %13.0f %16d %14lld\n", modes[m].name.c_str(), mean, std::sqrt(variance), mean / noneMean,
                 r.drawn / frames, r.falseCullFrames, static_cast<long long>(r.falselyCulled));
     rows.push_back({{"mode", modes[m].name}, {"culling", modes[m].cull.empty() ? "none" : modes[m].cull},
-                    {"frames", std::to_string(frames)}, {"time_mean_ms", number(mean, "%.4f")},
-                    {"time_stddev_ms", number(std::sqrt(variance), "%.4f")}, {"triangles_drawn", number(r.drawn / frames, "%.1f")},
+                    {"frames", std::to_string(frames)}, {"time_mean_ms", formatted(mean, "%.4f")},
+                    {"time_stddev_ms", formatted(std::sqrt(variance), "%.4f")}, {"triangles_drawn", formatted(r.drawn / frames, "%.1f")},
                     {"false_cull_frames", std::to_string(r.falseCullFrames)},
                     {"objects_falsely_culled", std::to_string(r.falselyCulled)}});
   }
@@ -184,7 +175,10 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
   std::string data = "$frames << EOD\n";
   for (int f = 0; f < frames; ++f) {
     data += std::to_string(f);
-    for (const Result& r : results) data += " " + number(r.ms[std::size_t(f)], "%.5g");
+    for (const Result& r : results) {
+      data += ' ';
+      data += formatted(r.ms[std::size_t(f)], "%.5g");
+    }
     data += "\n";
   }
   data += "EOD\nset title 'Occlusion walkthrough: visibility pass per frame'\nset xlabel 'frame'\nset ylabel 'ms'\n"
@@ -236,8 +230,11 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
         std::printf("  %-9s %-13s %-8s %12lld %14lld %14.3f\n", size.c_str(), rule.c_str(), pyramid.c_str(),
                     static_cast<long long>(culled), static_cast<long long>(lost), median);
         rows.push_back({{"map", size}, {"rule", rule}, {"pyramid", pyramid}, {"objects_culled", std::to_string(culled)},
-                        {"visible_objects_culled", std::to_string(lost)}, {"culling_ms_median", number(median, "%.4f")}});
-        data += " " + number(median, "%.5g") + " " + std::to_string(lost);
+                        {"visible_objects_culled", std::to_string(lost)}, {"culling_ms_median", formatted(median, "%.4f")}});
+        data += ' ';
+        data += formatted(median, "%.5g");
+        data += ' ';
+        data += std::to_string(lost);
       }
     data += "\n";
   }
@@ -272,8 +269,8 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
                 perQuery[1], static_cast<long long>(hidden[0]), static_cast<long long>(hidden[1]));
     rows.push_back({{"map", "256x128"}, {"rule", "conservative"}, {"pyramid", "queries=" + std::to_string(count)},
                     {"objects_culled", ""}, {"visible_objects_culled", ""},
-                    {"culling_ms_median", number(perQuery[0], "%.2f") + "/" + number(perQuery[1], "%.2f") + " ns"}});
-    data += std::to_string(count) + " " + number(perQuery[0], "%.4g") + " " + number(perQuery[1], "%.4g") + "\n";
+                    {"culling_ms_median", formatted(perQuery[0], "%.2f") + "/" + formatted(perQuery[1], "%.2f") + " ns"}});
+    data += std::to_string(count) + " " + formatted(perQuery[0], "%.4g") + " " + formatted(perQuery[1], "%.4g") + "\n";
   }
   data += "EOD\nset multiplot layout 1,2\nset title 'Culling time by map size (median)'\nset ylabel 'ms'\nset style data linespoints\n"
           "set grid\nset key top left font ',9'\nplot $sizes using 2:xtic(1) title 'conservative', '' using 4 title "
@@ -326,9 +323,10 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
                   cullMedian + renderMedian, static_cast<long long>(lost));
       rows.push_back({{"level", level}, {"occluders", name}, {"culling", cull},
                       {"triangles_drawn", std::to_string(result.kept.triangles.size())},
-                      {"culling_ms_median", number(cullMedian, "%.4f")}, {"render_ms_median", number(renderMedian, "%.4f")},
+                      {"culling_ms_median", formatted(cullMedian, "%.4f")}, {"render_ms_median", formatted(renderMedian, "%.4f")},
                       {"visible_objects_culled", std::to_string(lost)}});
-      data += " " + number(cullMedian + renderMedian, "%.5g");
+      data += ' ';
+      data += formatted(cullMedian + renderMedian, "%.5g");
     }
     data += "\n";
   }

@@ -64,6 +64,17 @@ CullingError cullingError(std::span<const std::uint8_t> kept, std::span<const st
   return error;
 }
 
+std::vector<std::uint8_t> objectsWithAny(const PreparedScene& scene, std::span<const std::uint8_t> triangleFlags) {
+  HSR_CHECK(triangleFlags.size() == scene.triangleCount());
+  std::vector<std::uint8_t> objects(scene.instances().size(), 0);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const Instance& object = scene.instances()[i];
+    const auto begin = triangleFlags.begin() + object.firstTriangle;
+    objects[i] = std::any_of(begin, begin + object.triangleCount, [](std::uint8_t flag) { return flag != 0; });
+  }
+  return objects;
+}
+
 std::vector<std::uint8_t> visibleTriangles(const ReferenceImage& reference, std::size_t triangleCount) {
   std::vector<std::uint8_t> visible(triangleCount, 0);
   for (std::uint32_t id : reference.frame.ids)

@@ -38,6 +38,9 @@ CullingError cullingError(std::span<const std::uint8_t> kept, std::span<const st
 // Which triangles the reference shows at some pixel (ambiguous pixels count for the
 // id recorded and for no other).
 std::vector<std::uint8_t> visibleTriangles(const ReferenceImage& reference, std::size_t triangleCount);
+// Per-triangle flags (kept, visible) lifted to the scene's objects: an object is flagged
+// when any of its triangles is, so cullingError can count objects, as occlusion culls them.
+std::vector<std::uint8_t> objectsWithAny(const PreparedScene& scene, std::span<const std::uint8_t> triangleFlags);
 
 // Line algorithms: per feature edge, the parts drawn as visible, as sub-intervals of
 // the edge's parameter range [0, 1], and the edge's projected length in pixels.

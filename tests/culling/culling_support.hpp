@@ -51,15 +51,8 @@ struct Judged {
   }
   // The objects the reference shows that `kept` has none of the triangles of.
   std::int64_t objectsFalselyCulled(const VisibleSet& kept) const {
-    const std::vector<std::uint8_t> mask = keptMask(kept, loaded.prepared.triangleCount());
-    std::int64_t count = 0;
-    for (const Instance& object : loaded.prepared.instances()) {
-      bool seen = false, drawn = false;
-      for (std::uint32_t t = object.firstTriangle; t < object.firstTriangle + object.triangleCount; ++t)
-        seen = seen || visible[t], drawn = drawn || mask[t];
-      count += seen && !drawn;
-    }
-    return count;
+    const PreparedScene& scene = loaded.prepared;
+    return cullingError(objectsWithAny(scene, keptMask(kept, scene.triangleCount())), objectsWithAny(scene, visible)).falseCulls;
   }
 };
 
