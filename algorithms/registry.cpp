@@ -57,9 +57,9 @@ std::string describeRange(const KnobSpec::Range& range) {
 // A scene with transparency needs its surfaces blended back to front; an algorithm that
 // keeps only the nearest surface per pixel would print a silently wrong image.
 std::string transparencyRefusal(const PreparedScene& scene, const std::string& algorithm) {
-  if (!scene.scene().transparency) return "";
+  if (!scene.scene().effects.transparency) return "";
   return "the scene declares transparency, which needs the surfaces behind a pixel blended back to front; " + algorithm +
-         " keeps only the nearest (use --algo painter)";
+         " keeps only the nearest (use --algo painter or zbuffer)";
 }
 
 // The index of a value among a knob's choices, as the enum listed in the same order.
@@ -94,7 +94,6 @@ AlgorithmEntry zbufferEntry() {
   };
   entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
   entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
-  entry.refusal = [](const PreparedScene& scene, const KnobValues&) { return transparencyRefusal(scene, "the z-buffer"); };
   const auto typed = [entry](const KnobValues& values) {
     zbuffer::Knobs knobs;
     knobs.variant = choiceOf<zbuffer::Variant>(entry, values, "variant");

@@ -19,6 +19,7 @@ struct RenderOptions {
   std::string lineStyle;  // line algorithms: visible | hidden | qi (default visible)
   std::string cull;       // culling stages before the algorithm: "backface,frustum:sphere"
   bool stats = false;
+  bool explain = false;   // print the pass plan before rendering, the decisions and time per pass after
 };
 int render(const RenderOptions& options);
 int list();

@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
   renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
   renderCommand->add_flag("--stats", render.stats, "print counters and phase times");
+  renderCommand->add_flag("--explain", render.explain,
+                          "print the passes the scene's effects call for and why, then what was decided and the time of each pass");
 
   hsr::cli::CompareOptions compare;
   CLI::App* compareCommand = app.add_subcommand(

@@ -1,7 +1,10 @@
 // hsr render and hsr list.
 #include <cstdio>
 
+#include <chrono>
+
 #include "algorithms/culling/culling.hpp"
+#include "algorithms/effects/effects.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "renderer/error.hpp"
@@ -62,6 +65,20 @@ void printKnobs(const std::vector<KnobSpec>& knobs, const std::string& prefix) {
   }
 }
 
+void printPlan(const LoadedScene& scene, const AlgorithmEntry& algorithm, const KnobValues& knobs, const std::string& culling) {
+  std::printf("passes for %s with %s (%s):\n", scene.name.c_str(), algorithm.name.c_str(), describeKnobs(algorithm, knobs).c_str());
+  for (const effects::PlannedPass& pass : effects::planPasses(*scene.prepared, algorithm, culling))
+    std::printf("  %-5s %-28s %s\n", pass.runs ? "run" : "skip", pass.pass.c_str(), pass.reason.c_str());
+}
+
+void printDecisions(const Stats& stats, double seconds) {
+  std::printf("decided while rendering:\n");
+  for (const std::string& decision : effects::decisionsTaken(stats)) std::printf("  %s\n", decision.c_str());
+  std::printf("time per pass (%.1f ms in all):\n", seconds * 1e3);
+  for (const effects::PassTime& pass : effects::passTimes(stats, seconds))
+    std::printf("  %-14s %8.2f ms\n", pass.pass.c_str(), pass.seconds * 1e3);
+}
+
 }  // namespace
 
 int render(const RenderOptions& options) {
@@ -85,6 +102,8 @@ int render(const RenderOptions& options) {
 
   const LoadedScene scene = loadPrepared(options.scene, options.size);
   checkRenders(algorithm, knobs, scene.name, *scene.prepared);
+  if (options.explain) printPlan(scene, algorithm, knobs, options.cull);
+  const auto start = std::chrono::steady_clock::now();
   Stats stats;
   OutputFiles outputs;
   Frame frame;
@@ -101,11 +120,13 @@ int render(const RenderOptions& options) {
     }
     outputs.addColorPng(output, frame);
   }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
   if (!frame.partial.empty()) std::fprintf(stderr, "hsr: warning: the image is partial: %s\n", frame.partial.c_str());
   if (options.stats) std::printf("%s", stats.report().c_str());
+  if (options.explain) printDecisions(stats, seconds);
   return 0;
 }
 

@@ -297,6 +297,107 @@ ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& r
   return result;
 }
 
+SurfaceReference::Layers SurfaceReference::traceAll(const CameraTransform& camera, const Ray& ray, Counters& counters) const {
+  Layers layers;
+  if (bvh_.empty()) return layers;
+  RayQuery query(ray, camera);
+  const RayBoxTest boxes(ray.origin, ray.direction);
+  struct Candidate {
+    double t, bound;
+    std::uint32_t slot;
+    bool exact;
+  };
+  std::vector<Candidate> candidates;
+  bvh_.visitPrimitives([&](const BvhNode& node) { return ++counters.nodesVisited, boxes.entry(node, kInfinity) < kInfinity; },
+                       [&](std::uint32_t, std::uint32_t slot) {
+                         const PackedTriangle& tri = triangles_[slot];
+                         ++counters.triangleTests;
+                         const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
+                         const double t = terms.scaledT / terms.det;
+                         const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms, t);
+                         Certainty hit = insideWithBounds(terms, bounds);
+                         if (hit == Certainty::yes) hit = query.inRange(t, bounds.t);
+                         if (hit == Certainty::no) return;
+                         if (hit == Certainty::yes) {
+                           candidates.push_back({t, bounds.t, slot, false});
+                           return;
+                         }
+                         ++counters.exactTriangleTests;
+                         if (const std::optional<mpq_class> exact = query.exactHit(tri.a, tri.b, tri.c)) {
+                           const double rounded = exact->get_d();
+                           candidates.push_back({rounded, 2 * kUnitRoundoff * std::abs(rounded), slot, true});
+                         }
+                       });
+  // Nearest first: by the double t where the bounds separate two hits, exactly where
+  // they do not; exact ties go by id, and mark the ray.
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
+    if (a.t + a.bound < b.t - b.bound) return true;
+    if (b.t + b.bound < a.t - a.bound) return false;
+    ++counters.exactComparisons;
+    const mpq_class ta = *query.exactHit(triangles_[a.slot].a, triangles_[a.slot].b, triangles_[a.slot].c);
+    const mpq_class tb = *query.exactHit(triangles_[b.slot].a, triangles_[b.slot].b, triangles_[b.slot].c);
+    if (ta != tb) return ta < tb;
+    layers.tied = layers.tied || triangles_[a.slot].id != triangles_[b.slot].id;
+    return triangles_[a.slot].id < triangles_[b.slot].id;
+  });
+  for (const Candidate& candidate : candidates)
+    layers.hits.push_back({triangles_[candidate.slot].id, query.distance(candidate.t), false, candidate.exact});
+  return layers;
+}
+
+bool SurfaceReference::blocked(const Ray& segment, double tMin, std::uint32_t except, Counters& counters) const {
+  if (bvh_.empty()) return false;
+  const ShearedRay<double> shear(segment);
+  std::optional<ShearedRay<mpq_class>> exactShear;
+  const RayBoxTest boxes(segment.origin, segment.direction);
+  const auto meets = [&](const PackedTriangle& tri) {
+    ++counters.triangleTests;
+    const WoopTerms<double> terms = woopTerms(shear, tri.a, tri.b, tri.c);
+    const double t = terms.scaledT / terms.det;
+    const WoopBounds bounds = woopBounds(shear, tri.a, tri.b, tri.c, terms, t);
+    const Certainty hit = insideWithBounds(terms, bounds);
+    if (hit == Certainty::no) return false;
+    if (hit == Certainty::yes && t - bounds.t > tMin && t + bounds.t <= 1) return true;
+    if (hit == Certainty::yes && (t + bounds.t <= tMin || t - bounds.t > 1)) return false;
+    ++counters.exactTriangleTests;
+    if (!exactShear) exactShear.emplace(segment);
+    const WoopTerms<mpq_class> exact = woopTerms(*exactShear, tri.a, tri.b, tri.c);
+    if (!inside(exact)) return false;
+    const mpq_class exactT = exact.scaledT / exact.det;
+    return exactT > mpq_class(tMin) && exactT <= 1;
+  };
+  std::array<std::uint32_t, Bvh::kMaxDepth + 1> stack;
+  int size = 0;
+  const std::vector<BvhNode>& nodes = bvh_.nodes();
+  stack[size++] = 0;
+  while (size > 0) {
+    const BvhNode& node = nodes[stack[--size]];
+    ++counters.nodesVisited;
+    if (boxes.entry(node, 1.0) == kInfinity) continue;
+    if (!node.leaf()) {
+      stack[size++] = node.index;
+      stack[size++] = node.index + 1;
+      continue;
+    }
+    for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
+      if (triangles_[slot].id != except + 1 && meets(triangles_[slot])) return true;
+  }
+  return false;
+}
+
+ExactShadows::ExactShadows(const PreparedScene& scene, Stats& stats) : scene_(scene), reference_(scene, stats) {
+  Aabb bounds;
+  for (const Instance& instance : scene.instances()) bounds.grow(instance.box);
+  reach_ = bounds.empty() ? 1.0 : 2 * glm::length(bounds.hi - bounds.lo) + 1.0;
+}
+
+bool ExactShadows::shadowed(std::size_t light, const dvec3& point, std::uint32_t triangle) const {
+  const Light& source = scene_.scene().lights[light];
+  const dvec3 direction = source.kind == Light::Kind::directional ? -source.direction * reach_ : source.position - point;
+  SurfaceReference::Counters counters;
+  return reference_.blocked({point, direction}, 1e-9, triangle, counters);
+}
+
 ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats) {
   const SurfaceReference reference(scene, stats);
   const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
@@ -349,7 +450,45 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
 
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats) {
   ReferenceImage image = traceReference(scene, threads, stats);
-  shadeFrame(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), image.frame, threads, stats);
+  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const Effects& effects = scene.scene().effects;
+  std::optional<ExactShadows> shadows;
+  if (effects.shadows) shadows.emplace(scene, stats);
+  const PixelShader shader(scene, camera, stats, shadows ? &*shadows : nullptr);
+  if (!effects.transparency) {
+    shadeFrame(scene, camera, image.frame, shader, threads, stats);
+  } else {
+    // The exact blend: every surface along the pixel's ray, in exact depth order, each
+    // "over" the ones behind it, from the nearest opaque one (or the background) forward.
+    PhaseTimer timer(stats, "shading");
+    const SurfaceReference reference(scene, stats);
+    const dvec3 background(scene.scene().background);
+    const auto rows = static_cast<std::size_t>(scene.height());
+    image.blendTied.assign(image.frame.pixelCount(), 0);
+    std::vector<ShadingCounts> counts(rows);
+    parallelFor(rows, threads, [&](std::size_t row, int) {
+      SurfaceReference::Counters rayCounters;
+      for (int x = 0; x < scene.width(); ++x) {
+        const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
+        const auto layers = reference.traceAll(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5), rayCounters);
+        std::size_t first = 0;
+        while (first < layers.hits.size() && scene.instanceOf(layers.hits[first].id - 1).opacity < 1) ++first;
+        dvec3 color = first < layers.hits.size() ? shader.shade(layers.hits[first].id - 1, x, int(row), counts[row]) : background;
+        for (std::size_t layer = std::min(first, layers.hits.size()); layer-- > 0;) {
+          const double opacity = scene.instanceOf(layers.hits[layer].id - 1).opacity;
+          color = opacity * shader.shade(layers.hits[layer].id - 1, x, int(row), counts[row]) + (1 - opacity) * color;
+        }
+        image.blendTied[pixel] = layers.tied;
+        for (int c = 0; c < 3; ++c) image.frame.color[4 * pixel + std::size_t(c)] = channelByte(color[c]);
+        image.frame.color[4 * pixel + 3] = 255;
+      }
+    });
+    ShadingCounts total;
+    for (const ShadingCounts& row : counts) total += row;
+    total.addTo(stats);
+    for (const std::uint8_t tied : image.blendTied) image.blendTiedPixels += tied;
+  }
+  applyImageEffects(scene, camera, image.frame, threads, stats);
   return image;
 }
 

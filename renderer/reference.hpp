@@ -24,6 +24,7 @@
 #include "renderer/camera.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/prepare.hpp"
+#include "renderer/shading.hpp"
 #include "renderer/stats.hpp"
 
 namespace hsr {
@@ -46,6 +47,21 @@ class SurfaceReference {
   };
   ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
 
+  // Every triangle the ray meets between the near and far planes, nearest first, in the
+  // exact order of their distances (for the exact blend of transparent surfaces);
+  // `tied` when two of them are met at exactly the same distance (a pixel center on a
+  // shared edge, coplanar faces), where no order is the right one.
+  struct Layers {
+    std::vector<ReferenceHit> hits;
+    bool tied = false;
+  };
+  Layers traceAll(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
+
+  // Whether a triangle other than global triangle `except` meets the segment
+  // origin + t direction for t in (tMin, 1]: the exact shadow ray (each inside decision
+  // and each comparison with tMin and 1 exact for these doubles).
+  bool blocked(const Ray& segment, double tMin, std::uint32_t except, Counters& counters) const;
+
  private:
   using PackedTriangle = PreparedScene::LeafTriangle;
   const PreparedScene& scene_;
@@ -53,11 +69,31 @@ class SurfaceReference {
   const std::vector<PackedTriangle>& triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
 };
 
+// Exact shadow rays: a point is shadowed from a light when a segment from it to the light
+// (a point light) or out of the scene's bounds toward it (a directional light) meets
+// another triangle. Hits within 1e-9 of the segment's length from the point are ignored:
+// the point lies on its own triangle and that triangle's neighbours only to rounding.
+// Stats (summed by the caller through counters()): the reference's counters.
+class ExactShadows : public ShadowTest {
+ public:
+  ExactShadows(const PreparedScene& scene, Stats& stats);
+  bool shadowed(std::size_t light, const dvec3& point, std::uint32_t triangle) const override;
+
+ private:
+  const PreparedScene& scene_;
+  SurfaceReference reference_;
+  double reach_;  // longer than any path across the scene's bounds
+};
+
 struct ReferenceImage {
   Frame frame;                           // ids, depth, and color shaded as every algorithm shades
   std::vector<std::uint8_t> ambiguous;   // 1 where the pixel is ambiguous (see above)
   std::int64_t ambiguousPixels = 0;
   std::int64_t exactFallbacks = 0;       // pixels whose ray needed exact arithmetic
+  // With transparency only: 1 where two surfaces along the ray lie at exactly the same
+  // distance, so that no blending order is the right one (metrics skip the pixel).
+  std::vector<std::uint8_t> blendTied;
+  std::int64_t blendTiedPixels = 0;
 };
 
 // The visibility pass alone: ids, depth and ambiguity; the color is left black.
@@ -65,7 +101,8 @@ struct ReferenceImage {
 // "bvh nodes visited", "ray-triangle tests", "exact ray-triangle tests", "exact depth
 // comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
 ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats);
-// traceReference, then the shading every algorithm's frame gets (renderer/shading).
+// traceReference, then the shading every algorithm's frame gets (renderer/shading), with
+// exact shadow rays where an algorithm's frame has shadow maps, then fog and outline.
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);
 
 }  // namespace hsr

@@ -228,6 +228,7 @@ void readCamera(TableReader& camera, Scene& scene) {
 
 void readLight(TableReader& light, Scene& scene) {
   Light result;
+  result.name = light.has("name") ? light.string("name") : "light" + std::to_string(scene.lights.size());
   const std::string type = light.choice("type", "directional", {"directional", "point"});
   if (type == "directional") {
     result.kind = Light::Kind::directional;
@@ -239,7 +240,7 @@ void readLight(TableReader& light, Scene& scene) {
     result.position = light.vector3("position", std::nullopt, -kHuge, kHuge);
   }
   result.intensity = light.number("intensity", 1.0, 0.0, 1e6);
-  light.finish({"type", type == "directional" ? "direction" : "position", "intensity"});
+  light.finish({"name", "type", type == "directional" ? "direction" : "position", "intensity"});
   scene.lights.push_back(result);
 }
 
@@ -374,13 +375,19 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
 void readObject(TableReader& object, Scene& scene,
                 std::map<std::filesystem::path, std::shared_ptr<const Mesh>>& meshCache) {
   SceneObject result;
-  std::vector<std::string> keys = {"name", "shape", "color", "opacity", "translate", "rotate", "scale", "copies"};
+  std::vector<std::string> keys = {"name",      "shape",  "color", "opacity", "reflectivity", "shininess",
+                                   "translate", "rotate", "scale", "copies"};
   result.name = object.has("name") ? object.string("name") : "object" + std::to_string(scene.objects.size());
   result.mesh = readShape(object, keys, meshCache, result.solid);
   result.color = object.color("color", vec3(0.8f));
   result.opacity = object.number("opacity", 1.0, 0.0, 1.0);
-  if (result.opacity < 1 && !scene.transparency)
+  if (result.opacity < 1 && !scene.effects.transparency)
     object.fail(object.find("opacity"), "opacity", "an opacity below 1 needs \"transparency\" in the scene's effects");
+  for (const char* key : {"reflectivity", "shininess"})
+    if (object.has(key) && scene.effects.shading != Shading::phong)
+      object.fail(object.find(key), key, "a material's highlight needs \"phong\" in the scene's effects");
+  result.reflectivity = object.number("reflectivity", 0.4, 0.0, 1.0);
+  result.shininess = object.number("shininess", 32.0, 1.0, 10000.0);
   result.transform.translate = object.vector3("translate", dvec3(0), -kHuge, kHuge);
   result.transform.rotateDegrees = object.vector3("rotate", dvec3(0), -36000, 36000);
   result.transform.scale = object.vector3("scale", dvec3(1), 1e-9, kHuge, true);
@@ -392,12 +399,80 @@ void readObject(TableReader& object, Scene& scene,
   scene.objects.push_back(std::move(result));
 }
 
+// The effects list, and the settings tables of the effects that have them; a table
+// for an effect the list does not name is an error (it would be silently ignored).
+void readEffects(TableReader& reader, Scene& scene) {
+  Effects& effects = scene.effects;
+  const std::vector<std::string> shadings = {"none", "flat", "lambert", "phong"};
+  const std::vector<std::string> others = {"shadows", "transparency", "fog", "outline"};
+  std::vector<std::string> known = shadings;
+  known.insert(known.end(), others.begin(), others.end());
+  std::set<std::string> listed;
+  if (const toml::array* list = reader.array("effects"))
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::node* node = list->get(i);
+      const auto name = node->value<std::string>();
+      const std::string key = "effects[" + std::to_string(i) + "]";
+      if (!name || std::find(known.begin(), known.end(), *name) == known.end())
+        reader.fail(node, key, "expected one of " + TableReader::join(known) + ", got " + TableReader::describe(*node));
+      if (!listed.insert(*name).second) reader.fail(node, key, *name + " is listed twice");
+      const auto shading = std::find(shadings.begin(), shadings.end(), *name);
+      if (shading == shadings.end()) continue;
+      if (std::any_of(shadings.begin(), shadings.end(), [&](const std::string& other) { return other != *name && listed.count(other); }))
+        reader.fail(node, key, "only one shading effect (" + TableReader::join(shadings) + ") may be listed");
+      effects.shading = static_cast<Shading>(shading - shadings.begin());
+    }
+  effects.shadows = listed.count("shadows") > 0;
+  effects.transparency = listed.count("transparency") > 0;
+  effects.fog = listed.count("fog") > 0;
+  effects.outline = listed.count("outline") > 0;
+  if (effects.shadows && !effects.lit())
+    reader.fail(reader.find("effects"), "effects", "shadows need a lit shading effect (flat, lambert or phong) to darken");
+
+  const auto settings = [&](const std::string& effect) -> std::optional<TableReader> {
+    const toml::table* table = reader.table(effect);
+    if (!table) return std::nullopt;
+    if (!listed.count(effect)) reader.fail(table, effect, "settings for an effect the scene does not list; add \"" + effect + "\" to effects");
+    return TableReader(*table, effect, reader.file());
+  };
+  if (auto shadows = settings("shadows")) {
+    effects.shadow.resolution = shadows->integer("resolution", effects.shadow.resolution, 1, kMaxShadowMapSide);
+    effects.shadow.biasTexels = shadows->number("bias", effects.shadow.biasTexels, 0.0, 1e6);
+    shadows->finish({"resolution", "bias"});
+  }
+  effects.fogSettings.color = scene.background;
+  effects.fogSettings.end = scene.camera.far;
+  if (auto fog = settings("fog")) {
+    FogSettings& f = effects.fogSettings;
+    const std::string kind = fog->choice("kind", "linear", {"linear", "exponential"});
+    f.kind = kind == "linear" ? FogSettings::Kind::linear : FogSettings::Kind::exponential;
+    if (f.kind == FogSettings::Kind::linear) {
+      f.start = fog->number("start", 0.0, 0.0, kHuge);
+      f.end = fog->number("end", scene.camera.far, 0.0, kHuge);
+      if (!(f.end > f.start)) fog->fail(fog->find("end"), "end", "must be greater than start");
+    } else {
+      f.density = fog->number("density", f.density, 0.0, kHuge);
+    }
+    f.color = fog->color("color", f.color);
+    if (f.kind == FogSettings::Kind::linear)
+      fog->finish({"kind", "start", "end", "color"});
+    else
+      fog->finish({"kind", "density", "color"});
+  }
+  if (auto outline = settings("outline")) {
+    effects.outlineSettings.color = outline->color("color", effects.outlineSettings.color);
+    effects.outlineSettings.creaseDegrees = outline->number("crease_angle", effects.outlineSettings.creaseDegrees, 0.0, 180.0);
+    outline->finish({"color", "crease_angle"});
+  }
+}
+
 }  // namespace
 
 const char* shadingName(Shading shading) {
   switch (shading) {
     case Shading::none: return "none";
     case Shading::flat: return "flat";
+    case Shading::phong: return "phong";
     case Shading::lambert: return "lambert";
   }
   return "?";
@@ -508,23 +583,7 @@ Scene loadScene(const std::filesystem::path& file) {
   TableReader cameraReader(*camera, "camera", file);
   readCamera(cameraReader, scene);
 
-  if (const toml::array* effects = reader.array("effects")) {
-    const std::vector<std::string> known = {"none", "flat", "lambert", "transparency"};
-    int shadingEffects = 0;
-    for (std::size_t i = 0; i < effects->size(); ++i) {
-      const auto name = effects->get(i)->value<std::string>();
-      const std::string key = "effects[" + std::to_string(i) + "]";
-      if (!name || std::find(known.begin(), known.end(), *name) == known.end())
-        reader.fail(effects->get(i), key, "expected one of " + TableReader::join(known) + ", got " +
-                                              TableReader::describe(*effects->get(i)));
-      if (*name == "transparency") {
-        scene.transparency = true;
-        continue;
-      }
-      if (++shadingEffects > 1) reader.fail(effects->get(i), key, "only one shading effect (none, flat, lambert) may be listed");
-      scene.shading = *name == "flat" ? Shading::flat : *name == "lambert" ? Shading::lambert : Shading::none;
-    }
-  }
+  readEffects(reader, scene);
   scene.ambient = reader.number("ambient", 0.15, 0.0, 1.0);
 
   if (const toml::array* lights = reader.array("lights"))
@@ -534,8 +593,8 @@ Scene loadScene(const std::filesystem::path& file) {
       TableReader lightReader(*light, "lights[" + std::to_string(i) + "]", file);
       readLight(lightReader, scene);
     }
-  if (scene.shading != Shading::none && scene.lights.empty())
-    reader.fail(nullptr, "effects", std::string(shadingName(scene.shading)) + " shading needs at least one [[lights]] table");
+  if (scene.effects.lit() && scene.lights.empty())
+    reader.fail(nullptr, "effects", std::string(shadingName(scene.effects.shading)) + " shading needs at least one [[lights]] table");
 
   const toml::array* objects = reader.array("objects");
   if (!objects || objects->empty()) reader.fail(nullptr, "objects", "missing; expected at least one [[objects]] table");
@@ -552,7 +611,7 @@ Scene loadScene(const std::filesystem::path& file) {
       objectReader.fail(nullptr, "copies", "the scene exceeds " + std::to_string(kMaxTriangles - 1) +
                                                 " triangles (the id image holds 24 bits)");
   }
-  reader.finish({"image", "camera", "effects", "ambient", "lights", "objects"});
+  reader.finish({"image", "camera", "effects", "shadows", "fog", "outline", "ambient", "lights", "objects"});
   return scene;
 }
 

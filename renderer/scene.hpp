@@ -77,28 +77,74 @@ struct SceneObject {
   Transform transform;
   vec3 color{0.8f};
   double opacity = 1;  // below 1 only in scenes that declare transparency
+  // Blinn-Phong material (phong shading only): the specular highlight's weight and its
+  // sharpness, the exponent of cos(normal, half-vector).
+  double reflectivity = 0.4;
+  double shininess = 32;
   Instancing instancing;
 };
 
 struct Light {
+  std::string name;  // "light0", "light1"... unless the scene names it
   enum class Kind { directional, point } kind = Kind::directional;
   dvec3 direction{0, -1, 0};  // directional: the way the light travels
   dvec3 position{0};          // point
   double intensity = 1.0;
 };
 
-// Effects a scene declares; the renderer runs the stages these need and no others.
-enum class Shading { none, flat, lambert };
+// Effects a scene declares; the renderer runs the passes these need and no others
+// (renderer/effects: the plan, and why each pass runs or does not).
+enum class Shading {
+  none,     // each object's own color: no normals, no lights
+  flat,     // ambient + diffuse with the face normal: one color per triangle under a directional light
+  lambert,  // ambient + diffuse with smooth corner normals
+  phong,    // lambert + a Blinn-Phong specular highlight per material
+};
+
+struct ShadowSettings {
+  int resolution = 1024;  // texels per side of each shadow map (a point light has six)
+  // How far (in the map's texels, measured at the receiver) a point may lie behind the
+  // depth the map stored and still count as lit: too little gives acne, too much lets
+  // shadows come loose from their casters (peter-panning).
+  double biasTexels = 1.5;
+};
+
+struct FogSettings {
+  enum class Kind { linear, exponential } kind = Kind::linear;
+  double start = 0, end = 100;  // linear: clear before start, fully fogged beyond end (view distance)
+  double density = 0.05;        // exponential: the fraction left clear is exp(-density * distance)
+  vec3 color{0};                // the background's, unless the scene gives one
+};
+
+struct OutlineSettings {
+  vec3 color{0};
+  double creaseDegrees = 30;  // feature edges: boundaries, silhouettes, and creases sharper than this
+};
+
+struct Effects {
+  Shading shading = Shading::none;
+  bool shadows = false;
+  ShadowSettings shadow;
+  // Objects with opacity below 1 blend over what lies behind them, which needs the
+  // surfaces behind a pixel in back-to-front order (the painter, or the z-buffer's
+  // sorted pass); the others refuse such scenes.
+  bool transparency = false;
+  bool fog = false;
+  FogSettings fogSettings;
+  bool outline = false;
+  OutlineSettings outlineSettings;
+
+  bool lit() const { return shading != Shading::none; }
+  // Smooth corner normals: lambert and phong interpolate them; flat needs only face normals.
+  bool smoothNormals() const { return shading == Shading::lambert || shading == Shading::phong; }
+};
 
 struct Scene {
   std::filesystem::path file;
   int width = 640, height = 480;
   vec3 background{0};
   Camera camera;
-  Shading shading = Shading::none;
-  // Objects with opacity below 1 blend over what lies behind them, which only a
-  // back-to-front order can do (algorithms/painter); the others refuse such scenes.
-  bool transparency = false;
+  Effects effects;
   double ambient = 0.15;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;
@@ -108,6 +154,7 @@ struct Scene {
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t{256} << 20;
 inline constexpr std::int64_t kMaxTriangles = std::int64_t{1} << 24;  // ids fit 24-bit RGB
+inline constexpr int kMaxShadowMapSide = 8192;
 
 // Throws InputError("file:line:column: key.path: what, expected ...") on any bad input.
 Scene loadScene(const std::filesystem::path& file);

@@ -79,8 +79,14 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> vertexPieces(const Prepared
 
 ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
                                     bool keepCorners, const VisibleSet* submitted) {
+  return buildScreenTriangles(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), clipFar, threads,
+                              stats, keepCorners, submitted);
+}
+
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, bool clipFar, int threads,
+                                    Stats& stats, bool keepCorners, const VisibleSet* submitted) {
   PhaseTimer timer(stats, "geometry");
-  ScreenGeometry geometry{CameraTransform(scene.scene().camera, scene.width(), scene.height()), {}, {}};
+  ScreenGeometry geometry{view, {}, {}};
   const CameraTransform& camera = geometry.camera;
   const ClipVolume volume(camera, clipFar);
 

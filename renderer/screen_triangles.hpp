@@ -33,5 +33,9 @@ struct ScreenGeometry {
 // still have a triangle in it are transformed: what a culling stage saves.
 ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
                                     bool keepCorners = false, const VisibleSet* submitted = nullptr);
+// The same from another viewpoint than the scene's camera (a light's, for a shadow map),
+// into an image of the view's size.
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, bool clipFar, int threads,
+                                    Stats& stats, bool keepCorners = false, const VisibleSet* submitted = nullptr);
 
 }  // namespace hsr

@@ -1,7 +1,14 @@
-// The shading stage: colors each pixel from the visible id a surface algorithm left
-// there (deferred shading: one shading invocation per covered pixel, whatever the
-// overdraw). It runs only the work the scene's effects ask for: normals are built only
-// for lambert, and stats count "shading invocations" so a test can check what ran.
+// The shading pass and the image passes after it: each pixel colored from the visible
+// id a surface algorithm left there (deferred shading: one shading invocation per
+// covered pixel, whatever the overdraw), then fog, then outlines. Each runs only when
+// the scene's effects ask for it, and counts what it did, so a test can check that a
+// scene without an effect spends nothing on it:
+//   "shading invocations"  one per shaded pixel (or per blended write, for the painter)
+//   "normals computed"     corner normals, only for lambert and phong (renderer/prepare)
+//   "specular terms"       Blinn-Phong highlights evaluated (phong only)
+//   "shadow lookups"       shadow tests (only with shadows), "shadowed lookups" those in shadow
+//   "fog blends"           pixels blended toward the fog color
+//   "outline edges", "outline pixels"  feature edges tested, pixels drawn over the image
 #pragma once
 
 #include "renderer/camera.hpp"
@@ -11,22 +18,60 @@
 
 namespace hsr {
 
-void shadeFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats);
+// How shading learns whether a lit point is in shadow: a shadow map
+// (algorithms/effects) or exact shadow rays (renderer/reference). Called from many
+// threads at once.
+class ShadowTest {
+ public:
+  virtual ~ShadowTest() = default;
+  // Is `point`, on triangle `triangle` (global index) and facing the light, hidden from
+  // scene light `light` by some other surface?
+  virtual bool shadowed(std::size_t light, const dvec3& point, std::uint32_t triangle) const = 0;
+};
 
-// The color of one triangle at one pixel center, before quantizing, as shadeFrame
-// computes it: for algorithms that need a surface's color at the moment they draw it
-// (the painter's blending of transparent surfaces) rather than once per pixel at the end.
+// What one shading call did, summed per row and added to Stats once.
+struct ShadingCounts {
+  std::int64_t invocations = 0, specularTerms = 0, shadowLookups = 0, shadowedLookups = 0;
+  ShadingCounts& operator+=(const ShadingCounts& other);
+  void addTo(Stats& stats) const;
+};
+
+// The color of one triangle at one pixel center, before quantizing.
 class PixelShader {
  public:
-  // Builds the corner normals only when the scene's shading needs them.
-  PixelShader(const PreparedScene& scene, const CameraTransform& camera, Stats& stats);
-  dvec3 shade(std::uint32_t triangle, int x, int y) const;
+  // Builds the corner normals only when the shading interpolates them. `shadows` is
+  // consulted only when the scene declares shadows (it must then be given).
+  PixelShader(const PreparedScene& scene, const CameraTransform& camera, Stats& stats, const ShadowTest* shadows = nullptr);
+  dvec3 shade(std::uint32_t triangle, int x, int y, ShadingCounts& counts) const;
 
  private:
   const PreparedScene& scene_;
   const CameraTransform& camera_;
   const std::vector<std::array<dvec3, 3>>* normals_;
+  const ShadowTest* shadows_;
 };
+
+// The surface point a pixel center shows on a triangle, and the triangle's normal there
+// (interpolated when `cornerNormals` is given), turned toward the viewer: what both
+// shading and the shadow error measure at.
+struct SurfacePoint {
+  dvec3 position, normal, toViewer;  // toViewer: unit
+};
+SurfacePoint surfacePoint(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, int x, int y,
+                          const std::vector<std::array<dvec3, 3>>* cornerNormals);
+// The unit direction from a point toward a light.
+dvec3 towardLight(const Light& light, const dvec3& point);
+
+// Phase "shading": every covered pixel of frame.ids shaded, the background filled.
+void shadeFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, const PixelShader& shader,
+                int threads, Stats& stats);
+
+// The passes after shading, each only when the scene declares it: fog (phase "fog"),
+// then outlines (phase "outline"), each line faded by its own distance.
+void applyImageEffects(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats);
+
+// The fraction of a surface's color left after fog at view distance d (1 = clear).
+double fogClearFraction(const FogSettings& fog, double distance);
 
 // A color channel in [0, 1] as an 8-bit value (clamped, rounded to nearest).
 std::uint8_t channelByte(double value);

@@ -8,6 +8,8 @@
 #include <limits>
 #include <optional>
 
+#include "algorithms/effects/effects.hpp"
+#include "renderer/error.hpp"
 #include "renderer/parallel.hpp"
 #include "renderer/shading.hpp"
 #include "renderer/tiles.hpp"
@@ -30,6 +32,7 @@ Plane planeOf(const PreparedScene& scene, std::uint32_t triangle) {
 
 struct TileCounts {
   std::int64_t writes = 0, cutTests = 0, blended = 0;
+  ShadingCounts shading;
 };
 
 }  // namespace
@@ -67,12 +70,14 @@ int eyeSide(const PreparedScene& scene, const CameraTransform& camera, std::uint
   return predicates.facing(a, b, c, -camera.forward());
 }
 
-Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const PaintOrder& order, int threads, Stats& stats) {
-  PhaseTimer timer(stats, "painting");
+Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const PaintOrder& order, int threads, Stats& stats,
+            const OpaqueBase* base) {
+  std::optional<PhaseTimer> timer(std::in_place, stats, base ? "transparency" : "painting");
   Frame frame(scene.width(), scene.height());
   const CameraTransform& camera = geometry.camera;
-  const bool blend = scene.scene().transparency;
+  const bool blend = scene.scene().effects.transparency;
   const dvec3 background(scene.scene().background);
+  HSR_CHECK(!base || blend);
 
   std::vector<Plane> cutPlanes;
   cutPlanes.reserve(order.cuts.size());
@@ -82,9 +87,11 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
   const auto bins = tiles.bin(order.pieces.size(), [&](std::uint32_t i) -> const ScreenTriangle& {
     return geometry.triangles[order.pieces[i].screenTriangle];
   });
-  // Blending needs each surface's color when it is drawn, not once per pixel at the end.
-  std::optional<PixelShader> shader;
-  if (blend) shader.emplace(scene, camera, stats);
+  // Blending needs each surface's color when it is drawn, not once per pixel at the end
+  // (and so the shadow maps before any surface is drawn).
+  std::optional<effects::Lighting> lighting;
+  if (blend && !base) lighting.emplace(scene, camera, threads, stats);
+  const PixelShader* shader = base ? &base->shader : lighting ? &lighting->shader() : nullptr;
   std::vector<dvec3> blended(blend ? frame.pixelCount() : 0);
 
   std::vector<TileCounts> counts(bins.size());
@@ -94,9 +101,15 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const std::size_t pixel = std::size_t(y) * std::size_t(frame.width) + std::size_t(x);
-        frame.ids[pixel] = conventions::kBackgroundId;
-        frame.depth[pixel] = std::numeric_limits<float>::infinity();
-        if (blend) blended[pixel] = background;
+        if (base) {
+          frame.ids[pixel] = base->frame.ids[pixel];
+          frame.depth[pixel] = base->frame.depth[pixel];
+          for (int c = 0; c < 3; ++c) blended[pixel][c] = base->frame.color[4 * pixel + std::size_t(c)] / 255.0;
+        } else {
+          frame.ids[pixel] = conventions::kBackgroundId;
+          frame.depth[pixel] = std::numeric_limits<float>::infinity();
+          if (blend) blended[pixel] = background;
+        }
       }
     for (const std::uint32_t index : bins[tile]) {
       const Piece& piece = order.pieces[index];
@@ -122,12 +135,15 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
         rasterizeSpan(tri, y, spanBegin, spanEnd, [&](int x) {
           if (piece.cutCount != 0 && !insideCuts(x, y)) return;
           const std::size_t pixel = std::size_t(y) * std::size_t(frame.width) + std::size_t(x);
+          const float depth = static_cast<float>(camera.distanceFromScreenAffine(tri.depthAt(x + 0.5, y + 0.5)));
+          // Over opaque surfaces already drawn, only what lies in front of them shows.
+          if (base && !(depth < base->frame.depth[pixel])) return;
           ++count.writes;
           frame.ids[pixel] = tri.triangle + 1;
-          frame.depth[pixel] = static_cast<float>(camera.distanceFromScreenAffine(tri.depthAt(x + 0.5, y + 0.5)));
+          frame.depth[pixel] = depth;
           if (!blend) return;
           // Porter and Duff's "over": this surface in front of everything drawn so far.
-          blended[pixel] = opacity * shader->shade(tri.triangle, x, y) + (1 - opacity) * blended[pixel];
+          blended[pixel] = opacity * shader->shade(tri.triangle, x, y, count.shading) + (1 - opacity) * blended[pixel];
           if (opacity < 1) ++count.blended;
         });
     }
@@ -138,21 +154,25 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
     total.writes += count.writes;
     total.cutTests += count.cutTests;
     total.blended += count.blended;
+    total.shading += count.shading;
   }
   stats.add("pieces painted", static_cast<std::int64_t>(order.pieces.size()));
   stats.add("fragments written", total.writes);
   stats.add("cut tests", total.cutTests);
 
   if (!blend) {
-    shadeFrame(scene, camera, frame, threads, stats);
+    timer.reset();
+    effects::finishFrame(scene, camera, frame, threads, stats);
     return frame;
   }
   stats.add("blended writes", total.blended);
-  stats.add("shading invocations", total.writes);
+  total.shading.addTo(stats);
   for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
     for (int c = 0; c < 3; ++c) frame.color[4 * pixel + std::size_t(c)] = channelByte(blended[pixel][c]);
     frame.color[4 * pixel + 3] = 255;
   }
+  timer.reset();
+  applyImageEffects(scene, camera, frame, threads, stats);
   return frame;
 }
 

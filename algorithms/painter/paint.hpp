@@ -9,6 +9,7 @@
 #include "algorithms/painter/painter.hpp"
 #include "renderer/predicates.hpp"
 #include "renderer/screen_triangles.hpp"
+#include "renderer/shading.hpp"
 
 namespace hsr::painter {
 
@@ -55,10 +56,20 @@ PaintOrder newellOrder(const PreparedScene& scene, const ScreenGeometry& geometr
 // projection the eye is the point at infinity behind the camera.
 int eyeSide(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, ExactPredicates& predicates);
 
+// What the z-buffer's sorted transparency pass paints over: the opaque surfaces it drew
+// and shaded, and the shader that shaded them.
+struct OpaqueBase {
+  const Frame& frame;
+  const PixelShader& shader;
+};
+
 // Draws the pieces in order into a frame of the scene's size: ids, depth, and color
-// (shaded as shadeFrame shades; blended back to front when the scene declares
-// transparency). Stats: "pieces painted", "fragments written", "cut tests", and with
-// transparency "blended writes".
-Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const PaintOrder& order, int threads, Stats& stats);
+// (shaded by the effects' passes; blended back to front when the scene declares
+// transparency), then fog and outline when declared. Over a `base`, each piece shows
+// only where it lies in front of the base's depth, blended over its colors. Stats:
+// "pieces painted", "fragments written", "cut tests", and with transparency "blended
+// writes"; phase "painting", or "transparency" over a base.
+Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const PaintOrder& order, int threads, Stats& stats,
+            const OpaqueBase* base = nullptr);
 
 }  // namespace hsr::painter

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "algorithms/effects/effects.hpp"
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/march.hpp"
 #include "renderer/bvh.hpp"
@@ -219,7 +220,7 @@ Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads
 
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
   Frame frame = castVisibility(scene, knobs, threads, stats);
-  shadeFrame(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), frame, threads, stats);
+  effects::finishFrame(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), frame, threads, stats);
   return frame;
 }
 

@@ -139,10 +139,11 @@ INSTANTIATE_TEST_SUITE_P(
              write("opacity-range.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 1.5\n") +
                  " --algo painter -o OUT",
              "opacity-range.toml:7:11: objects[0].opacity: expected a finite number in [0, 1], got 1.5"},
-        Case{"zbuffer-on-transparency",
-             write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") + " -o OUT",
-             "zbuffer cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back to "
-             "front; the z-buffer keeps only the nearest (use --algo painter)"},
+        Case{"ray-casting-on-transparency",
+             write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") +
+                 " --algo ray_casting -o OUT",
+             "ray_casting cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back "
+             "to front; ray casting keeps only the nearest (use --algo painter or zbuffer)"},
         Case{"painter-knob-of-another-variant", kCube + " --algo painter --knob key=nearest -o OUT",
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",

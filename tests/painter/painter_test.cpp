@@ -88,7 +88,7 @@ Scene glassScene(bool transparency) {
   scene.background = vec3(0, 1, 0);
   scene.objects[0].color = vec3(1, 0, 0);
   scene.objects[1].color = vec3(0, 0, 1);
-  scene.transparency = transparency;
+  scene.effects.transparency = transparency;
   scene.objects[1].opacity = transparency ? 0.25 : 1.0;
   return scene;
 }
@@ -128,14 +128,16 @@ TEST(PainterTransparency, AnOpaqueSceneBlendsNothing) {
 TEST(PainterTransparency, AlgorithmsThatKeepOnlyTheNearestSurfaceRefuse) {
   const Scene transparentScene = glassScene(true), opaqueScene = glassScene(false);
   const PreparedScene transparent(transparentScene), opaque(opaqueScene);
-  for (const char* name : {"zbuffer", "ray_casting"}) {
+  for (const char* name : {"ray_casting"}) {
     const AlgorithmEntry& algorithm = findAlgorithm(name);
     const KnobValues knobs = resolveKnobs(algorithm, {});
     EXPECT_NE(algorithm.refusal(transparent, knobs).find("transparency"), std::string::npos) << name;
     EXPECT_EQ(algorithm.refusal(opaque, knobs), "") << name;
   }
-  const AlgorithmEntry& painterEntry = findAlgorithm("painter");
-  EXPECT_EQ(painterEntry.refusal(transparent, resolveKnobs(painterEntry, {})), "");
+  for (const char* name : {"painter", "zbuffer"}) {
+    const AlgorithmEntry& algorithm = findAlgorithm(name);
+    EXPECT_EQ(algorithm.refusal(transparent, resolveKnobs(algorithm, {})), "") << name << " blends back to front";
+  }
 }
 
 TEST(PainterNewell, TheSplitCapLabelsThePartialImage) {

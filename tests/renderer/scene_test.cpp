@@ -77,6 +77,7 @@ std::string errorOf(const std::string& toml) {
 
 const std::string kCamera = "[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n";
 const std::string kBox = "[[objects]]\nshape = \"box\"\n";
+const std::string kLight = "[[lights]]\ndirection = [0, -1, 0]\n";
 
 TEST(Scene, BadInputNamesFileLineKeyAndExpectation) {
   const struct {
@@ -103,7 +104,20 @@ TEST(Scene, BadInputNamesFileLineKeyAndExpectation) {
       {kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"nowhere.obj\"\n",
        "objects[0].file: " + test::outputPath("nowhere.obj").string() + ": cannot open the OBJ file"},
       {"effects = [\"lambert\"]\n" + kCamera + kBox, "effects: lambert shading needs at least one [[lights]] table"},
-      {"effects = [\"phong\"]\n" + kCamera + kBox, ":1:12: effects[0]: expected one of none, flat, lambert, transparency, got 'phong'"},
+      {"effects = [\"gouraud\"]\n" + kCamera + kBox,
+       ":1:12: effects[0]: expected one of none, flat, lambert, phong, shadows, transparency, fog, outline, got 'gouraud'"},
+      {"effects = [\"flat\", \"phong\"]\n" + kCamera + kBox,
+       ":1:20: effects[1]: only one shading effect (none, flat, lambert, phong) may be listed"},
+      {"effects = [\"fog\", \"fog\"]\n" + kCamera + kBox, ":1:19: effects[1]: fog is listed twice"},
+      {"effects = [\"shadows\"]\n" + kCamera + kBox, "effects: shadows need a lit shading effect (flat, lambert or phong) to darken"},
+      {"[fog]\nstart = 1\n" + kCamera + kBox, ":1:1: fog: settings for an effect the scene does not list; add \"fog\" to effects"},
+      {"effects = [\"fog\"]\n[fog]\nstart = 5\nend = 5\n" + kCamera + kBox, "fog.end: must be greater than start"},
+      {"effects = [\"fog\"]\n[fog]\nkind = \"exponential\"\nend = 5\n" + kCamera + kBox,
+       ":4:1: fog.end: unknown key; expected one of kind, density, color"},
+      {"effects = [\"flat\", \"shadows\"]\n[shadows]\nresolution = 0\n" + kCamera + kBox + kLight,
+       "shadows.resolution: expected an integer in [1, 8192], got 0"},
+      {"effects = [\"lambert\"]\n" + kCamera + kBox + "shininess = 8\n" + kLight,
+       "objects[0].shininess: a material's highlight needs \"phong\" in the scene's effects"},
       {"[image]\nwidth = 0\n" + kCamera + kBox, ":2:9: image.width: expected an integer in [1, 16384], got 0"},
       {"[image]\nwidth = 16384\nheight = 16385\n" + kCamera + kBox, "image.height: expected an integer in [1, 16384]"},
       {kCamera + "[[objects]]\nshape = \"sphere\"\nsegments = 2\n", "objects[0].segments: expected an integer in [3, 4096], got 2"},

@@ -63,7 +63,7 @@ TEST(ZBuffer, CountersShowWhatEachVariantDid) {
 TEST(ZBuffer, ShadingWorkFollowsTheDeclaredEffects) {
   Scene scene = loadScene(test::sourcePath("scenes/cube.toml"));
   for (const Shading shading : {Shading::none, Shading::flat, Shading::lambert}) {
-    scene.shading = shading;
+    scene.effects.shading = shading;
     const PreparedScene prepared(scene);
     Stats stats;
     const Frame frame = zbuffer::run(prepared, {}, 1, stats);
