@@ -5,6 +5,7 @@
 
 #include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
+#include "renderer/parallel.hpp"
 
 namespace hsr {
 
@@ -116,6 +117,41 @@ LineError lineError(std::span<const EdgeVisibility> drawn, std::span<const EdgeV
   }
   if (error.visibleLength > 0) error.error = (error.wronglyDrawn + error.wronglyHidden) / error.visibleLength;
   return error;
+}
+
+ShadowError shadowError(const PreparedScene& scene, const Frame& frame, const ShadowTest& tested, const ShadowTest& exact,
+                        int threads) {
+  const CameraTransform camera(scene.scene().camera, frame.width, frame.height);
+  const auto& lights = scene.scene().lights;
+  const std::vector<std::array<dvec3, 3>>* normals = nullptr;
+  Stats unused;
+  if (scene.scene().effects.smoothNormals()) normals = &scene.cornerNormals(unused);
+  std::vector<ShadowError> rows(static_cast<std::size_t>(frame.height));
+  parallelFor(rows.size(), threads, [&](std::size_t row, int) {
+    ShadowError& error = rows[row];
+    for (int x = 0; x < frame.width; ++x) {
+      const std::uint32_t id = frame.ids[row * std::size_t(frame.width) + std::size_t(x)];
+      if (id == conventions::kBackgroundId) continue;
+      const SurfacePoint point = surfacePoint(scene, camera, id - 1, x, static_cast<int>(row), normals);
+      for (std::size_t light = 0; light < lights.size(); ++light) {
+        if (glm::dot(point.normal, towardLight(lights[light], point.position)) <= 0) continue;
+        ++error.lookups;
+        const bool shadowed = tested.shadowed(light, point.position, id - 1);
+        const bool truly = exact.shadowed(light, point.position, id - 1);
+        error.falselyShadowed += shadowed && !truly;
+        error.falselyLit += !shadowed && truly;
+      }
+    }
+  });
+  ShadowError total;
+  for (const ShadowError& row : rows) {
+    total.lookups += row.lookups;
+    total.falselyShadowed += row.falselyShadowed;
+    total.falselyLit += row.falselyLit;
+  }
+  total.differing = total.falselyShadowed + total.falselyLit;
+  total.fraction = total.lookups ? double(total.differing) / double(total.lookups) : 0.0;
+  return total;
 }
 
 }  // namespace hsr

@@ -8,6 +8,7 @@
 
 #include "renderer/frame.hpp"
 #include "renderer/reference.hpp"
+#include "renderer/shading.hpp"
 
 namespace hsr {
 
@@ -26,6 +27,19 @@ SurfaceError surfaceError(const Frame& frame, const ReferenceImage& reference);
 // An RGBA8 picture of where a frame is wrong: the reference's image dimmed to grey,
 // wrong pixels red, ambiguous pixels blue.
 std::vector<std::uint8_t> errorHeatMap(const Frame& frame, const ReferenceImage& reference);
+
+// Shadows: at every covered pixel of a frame and every light that faces the surface
+// there, a shadow technique's decision against the exact one at the same surface point
+// (renderer/shading: surfacePoint), so that the error is the shadow test's alone.
+struct ShadowError {
+  std::int64_t lookups = 0;    // (pixel, light) pairs tested
+  std::int64_t differing = 0;  // decided differently from the exact test
+  double fraction = 0;         // differing / lookups
+  std::int64_t falselyShadowed = 0;  // shadowed, but lit by the exact test (acne)
+  std::int64_t falselyLit = 0;       // lit, but shadowed by the exact test (peter-panning, light leaks)
+};
+ShadowError shadowError(const PreparedScene& scene, const Frame& frame, const ShadowTest& tested, const ShadowTest& exact,
+                        int threads);
 
 // Culling stages: per item (object or triangle), kept by the stage or not, and
 // visible in the reference or not.

@@ -14,6 +14,18 @@ double Stats::seconds(const std::string& phase) const {
   return found == seconds_.end() ? 0.0 : found->second;
 }
 
+std::vector<std::string> Stats::counterNames() const {
+  std::vector<std::string> names;
+  for (const auto& [name, value] : counters_) names.push_back(name);
+  return names;
+}
+
+std::vector<std::string> Stats::phaseNames() const {
+  std::vector<std::string> names;
+  for (const auto& [name, value] : seconds_) names.push_back(name);
+  return names;
+}
+
 std::string Stats::report() const {
   std::string text;
   char line[256];

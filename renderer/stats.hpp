@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace hsr {
 
@@ -17,6 +18,9 @@ class Stats {
   // 0 for a counter nobody touched: "this stage never ran" reads the same as "ran on nothing".
   std::int64_t counter(const std::string& name) const;
   double seconds(const std::string& phase) const;
+
+  std::vector<std::string> counterNames() const;
+  std::vector<std::string> phaseNames() const;
 
   std::string report() const;  // one "name value" line each, counters then phase times
 

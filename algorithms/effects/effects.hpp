@@ -45,6 +45,17 @@ struct PlannedPass {
 // them, each with why.
 std::vector<PlannedPass> planPasses(const PreparedScene& scene, const AlgorithmEntry& algorithm, const std::string& culling);
 
+// One scene with each effect added in turn, for the README's figure, the goldens, the
+// bench and the tests that check an effect adds only its own pass: none, flat, lambert,
+// phong, + shadows, + transparency (only when some object is transparent; before that
+// step every object is opaque), + fog, + outline. The settings of each effect are the
+// scene's own, or the defaults.
+struct EffectStep {
+  std::string name;  // "none", "flat", ..., "+ shadows", ...
+  Scene scene;
+};
+std::vector<EffectStep> effectLadder(const Scene& scene);
+
 // The time of each pass of a render that took `totalSeconds`: the effects' passes from
 // their phases, and the visibility pass (with geometry and culling) as the rest.
 struct PassTime {
