@@ -329,7 +329,8 @@ SurfaceReference::Layers SurfaceReference::traceAll(const CameraTransform& camer
                          }
                        });
   // Nearest first: by the double t where the bounds separate two hits, exactly where
-  // they do not; exact ties go by id, and mark the ray.
+  // they do not; exact ties go by id.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ties;
   std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
     if (a.t + a.bound < b.t - b.bound) return true;
     if (b.t + b.bound < a.t - a.bound) return false;
@@ -337,11 +338,19 @@ SurfaceReference::Layers SurfaceReference::traceAll(const CameraTransform& camer
     const mpq_class ta = *query.exactHit(triangles_[a.slot].a, triangles_[a.slot].b, triangles_[a.slot].c);
     const mpq_class tb = *query.exactHit(triangles_[b.slot].a, triangles_[b.slot].b, triangles_[b.slot].c);
     if (ta != tb) return ta < tb;
-    layers.tied = layers.tied || triangles_[a.slot].id != triangles_[b.slot].id;
+    if (triangles_[a.slot].id != triangles_[b.slot].id) ties.emplace_back(triangles_[a.slot].id, triangles_[b.slot].id);
     return triangles_[a.slot].id < triangles_[b.slot].id;
   });
-  for (const Candidate& candidate : candidates)
-    layers.hits.push_back({triangles_[candidate.slot].id, query.distance(candidate.t), false, candidate.exact});
+  // Nothing behind the nearest opaque surface shows, so only ties up to it matter.
+  for (const Candidate& candidate : candidates) {
+    const std::uint32_t id = triangles_[candidate.slot].id;
+    layers.hits.push_back({id, query.distance(candidate.t), false, candidate.exact});
+    if (scene_.instanceOf(id - 1).opacity >= 1) break;
+  }
+  const auto shown = [&](std::uint32_t id) {
+    return std::any_of(layers.hits.begin(), layers.hits.end(), [&](const ReferenceHit& hit) { return hit.id == id; });
+  };
+  layers.tied = std::any_of(ties.begin(), ties.end(), [&](const auto& tie) { return shown(tie.first) && shown(tie.second); });
   return layers;
 }
 
@@ -380,7 +389,8 @@ bool SurfaceReference::blocked(const Ray& segment, double tMin, std::uint32_t ex
       continue;
     }
     for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
-      if (triangles_[slot].id != except + 1 && meets(triangles_[slot])) return true;
+      if (triangles_[slot].id != except + 1 && scene_.instanceOf(triangles_[slot].id - 1).opacity >= 1 && meets(triangles_[slot]))
+        return true;
   }
   return false;
 }
@@ -471,10 +481,11 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
       for (int x = 0; x < scene.width(); ++x) {
         const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
         const auto layers = reference.traceAll(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5), rayCounters);
-        std::size_t first = 0;
-        while (first < layers.hits.size() && scene.instanceOf(layers.hits[first].id - 1).opacity < 1) ++first;
-        dvec3 color = first < layers.hits.size() ? shader.shade(layers.hits[first].id - 1, x, int(row), counts[row]) : background;
-        for (std::size_t layer = std::min(first, layers.hits.size()); layer-- > 0;) {
+        // The last layer is the opaque surface everything else is seen over, if any.
+        std::size_t layer = layers.hits.size();
+        const bool opaqueLast = layer > 0 && scene.instanceOf(layers.hits[layer - 1].id - 1).opacity >= 1;
+        dvec3 color = opaqueLast ? shader.shade(layers.hits[--layer].id - 1, x, int(row), counts[row]) : background;
+        while (layer-- > 0) {
           const double opacity = scene.instanceOf(layers.hits[layer].id - 1).opacity;
           color = opacity * shader.shade(layers.hits[layer].id - 1, x, int(row), counts[row]) + (1 - opacity) * color;
         }

@@ -47,17 +47,17 @@ class SurfaceReference {
   };
   ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
 
-  // Every triangle the ray meets between the near and far planes, nearest first, in the
-  // exact order of their distances (for the exact blend of transparent surfaces);
-  // `tied` when two of them are met at exactly the same distance (a pixel center on a
-  // shared edge, coplanar faces), where no order is the right one.
+  // Every triangle the ray meets between the near and far planes, nearest first in the
+  // exact order of their distances, up to the first opaque one (for the exact blend of
+  // transparent surfaces); `tied` when two of those are met at exactly the same distance
+  // (a pixel center on a shared edge, coplanar faces), where no order is the right one.
   struct Layers {
     std::vector<ReferenceHit> hits;
     bool tied = false;
   };
   Layers traceAll(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
 
-  // Whether a triangle other than global triangle `except` meets the segment
+  // Whether an opaque triangle other than global triangle `except` meets the segment
   // origin + t direction for t in (tMin, 1]: the exact shadow ray (each inside decision
   // and each comparison with tMin and 1 exact for these doubles).
   bool blocked(const Ray& segment, double tMin, std::uint32_t except, Counters& counters) const;
@@ -71,7 +71,7 @@ class SurfaceReference {
 
 // Exact shadow rays: a point is shadowed from a light when a segment from it to the light
 // (a point light) or out of the scene's bounds toward it (a directional light) meets
-// another triangle. Hits within 1e-9 of the segment's length from the point are ignored:
+// another opaque triangle (a transparent one lets the light through, as in the shadow maps). Hits within 1e-9 of the segment's length from the point are ignored:
 // the point lies on its own triangle and that triangle's neighbours only to rounding.
 // Stats (summed by the caller through counters()): the reference's counters.
 class ExactShadows : public ShadowTest {

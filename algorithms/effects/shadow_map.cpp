@@ -57,6 +57,11 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
   for (const Instance& instance : scene.instances()) bounds.grow(instance.box);
   const dvec3 center = bounds.empty() ? dvec3(0) : bounds.center();
   const double radius = bounds.empty() ? 1.0 : std::max(0.5 * glm::length(bounds.hi - bounds.lo), 1e-9);
+  // Only opaque surfaces cast shadows: a transparent one lets the light through (and
+  // tints nothing: there are no colored shadows).
+  VisibleSet casters;
+  for (std::uint32_t triangle = 0; triangle < scene.triangleCount(); ++triangle)
+    if (scene.instanceOf(triangle).opacity >= 1) casters.triangles.push_back(triangle);
   for (const Light& light : scene.scene().lights) {
     std::vector<View>& lightViewsDrawn = views_.emplace_back();
     for (const CameraTransform& view : lightViews(light, center, radius, settings.resolution)) {
@@ -64,7 +69,7 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
       // apart so that the camera's pass reads the same with and without shadows.
       Stats mapStats;
       Frame map(settings.resolution, settings.resolution);
-      const ScreenGeometry geometry = buildScreenTriangles(scene, view, true, threads, mapStats);
+      const ScreenGeometry geometry = buildScreenTriangles(scene, view, true, threads, mapStats, false, &casters);
       zbuffer::renderFullFrame(geometry, DepthFormat::float32, threads, map, mapStats);
       stats.add("shadow maps rendered");
       stats.add("shadow map texels", static_cast<std::int64_t>(map.pixelCount()));

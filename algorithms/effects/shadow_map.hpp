@@ -3,6 +3,7 @@
 // point shadowed when it lies farther from the light than the depth the map stored
 // where the point lands.
 //
+// Only opaque surfaces cast shadows (a transparent one lets the light through).
 // A directional light looks along its direction with an orthographic view that holds
 // the scene's bounding sphere; a point light looks out of a cube of six 90-degree
 // views. One depth sample per texel and a constant bias make the two classic errors

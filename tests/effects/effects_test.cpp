@@ -34,12 +34,12 @@ const std::map<std::string, std::set<std::string>>& ownedWork() {
       {"phong", {"specular terms"}},
       {"+ shadows", {"shadow maps rendered", "shadow map texels", "shadow map fragments written", "shadow lookups",
                      "shadowed lookups", "shadow maps", "specular terms"}},
-      // The transparent objects leave the depth buffer for the sorted pass, so the
-      // visibility pass's own counts change too: only the sorted pass is new.
+      // The transparent objects leave the depth buffer for the sorted pass, and the shadow
+      // maps' casters, so those passes' own counts change too: only the sorted pass is new.
       {"+ transparency", {"blended writes", "pieces painted", "cut tests", "transparency", "ordering", "shading invocations",
                           "specular terms", "shadow lookups", "shadowed lookups", "fragments written", "fragments tested",
                           "screen triangles", "triangles in", "triangles clipped", "triangles outside view",
-                          "triangles between pixel centers", "vertices transformed"}},
+                          "triangles between pixel centers", "vertices transformed", "shadow map fragments written"}},
       {"+ fog", {"fog blends", "fog"}},
       {"+ outline", {"outline edges", "outline pixels", "feature edges", "mesh edges built", "facing tests",
                      "predicate evaluations", "predicate exact fall-backs", "edge adjacency", "outline"}},
