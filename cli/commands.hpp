@@ -48,7 +48,7 @@ struct SweepOptions {
 int sweep(const SweepOptions& options);
 
 struct StudyOptions {
-  std::string name;    // "culling-combos", or one of the occlusion studies
+  std::string name;    // "culling-combos", one of the occlusion studies, "effects" or "shadow-map"
   std::string scenes;  // a subset of the study's scenes, "cube,counters"; empty: all four
   int frames = 0;      // 0: the study's own default
   int errorFrames = 4; // frames whose images are compared with the exact reference
@@ -59,6 +59,8 @@ struct StudyOptions {
 int study(const StudyOptions& options);
 // The occlusion studies (study_occlusion.cpp), into `folder`.
 int occlusionStudy(const StudyOptions& options, const std::filesystem::path& folder);
+// The effects studies (study_effects.cpp), into `folder`.
+int effectsStudy(const StudyOptions& options, const std::filesystem::path& folder);
 
 struct DiffOptions {
   std::string first, second;

@@ -63,8 +63,9 @@ int main(int argc, char** argv) {
 
   hsr::cli::StudyOptions study;
   CLI::App* studyCommand = app.add_subcommand(
-      "study", "a published experiment, reproduced: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction");
-  studyCommand->add_option("name", study.name, "the study: culling-combos, occlusion-walkthrough, hzb-resolution or occluder-fraction")
+      "study", "an experiment, reproduced: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects, shadow-map");
+  studyCommand->add_option("name", study.name,
+                           "the study: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects or shadow-map")
       ->required();
   studyCommand->add_option("--scenes", study.scenes, "some of the study's scenes: cube,counters,trees,dragons (default all)");
   studyCommand->add_option("--frames", study.frames,

@@ -59,4 +59,12 @@ void Progress::update(std::size_t done, const std::string& label) {
   std::fflush(stderr);
 }
 
+void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody) {
+  OutputFiles files;
+  files.addText(folder / (stem + ".csv"), csv);
+  addPlot(files, folder, stem, plotBody);
+  files.commit();
+  std::printf("wrote %s/%s.{csv,png,svg,gp}\n", folder.string().c_str(), stem.c_str());
+}
+
 }  // namespace hsr::cli

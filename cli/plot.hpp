@@ -12,6 +12,8 @@ namespace hsr::cli {
 // `body` is the gnuplot text after the terminal and output lines, ending in a plot
 // command. Adds stem.gp, stem.png and stem.svg in `folder` to `files`.
 void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std::string& stem, const std::string& body);
+// A study's results: FOLDER/STEM.csv and its plot (addPlot), written together.
+void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody);
 
 // A bar on stderr, shown only on a terminal and only once the work has taken a second.
 class Progress {

@@ -210,4 +210,21 @@ std::string jsonString(const std::string& text) {
   return quoted + "\"";
 }
 
+std::string csvOf(const std::vector<CsvRow>& rows) {
+  std::string text;
+  for (std::size_t i = 0; i < rows.front().size(); ++i) {
+    if (i > 0) text += ',';
+    text += rows.front()[i].first;
+  }
+  text += "\n";
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (i > 0) text += ',';
+      text += csvField(row[i].second);
+    }
+    text += "\n";
+  }
+  return text;
+}
+
 }  // namespace hsr::cli

@@ -74,6 +74,10 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
 
 // A CSV field, quoted when it holds a comma, quote or newline; a JSON string literal.
 std::string csvField(const std::string& text);
+
+// Rows of (column, value) pairs, every row with the same columns, as CSV with a header.
+using CsvRow = std::vector<std::pair<std::string, std::string>>;
+std::string csvOf(const std::vector<CsvRow>& rows);
 // A number in a printf format ("%.4g" unless told).
 std::string formatted(double value, const char* format = "%.4g");
 std::string jsonString(const std::string& text);

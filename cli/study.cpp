@@ -331,16 +331,20 @@ std::string plot(const std::vector<SceneResult>& scenes) {
 
 int study(const StudyOptions& options) {
   const std::vector<std::string> occlusionStudies = {"occlusion-walkthrough", "hzb-resolution", "occluder-fraction"};
-  const bool occlusion = std::find(occlusionStudies.begin(), occlusionStudies.end(), options.name) != occlusionStudies.end();
-  if (options.name != "culling-combos" && !occlusion)
+  const std::vector<std::string> effectsStudies = {"effects", "shadow-map"};
+  const auto among = [&](const std::vector<std::string>& names) {
+    return std::find(names.begin(), names.end(), options.name) != names.end();
+  };
+  if (options.name != "culling-combos" && !among(occlusionStudies) && !among(effectsStudies))
     throw InputError("study " + options.name +
-                     ": unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution or occluder-fraction");
+                     ": unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects "
+                     "or shadow-map");
   if (!options.size.empty()) parseSize(options.size, "--size");
   const std::filesystem::path folder = options.out.empty() ? std::filesystem::path("out/study") / options.name : std::filesystem::path(options.out);
-  if (occlusion) {
+  if (options.name != "culling-combos") {
     if (!options.scenes.empty()) throw InputError("--scenes: study " + options.name + " has its own scenes; --scenes is for culling-combos");
     makeFolder(folder, "--out");
-    return occlusionStudy(options, folder);
+    return among(occlusionStudies) ? occlusionStudy(options, folder) : effectsStudy(options, folder);
   }
   StudyOptions resolved = options;
   resolved.frames = options.frames > 0 ? options.frames : 360;

@@ -60,31 +60,6 @@ std::int64_t objectsFalselyCulled(const PreparedScene& scene, const ReferenceIma
       .falseCulls;
 }
 
-std::string csvOf(const std::vector<std::vector<std::pair<std::string, std::string>>>& rows) {
-  std::string text;
-  for (std::size_t i = 0; i < rows.front().size(); ++i) {
-    if (i > 0) text += ',';
-    text += rows.front()[i].first;
-  }
-  text += "\n";
-  for (const auto& row : rows) {
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      if (i > 0) text += ',';
-      text += csvField(row[i].second);
-    }
-    text += "\n";
-  }
-  return text;
-}
-
-void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody) {
-  OutputFiles files;
-  files.addText(folder / (stem + ".csv"), csv);
-  addPlot(files, folder, stem, plotBody);
-  files.commit();
-  std::printf("wrote %s/%s.{csv,png,svg,gp}\n", folder.string().c_str(), stem.c_str());
-}
-
 // ---------------------------------------------------------------------------------
 // occlusion-walkthrough
 
@@ -154,7 +129,7 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
     }
     progress.update(std::size_t(f + 1), "walkthrough");
   }
-  std::vector<std::vector<std::pair<std::string, std::string>>> rows;
+  std::vector<CsvRow> rows;
   std::printf("\n  %-26s %9s %10s %9s %13s %16s %14s\n", "mode", "mean ms", "std dev ms", "/ none", "triangles", "false-cull frames",
               "objects late");
   const double noneMean = std::accumulate(results[0].ms.begin(), results[0].ms.end(), 0.0) / frames;
@@ -204,7 +179,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
               "runs, %d thread(s)\n\n  %-9s %-13s %-8s %12s %14s %14s\n",
               scene.width(), scene.height(), scene.instances().size(), repeats, options.threads, "map", "rule", "pyramid",
               "culled", "doors lost", "culling ms");
-  std::vector<std::vector<std::pair<std::string, std::string>>> rows;
+  std::vector<CsvRow> rows;
   std::string data = "$sizes << EOD\n";
   const std::vector<std::string> sizes = {"64x64", "128x128", "256x128", "256x256", "512x256"};
   for (const std::string& size : sizes) {
@@ -296,7 +271,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
       {"solid angle 10%", "frustum,occlusion:occluders=solid-angle"},
       {"solid angle 20%", "frustum,occlusion:occluders=solid-angle:fraction=20%"}};
   const int repeats = options.frames > 0 ? options.frames : 20;
-  std::vector<std::vector<std::pair<std::string, std::string>>> rows;
+  std::vector<CsvRow> rows;
   std::string data = "$levels << EOD\n";
   for (const auto& [level, description] : levels) {
     LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "study" / (level + ".toml")).string(), options.size);

@@ -173,7 +173,9 @@ INSTANTIATE_TEST_SUITE_P(
         // hsr sweep
         Case{"sweep-no-knob", kCube + " --out OUT", "give at least one --knob", "sweep"},
         Case{"sweep-unknown-knob", kCube + " --knob precision=1,2 --out OUT", "zbuffer has no knob 'precision'", "sweep"},
-        Case{"study-unknown", "culling-combo --out OUT", "study culling-combo: unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution or occluder-fraction", "study"},
+        Case{"study-unknown", "culling-combo --out OUT", "study culling-combo: unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, "
+             "effects or shadow-map",
+             "study"},
         Case{"study-scenes-of-an-occlusion-study", "hzb-resolution --scenes cube --out OUT",
              "--scenes: study hzb-resolution has its own scenes; --scenes is for culling-combos", "study"},
         Case{"study-unknown-scene", "culling-combos --scenes cube,teapot --out OUT",
