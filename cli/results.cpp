@@ -53,6 +53,17 @@ std::string joinedCounters(const ResultRow& row, const char* between, const char
   return text;
 }
 
+std::string joinedPasses(const ResultRow& row, const char* between, const char* separator) {
+  std::string text;
+  for (const auto& [pass, ms] : row.passMs) {
+    if (!text.empty()) text += separator;
+    text += pass;
+    text += between;
+    text += formatted(ms, "%.2f");
+  }
+  return text;
+}
+
 }  // namespace
 
 MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
@@ -88,6 +99,7 @@ std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std
   for (const auto& [name, value] : measuredFields(ResultRow{})) heading.push_back(name);
   if (!sweptKnobs.empty()) heading.push_back("pareto");
   heading.push_back("counters");
+  heading.push_back("pass_ms");
   std::string csv = line(heading);
   for (const ResultRow& row : rows) {
     std::vector<std::string> fields = {row.scene, row.algorithm, row.knobs};
@@ -95,6 +107,7 @@ std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std
     for (const auto& [name, value] : measuredFields(row)) fields.push_back(value);
     if (!sweptKnobs.empty()) fields.push_back(row.pareto ? "1" : "0");
     fields.push_back(joinedCounters(row, "=", ";"));
+    fields.push_back(joinedPasses(row, "=", ";"));
     csv += line(fields);
   }
   return csv;
@@ -121,6 +134,11 @@ std::string resultsJson(const std::vector<ResultRow>& rows) {
       if (k) json += ", ";
       json += jsonString(row.counters[k].first) + ": " + std::to_string(row.counters[k].second);
     }
+    json += "}, \"pass_ms\": {";
+    for (std::size_t k = 0; k < row.passMs.size(); ++k) {
+      if (k) json += ", ";
+      json += jsonString(row.passMs[k].first) + ": " + formatted(row.passMs[k].second, "%.4f");
+    }
     json += "}}";
   }
   return json + "\n]\n";
@@ -130,7 +148,8 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
   std::vector<std::vector<std::string>> cells;
   std::vector<std::string> heading = {"algorithm", "knobs"};
   heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
-  for (const char* name : {"time ms: median [min-max]", "error", "wrong px", "depth error mean / max", "peak MB", "counters"})
+  for (const char* name : {"time ms: median [min-max]", "error", "wrong px", "depth error mean / max", "peak MB", "counters",
+                           "time per pass ms"})
     heading.push_back(name);
   cells.push_back(heading);
   for (const ResultRow& row : rows) {
@@ -155,6 +174,7 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
     std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
     line.push_back(text);
     line.push_back(joinedCounters(row, " ", ", "));
+    line.push_back(joinedPasses(row, " ", ", "));
     cells.push_back(line);
   }
   std::vector<std::size_t> widths(heading.size(), 0);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "algorithms/effects/effects.hpp"
 #include "cli/measure.hpp"
 #include "renderer/metrics.hpp"
 
@@ -29,6 +30,8 @@ struct ResultRow {
   // The error hsr sweep plots and ranks by: pixel error, or line error for a line algorithm.
   double errorValue() const { return lines ? lineError.error : error.pixelError; }
   std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
+  // The median time split into passes (algorithms/effects: passTimes), in ms.
+  std::vector<std::pair<std::string, double>> passMs;
   bool pareto = false;  // hsr sweep: on the front of (time, pixel error)
 };
 
@@ -49,6 +52,8 @@ ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, c
   row.time = measured.time;
   row.peakBytes = measured.peakBytes;
   for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
+  for (const effects::PassTime& pass : effects::passTimes(measured.stats, measured.time.median))
+    row.passMs.emplace_back(pass.pass, pass.seconds * 1e3);
   return row;
 }
 
