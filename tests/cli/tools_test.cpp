@@ -105,6 +105,7 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   std::vector<std::string> expected = {"scene", "algorithm", "knobs"};
   expected.insert(expected.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
   expected.push_back("counters");
+  expected.push_back("pass_ms");
   EXPECT_EQ(header, expected);
   // Per scene: the reference, then every algorithm that accepts it at its defaults: the
   // three surface algorithms on both, the line algorithms (roberts, appel) on the closed
@@ -121,6 +122,9 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_EQ(rows[1].at("algorithm"), "zbuffer");
   EXPECT_EQ(rows[1].at("knobs"), "defaults");
   EXPECT_NE(rows[1].at("counters").find("fragments tested="), std::string::npos);
+  EXPECT_EQ(rows[1].at("pass_ms").rfind("visibility=", 0), 0u) << rows[1].at("pass_ms");
+  EXPECT_NE(rows[1].at("pass_ms").find(";shading="), std::string::npos) << "cube.toml is lambert: a shading pass";
+  EXPECT_EQ(rows[1].at("pass_ms").find("shadow maps"), std::string::npos) << "and no shadows";
   EXPECT_EQ(rows[2].at("algorithm"), "ray_casting");
   EXPECT_NE(rows[2].at("counters").find("bvh nodes visited="), std::string::npos);
   EXPECT_EQ(rows[3].at("algorithm"), "painter");
@@ -185,6 +189,66 @@ TEST(Study, CullingCombosWritesItsTableAndCountsTheWorkEachModeSaves) {
   EXPECT_LT(counters("frustum (sphere)", "triangles_submitted"), 0.5 * counters("none", "triangles_submitted"));
   EXPECT_EQ(test::parseJson(readText(folder / "culling_combos.json")).array().size(), 16u);
   EXPECT_GT(readImage(folder / "culling_combos.png").width, 0);
+}
+
+TEST(Render, ExplainSaysWhichPassesRunAndWhy) {
+  const auto folder = freshFolder("explain");
+  std::filesystem::create_directories(folder);
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " render " + kScenes +
+                                                      "cube.toml --explain --size 64x48 -o " + (folder / "cube.png").string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* line : {"passes for", "run   visibility: zbuffer", "skip  shadow maps", "effects does not list shadows",
+                           "run   corner normals               lambert interpolates them", "decided while rendering:",
+                           "normals: 36 corner normals computed", "clipping: no triangle crosses the near plane",
+                           "time per pass", "visibility", "shading"})
+    EXPECT_NE(result.output.find(line), std::string::npos) << line << "\n" << result.output;
+  const std::string times = result.output.substr(result.output.find("time per pass"));
+  EXPECT_EQ(times.find("shadow maps"), std::string::npos) << "no time for a pass that did not run";
+  EXPECT_NE(times.find("shading"), std::string::npos);
+}
+
+TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
+  const auto folder = freshFolder("study-effects");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " study effects --frames 1 --size 160x100 --out " +
+                                                      folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "effects.csv", header);
+  ASSERT_EQ(rows.size(), 8u);
+  EXPECT_EQ(rows.front().at("step"), "none");
+  EXPECT_EQ(number(rows.front(), "ratio_to_none"), 1);
+  const std::vector<std::pair<std::string, std::string>> firstWith = {{"+ shadows", "shadow maps_ms"}, {"+ transparency", "transparency_ms"},
+                                                                       {"+ fog", "fog_ms"}, {"+ outline", "outline_ms"}};
+  for (const auto& [step, column] : firstWith) {
+    bool reached = false;
+    for (const Row& row : rows) {
+      reached = reached || row.at("step") == step;
+      if (reached) EXPECT_GT(number(row, column), 0) << row.at("step") << ": " << column;
+      else EXPECT_EQ(number(row, column), 0) << row.at("step") << " spends nothing on " << column;
+    }
+  }
+  EXPECT_GT(readImage(folder / "effects_steps.png").width, 8 * 256);
+  EXPECT_GT(readImage(folder / "effects.png").width, 0);
+}
+
+TEST(Study, ShadowMapShowsAcneWithoutBiasAndLessErrorAtHigherResolution) {
+  const auto folder = freshFolder("study-shadow-map");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " study shadow-map --frames 1 --size 160x100 --out " +
+                                                      folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "shadow_map.csv", header);
+  ASSERT_EQ(rows.size(), 42u);  // six resolutions, seven biases
+  std::map<std::string, Row> at;
+  for (const Row& row : rows) at[row.at("resolution") + "/" + row.at("bias_texels")] = row;
+  for (const char* resolution : {"128", "1024", "4096"}) {
+    const Row& acne = at.at(std::string(resolution) + "/0");
+    const Row& biased = at.at(std::string(resolution) + "/1.5");
+    EXPECT_GT(number(acne, "falsely_shadowed"), 10 * number(biased, "falsely_shadowed") + 10) << resolution;
+    EXPECT_GE(number(at.at(std::string(resolution) + "/12"), "falsely_lit"), number(biased, "falsely_lit")) << resolution;
+  }
+  EXPECT_LT(number(at.at("4096/1.5"), "error_fraction"), number(at.at("128/1.5"), "error_fraction"));
+  EXPECT_GT(readImage(folder / "shadow_map.png").width, 0);
 }
 
 TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
