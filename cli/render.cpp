@@ -144,6 +144,8 @@ int list() {
                   variant == stage.variants.front().first ? " (default)" : "");
     printKnobs(stage.knobs, ":");
   }
+  std::printf("effects (a scene's effects list: one shading, then any of the others):\n");
+  for (const EffectName& effect : effectNames()) std::printf("  %-12s %s\n", effect.name, effect.summary);
   std::printf("scenes (in %s):\n", HSR_SCENES_DIR);
   for (const auto& scene : shippedScenes()) std::printf("  %s\n", scene.string().c_str());
   return 0;

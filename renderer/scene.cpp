@@ -403,10 +403,9 @@ void readObject(TableReader& object, Scene& scene,
 // for an effect the list does not name is an error (it would be silently ignored).
 void readEffects(TableReader& reader, Scene& scene) {
   Effects& effects = scene.effects;
-  const std::vector<std::string> shadings = {"none", "flat", "lambert", "phong"};
-  const std::vector<std::string> others = {"shadows", "transparency", "fog", "outline"};
-  std::vector<std::string> known = shadings;
-  known.insert(known.end(), others.begin(), others.end());
+  std::vector<std::string> known;
+  for (const EffectName& effect : effectNames()) known.push_back(effect.name);
+  const std::vector<std::string> shadings(known.begin(), known.begin() + 4);
   std::set<std::string> listed;
   if (const toml::array* list = reader.array("effects"))
     for (std::size_t i = 0; i < list->size(); ++i) {
@@ -467,6 +466,20 @@ void readEffects(TableReader& reader, Scene& scene) {
 }
 
 }  // namespace
+
+const std::vector<EffectName>& effectNames() {
+  static const std::vector<EffectName> names = {
+      {"none", "shading: each object's own color (the default)"},
+      {"flat", "shading: ambient + diffuse with the face normal, one color per triangle under a directional light"},
+      {"lambert", "shading: ambient + diffuse with smooth corner normals"},
+      {"phong", "shading: lambert + a Blinn-Phong highlight (per object: reflectivity, shininess)"},
+      {"shadows", "a shadow map per light view, from the z-buffer ([shadows]: resolution, bias)"},
+      {"transparency", "objects may set opacity < 1, blended back to front (painter, or the z-buffer's sorted pass)"},
+      {"fog", "colors blended toward the fog by view distance ([fog]: kind, start, end, density, color)"},
+      {"outline", "feature edges drawn over the image ([outline]: color, crease_angle)"},
+  };
+  return names;
+}
 
 const char* shadingName(Shading shading) {
   switch (shading) {

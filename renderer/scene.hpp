@@ -164,4 +164,12 @@ void checkImageSize(std::int64_t width, std::int64_t height, const std::string& 
 
 const char* shadingName(Shading shading);
 
+// Every name a scene's effects list may hold, the shadings first (in Shading's order),
+// each with what it asks for (hsr list prints them).
+struct EffectName {
+  const char* name;
+  const char* summary;
+};
+const std::vector<EffectName>& effectNames();
+
 }  // namespace hsr

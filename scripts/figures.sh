@@ -79,5 +79,13 @@ oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figu
 oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figures/culling/any-vertex.png
 ./build/hsr study culling-combos --out "$study" > /dev/null
 cp "$study/culling_combos.png" images/figures/culling/culling-combos.png
+# Effects: the showcase with each effect added in turn and the time of each pass, and
+# the shadow map's resolution x bias against exact shadow rays.
+mkdir -p images/figures/effects
+./build/hsr study effects --out "$study" > /dev/null
+cp "$study/effects_steps.png" images/figures/effects/steps.png
+cp "$study/effects.png" images/figures/effects/passes.png
+./build/hsr study shadow-map --out "$study" > /dev/null
+cp "$study/shadow_map.png" images/figures/effects/shadow_map.png
 rm -r "$study"
 echo "figures are in images/figures/"

@@ -160,8 +160,8 @@ std::vector<std::string> decisionsTaken(const Stats& stats) {
   say(counted("normals computed") > 0, "normals: " + n(counted("normals computed")) + " corner normals computed",
       "normals: none computed");
   if (counted("shadow maps rendered") > 0)
-    decisions.push_back("shadows: " + n(counted("shadow maps rendered")) + " map views, " + n(counted("shadow lookups")) + " lookups, " +
-                        n(counted("shadowed lookups")) + " in shadow");
+    decisions.push_back("shadows: " + count(std::size_t(counted("shadow maps rendered")), "map view") + ", " +
+                        n(counted("shadow lookups")) + " lookups, " + n(counted("shadowed lookups")) + " in shadow");
   if (counted("specular terms") > 0) decisions.push_back("specular: " + n(counted("specular terms")) + " highlight terms");
   if (counted("blended writes") > 0) decisions.push_back("transparency: " + n(counted("blended writes")) + " blended writes");
   if (counted("fog blends") > 0) decisions.push_back("fog: " + n(counted("fog blends")) + " pixels blended");

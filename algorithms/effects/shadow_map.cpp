@@ -60,8 +60,9 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
   // Only opaque surfaces cast shadows: a transparent one lets the light through (and
   // tints nothing: there are no colored shadows).
   VisibleSet casters;
-  for (std::uint32_t triangle = 0; triangle < scene.triangleCount(); ++triangle)
-    if (scene.instanceOf(triangle).opacity >= 1) casters.triangles.push_back(triangle);
+  for (const Instance& instance : scene.instances())
+    if (instance.opacity >= 1)
+      for (std::uint32_t t = 0; t < instance.triangleCount; ++t) casters.triangles.push_back(instance.firstTriangle + t);
   for (const Light& light : scene.scene().lights) {
     std::vector<View>& lightViewsDrawn = views_.emplace_back();
     for (const CameraTransform& view : lightViews(light, center, radius, settings.resolution)) {

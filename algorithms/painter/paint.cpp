@@ -136,11 +136,14 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
           if (piece.cutCount != 0 && !insideCuts(x, y)) return;
           const std::size_t pixel = std::size_t(y) * std::size_t(frame.width) + std::size_t(x);
           const float depth = static_cast<float>(camera.distanceFromScreenAffine(tri.depthAt(x + 0.5, y + 0.5)));
-          // Over opaque surfaces already drawn, only what lies in front of them shows.
+          // Over opaque surfaces already drawn, only what lies in front of them shows, and
+          // the pixel's id is the nearest surface, whatever order the colors blend in.
           if (base && !(depth < base->frame.depth[pixel])) return;
           ++count.writes;
-          frame.ids[pixel] = tri.triangle + 1;
-          frame.depth[pixel] = depth;
+          if (!base || depth < frame.depth[pixel]) {
+            frame.ids[pixel] = tri.triangle + 1;
+            frame.depth[pixel] = depth;
+          }
           if (!blend) return;
           // Porter and Duff's "over": this surface in front of everything drawn so far.
           blended[pixel] = opacity * shader->shade(tri.triangle, x, y, count.shading) + (1 - opacity) * blended[pixel];

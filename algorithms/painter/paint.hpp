@@ -66,7 +66,8 @@ struct OpaqueBase {
 // Draws the pieces in order into a frame of the scene's size: ids, depth, and color
 // (shaded by the effects' passes; blended back to front when the scene declares
 // transparency), then fog and outline when declared. Over a `base`, each piece shows
-// only where it lies in front of the base's depth, blended over its colors. Stats:
+// only where it lies in front of the base's depth, blended over its colors, and a
+// pixel's id and depth are the nearest surface's (a depth test for ids alone). Stats:
 // "pieces painted", "fragments written", "cut tests", and with transparency "blended
 // writes"; phase "painting", or "transparency" over a base.
 Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const PaintOrder& order, int threads, Stats& stats,

@@ -174,14 +174,8 @@ TEST(Effects, ExactOrdersBlendTheCyclicGlassAsTheReferenceDoes) {
   const ReferenceImage reference = renderReference(glass.prepared, 2, stats);
   const auto wrongPixels = [&](const Frame& frame) {
     long wrong = 0;
-    for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
-      if (reference.blendTied[pixel]) continue;
-      for (int c = 0; c < 3; ++c)
-        if (std::abs(int(frame.color[4 * pixel + c]) - int(reference.frame.color[4 * pixel + c])) > 1) {
-          ++wrong;
-          break;
-        }
-    }
+    for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel)
+      wrong += !reference.blendTied[pixel] && test::colorDiffers(frame.color, reference.frame.color, pixel, 1);
     return wrong;
   };
   long compared = 0;
@@ -196,7 +190,11 @@ TEST(Effects, ExactOrdersBlendTheCyclicGlassAsTheReferenceDoes) {
   EXPECT_GT(wrongPixels(renderWith("zbuffer", glass.prepared, stats)), 100) << "the sorted pass cannot either";
 }
 
-TEST(Effects, TheZBufferSortedPassBlendsAnUncycledSceneExactly) {
+// One glass box over opaque things: the depth sort orders its front and back faces
+// right, but at its rim a side face's centroid is nearer than the front face's while the
+// ray meets it behind: the only pixels it blends wrong, all on the glass or within a pixel
+// of its outline (where snapping decides whether the glass covers the pixel).
+TEST(Effects, TheZBufferSortedPassMisordersOnlyAGlassBoxRim) {
   const test::LoadedScene showcase(test::sourcePath(kShowcase), 320);
   Scene scene = showcase.scene;
   scene.effects.shadows = scene.effects.fog = scene.effects.outline = false;
@@ -204,18 +202,29 @@ TEST(Effects, TheZBufferSortedPassBlendsAnUncycledSceneExactly) {
   Stats stats;
   const ReferenceImage reference = renderReference(prepared, 2, stats);
   const Frame frame = renderWith("zbuffer", prepared, stats);
+  const auto glassNear = [&](std::size_t pixel) {
+    const int x = int(pixel % std::size_t(frame.width)), y = int(pixel / std::size_t(frame.width));
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nx = std::clamp(x + dx, 0, frame.width - 1), ny = std::clamp(y + dy, 0, frame.height - 1);
+        const std::uint32_t id = reference.frame.ids[std::size_t(ny) * std::size_t(frame.width) + std::size_t(nx)];
+        if (id != 0 && scene.objects[prepared.instanceOf(id - 1).object].name == "glass") return true;
+      }
+    return false;
+  };
   long compared = 0, wrong = 0;
   for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
+    // A pixel showing another surface than the reference's is a visibility error (snapping,
+    // judged by tests/zbuffer), not a blending one.
     if (reference.blendTied[pixel] || frame.ids[pixel] != reference.frame.ids[pixel]) continue;
     ++compared;
-    for (int c = 0; c < 3; ++c)
-      if (std::abs(int(frame.color[4 * pixel + c]) - int(reference.frame.color[4 * pixel + c])) > 1) {
-        ++wrong;
-        break;
-      }
+    if (!test::colorDiffers(frame.color, reference.frame.color, pixel, 1)) continue;
+    ++wrong;
+    EXPECT_TRUE(glassNear(pixel)) << "pixel " << pixel;
   }
-  EXPECT_GT(compared, 60000);
-  EXPECT_EQ(wrong, 0) << "one glass box: back faces first is the right order";
+  EXPECT_GT(compared, 250000);
+  EXPECT_GT(wrong, 0) << "the rim";
+  EXPECT_LT(wrong, compared / 300);
 }
 
 TEST(Effects, FogBlendsEachPixelByItsFormula) {

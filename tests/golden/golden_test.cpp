@@ -232,11 +232,7 @@ TEST_P(EffectGolden, MatchesTheGoldenImage) {
           (!reference.blendTied.empty() && reference.blendTied[pixel]))
         continue;
       ++compared;
-      for (int c = 0; c < 3; ++c)
-        if (std::abs(int(frame.color[4 * pixel + c]) - int(reference.frame.color[4 * pixel + c])) > 2) {
-          ++differing;
-          break;
-        }
+      differing += test::colorDiffers(frame.color, reference.frame.color, pixel, 2);
     }
     ASSERT_LE(differing, compared / 100) << "refusing to update " << path << ": " << differing << " of " << compared
                                          << " pixels differ from the reference's colors";
