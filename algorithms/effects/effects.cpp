@@ -38,14 +38,13 @@ std::vector<PlannedPass> planPasses(const PreparedScene& scene, const AlgorithmE
   }
 
   std::size_t views = 0;
-  for (const Light& light : description.lights) views += light.kind == Light::Kind::directional ? 1 : 6;
+  for (const Light& light : description.lights) views += std::size_t(shadowViewCount(light));
   if (!effects.shadows) {
     plan.push_back({"shadow maps", false, "effects does not list shadows"});
   } else {
     for (const Light& light : description.lights) {
-      const int faces = light.kind == Light::Kind::directional ? 1 : 6;
       char size[64];
-      std::snprintf(size, sizeof size, "%s of %dx%d, bias %g texels", faces == 1 ? "1 view" : "6 views (a cube)",
+      std::snprintf(size, sizeof size, "%s of %dx%d, bias %g texels", shadowViewCount(light) == 1 ? "1 view" : "6 views (a cube)",
                     effects.shadow.resolution, effects.shadow.resolution, effects.shadow.biasTexels);
       plan.push_back({"shadow map for light '" + light.name + "'", true, listed + "shadows; " + size});
     }

@@ -14,8 +14,8 @@ dvec3 upFor(const dvec3& forward) {
   return size.y < 0.9 * glm::length(forward) ? dvec3(0, 1, 0) : dvec3(1, 0, 0);
 }
 
-}  // namespace
-
+// The views a light's shadow map is rendered from, holding the sphere (center, radius)
+// that bounds the scene.
 std::vector<CameraTransform> lightViews(const Light& light, const dvec3& center, double radius, int resolution) {
   std::vector<CameraTransform> views;
   Camera camera;
@@ -49,6 +49,8 @@ std::vector<CameraTransform> lightViews(const Light& light, const dvec3& center,
     }
   return views;
 }
+
+}  // namespace
 
 ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& settings, int threads, Stats& stats)
     : scene_(scene), biasTexels_(settings.biasTexels) {

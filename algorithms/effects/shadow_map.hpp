@@ -33,22 +33,19 @@ class ShadowMaps : public ShadowTest {
 
   bool shadowed(std::size_t light, const dvec3& point, std::uint32_t triangle) const override;
 
-  // One view of one light, for pictures and tests.
+ private:
+  // One view of one light.
   struct View {
     CameraTransform camera;
     std::vector<float> depth;  // the z-buffer's frame.depth: view distance, +infinity where nothing was drawn
     double texelsPerUnit;      // orthographic: texels per world unit; perspective: per unit at distance 1
   };
-  const std::vector<View>& views(std::size_t light) const { return views_[light]; }
-
- private:
   const PreparedScene& scene_;
   double biasTexels_;
   std::vector<std::vector<View>> views_;  // per scene light
 };
 
-// The views a light's shadow map is rendered from, holding the sphere (center, radius)
-// that bounds the scene.
-std::vector<CameraTransform> lightViews(const Light& light, const dvec3& center, double radius, int resolution);
+// How many views a light's shadow map has: 1 for a directional light, 6 (a cube) for a point light.
+inline int shadowViewCount(const Light& light) { return light.kind == Light::Kind::directional ? 1 : 6; }
 
 }  // namespace hsr::effects

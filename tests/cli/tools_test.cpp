@@ -223,8 +223,11 @@ TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
     bool reached = false;
     for (const Row& row : rows) {
       reached = reached || row.at("step") == step;
-      if (reached) EXPECT_GT(number(row, column), 0) << row.at("step") << ": " << column;
-      else EXPECT_EQ(number(row, column), 0) << row.at("step") << " spends nothing on " << column;
+      if (reached) {
+        EXPECT_GT(number(row, column), 0) << row.at("step") << ": " << column;
+      } else {
+        EXPECT_EQ(number(row, column), 0) << row.at("step") << " spends nothing on " << column;
+      }
     }
   }
   EXPECT_GT(readImage(folder / "effects_steps.png").width, 8 * 256);

@@ -281,7 +281,9 @@ TEST(Effects, OutlinesLieOnTheEdgesBetweenFaces) {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) faces.insert(objectFace(x + dx, y + dy));
       drawn += outline;
-      if (outline) EXPECT_GT(faces.size(), 1u) << "an outline inside a face at (" << x << ", " << y << ")";
+      if (outline) {
+        EXPECT_GT(faces.size(), 1u) << "an outline inside a face at (" << x << ", " << y << ")";
+      }
       if (objectFace(x, y) != objectFace(x + 1, y)) {
         ++faceMeetings;
         meetingsDrawn += outline || isOutline(rgba + 4);  // the line covers the center nearer the edge
