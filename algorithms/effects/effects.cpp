@@ -21,6 +21,12 @@ namespace {
 
 std::string count(std::size_t n, const std::string& what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); }
 
+std::string formatted(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", value);
+  return text;
+}
+
 }  // namespace
 
 std::vector<PlannedPass> planPasses(const PreparedScene& scene, const AlgorithmEntry& algorithm, const std::string& culling) {
@@ -153,6 +159,12 @@ std::vector<std::string> decisionsTaken(const Stats& stats) {
   if (counted("predicate evaluations") > 0)
     decisions.push_back("exact predicates: " + n(counted("predicate exact fall-backs")) + " of " + n(counted("predicate evaluations")) +
                         " evaluations fell back to exact arithmetic");
+  if (counted("occlusion: estimated depth complexity x100") > 0 || counted("occlusion: skipped, below min-depth-complexity") > 0) {
+    const std::string estimate = formatted(double(counted("occlusion: estimated depth complexity x100")) / 100);
+    say(counted("occlusion: skipped, below min-depth-complexity") == 0,
+        "occlusion culling: the objects' boxes cover the view " + estimate + " times over, at least min-depth-complexity: it runs",
+        "occlusion culling: skipped; the objects' boxes cover the view only " + estimate + " times over, below min-depth-complexity");
+  }
   if (counted("occlusion: occludees tested") > 0)
     decisions.push_back("occlusion culling: " + n(counted("occlusion: occluders rasterized")) + " occluders drawn, " +
                         n(counted("occlusion: occludees culled")) + " of " + n(counted("occlusion: occludees tested")) + " objects culled");

@@ -269,6 +269,32 @@ TEST(Occlusion, TheCityIsMostlyHiddenAndTheOccluderPassSkipsWhatIsBehind) {
   EXPECT_EQ(cull(scene, "frustum,occlusion", stats, 3).triangles, kept.triangles);
 }
 
+// Occlusion culling pays only where objects hide one another; with min-depth-complexity
+// the stage first estimates how many times over the objects' boxes cover the view, and
+// runs only above the threshold: in the city it runs, on the cube it skips everything.
+TEST(Occlusion, TheStageRunsOnlyWhereTheDepthComplexityCanPay) {
+  const test::LoadedScene city(test::sourcePath("scenes/city.toml"), 480);
+  Stats cityStats;
+  const VisibleSet kept = cull(city.prepared, "frustum,occlusion:min-depth-complexity=2", cityStats, 1);
+  EXPECT_GT(cityStats.counter("occlusion: estimated depth complexity x100"), 200);
+  EXPECT_EQ(cityStats.counter("occlusion: skipped, below min-depth-complexity"), 0);
+  EXPECT_EQ(kept.triangles, cull(city.prepared, "frustum,occlusion", cityStats, 1).triangles) << "the same stage once it runs";
+
+  const test::LoadedScene cube(test::sourcePath("scenes/cube.toml"));
+  Stats cubeStats;
+  const VisibleSet all = cull(cube.prepared, "occlusion:min-depth-complexity=2", cubeStats);
+  EXPECT_EQ(all.triangles, VisibleSet::everything(cube.prepared).triangles);
+  EXPECT_LT(cubeStats.counter("occlusion: estimated depth complexity x100"), 100) << "one cube covers part of the view";
+  EXPECT_EQ(cubeStats.counter("occlusion: skipped, below min-depth-complexity"), 1);
+  EXPECT_EQ(cubeStats.counter("occlusion: occluders rasterized"), 0);
+  EXPECT_EQ(cubeStats.counter("occlusion: occludees tested"), 0);
+  // With the default 0 nothing is estimated: the stage always runs.
+  Stats always;
+  cull(cube.prepared, "occlusion", always);
+  EXPECT_EQ(always.counter("occlusion: estimated depth complexity x100"), 0);
+  EXPECT_EQ(always.counter("occlusion: occludees tested"), 1);
+}
+
 TEST(Occlusion, KnobsAreCheckedWhenThePipelineIsRead) {
   const auto errorOf = [](const std::string& text) {
     try {

@@ -41,6 +41,7 @@ Settings settingsOf(const StageChoice& choice) {
   settings.pyramid = choice.knobs.at("pyramid") == "on";
   settings.occluders = static_cast<Occluders>(choiceIndex(entry, choice, "occluders"));
   settings.fraction = knobNumber(choice.knobs, "fraction").value / 100;
+  settings.minDepthComplexity = knobNumber(choice.knobs, "min-depth-complexity").value;
   return settings;
 }
 
@@ -68,7 +69,12 @@ StageEntry stage() {
        {"fraction", "the share of the objects drawn as occluders when occluders is not all, in percent",
         {"10%", "5%", "20%"},
         KnobSpec::Range{0.01, 100, false, true},
-        {"depth-map"}}},
+        {"depth-map"}},
+       {"min-depth-complexity",
+        "run only when the objects' boxes cover the view at least this many times over (estimated from their footprints "
+        "on the map), else keep everything; 0: always",
+        {"0", "1.5", "2", "4"},
+        KnobSpec::Range{0, 1000}}},
       [](const KnobValues& knobs) { return knobs.at("raster") == "center"; }};
   entry.run = [](const StageChoice& choice, const StageInput& input) {
     return cull(input.scene, input.camera, settingsOf(choice), input.in, input.previous, input.stats);
@@ -89,6 +95,16 @@ std::optional<std::array<dvec3, 8>> boxOfSolid(const PreparedScene& scene, const
   std::array<dvec3, 8> corners = cornersOf(own);
   for (dvec3& corner : corners) corner = dvec3(instance.worldFromObject * dvec4(corner, 1));
   return corners;
+}
+
+double estimatedDepthComplexity(const PreparedScene& scene, const MapView& view, const VisibleSet& in) {
+  const double texels = double(view.width) * double(view.height);
+  double covered = 0;
+  for (const std::uint32_t instance : instancesIn(scene, in)) {
+    const BoxFootprint box = footprint(view, cornersOf(scene.instances()[instance].box));
+    covered += box.crossesNear ? texels : box.empty() ? 0.0 : double(box.x1 - box.x0) * double(box.y1 - box.y0);
+  }
+  return covered / texels;
 }
 
 std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings,
@@ -182,6 +198,15 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings, const VisibleSet& in,
                 const PreviousFrame* previous, Stats& stats) {
   PhaseTimer timer(stats, "culling: occlusion");
+  // Occlusion culling pays only where objects hide one another: a cheap estimate first.
+  if (settings.minDepthComplexity > 0) {
+    const double complexity = estimatedDepthComplexity(scene, MapView(camera, settings.mapWidth, settings.mapHeight), in);
+    stats.add("occlusion: estimated depth complexity x100", std::llround(100 * complexity));
+    if (complexity < settings.minDepthComplexity) {
+      stats.add("occlusion: skipped, below min-depth-complexity");
+      return in;
+    }
+  }
   // The map, and the camera that saw it: this frame's, or the previous frame's.
   std::optional<CameraTransform> previousCamera;
   if (settings.method == Method::previousFrame) {

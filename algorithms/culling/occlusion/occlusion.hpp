@@ -43,6 +43,9 @@ struct Settings {
   bool pyramid = false;
   Occluders occluders = Occluders::all;
   double fraction = 0.1;  // of the objects, when occluders is not all
+  // Run only when the objects' boxes cover the view at least this many times over
+  // (estimatedDepthComplexity); 0: always.
+  double minDepthComplexity = 0;
 };
 Settings settingsOf(const StageChoice& choice);
 
@@ -52,6 +55,11 @@ StageEntry stage();
 // The object copy's box in world space (corners as cornersOf orders them, moved by its
 // placement) when the object is a box solid, whose mesh is exactly that box.
 std::optional<std::array<dvec3, 8>> boxOfSolid(const PreparedScene& scene, const Instance& instance);
+
+// The view's depth complexity as the objects' boxes estimate it: the texels of the map
+// their footprints cover, summed, over the map's texels (a box through the near plane
+// covers the whole view). Cheap, and an overestimate: a box covers more than its object.
+double estimatedDepthComplexity(const PreparedScene& scene, const MapView& view, const VisibleSet& in);
 
 // The occluders the settings choose among the instances with triangles in `in`, in
 // instance order.
