@@ -48,7 +48,7 @@ const hsr::PreparedScene& scatteredObjects(std::size_t count) {
     scene.camera.fovYDegrees = 60;
     scene.camera.far = 80;
     hsr::SceneObject object;
-    object.mesh = std::make_shared<const hsr::Mesh>(hsr::Mesh{{{-0.2, 0, 0}, {0.2, 0, 0}, {0, 0.5, 0}}, {{0, 1, 2}}});
+    object.mesh = std::make_shared<const hsr::Mesh>(hsr::Mesh{{{-0.2, 0, 0}, {0.2, 0, 0}, {0, 0.5, 0}}, {{0, 1, 2}}, {}});
     object.instancing.kind = hsr::Instancing::Kind::scatter;
     object.instancing.count = int(count);
     object.instancing.innerRadius = 1;

@@ -3,6 +3,7 @@
 // triangles) and wound counter-clockwise seen from outside (conventions.hpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -17,6 +18,9 @@ namespace hsr {
 struct Mesh {
   std::vector<dvec3> positions;     // #V object-space vertex positions
   std::vector<Triangle> triangles;  // #T vertex index triples, counter-clockwise = front
+  // Per triangle, its corners' object-space normals as the file gave them (OBJ vn); empty
+  // when the file gave none, and a zero vector for a corner it gave none for.
+  std::vector<std::array<dvec3, 3>> cornerNormals;
 };
 
 // Axis-aligned box centered at the origin with the given edge lengths: 12 triangles.

@@ -36,6 +36,7 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
   std::string text;
   long lineNumber = 0;
   long vertices = 0;
+  long normals = 0;
   long faces = 0;
   while (std::getline(in, text)) {
     ++lineNumber;
@@ -52,6 +53,15 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
           fail(file, lineNumber, "vertex coordinate is not finite (NaN or Inf), got '" + std::string(token) + "'");
       }
       ++vertices;
+    } else if (keyword == "vn") {
+      for (int axis = 0; axis < 3; ++axis) {
+        const std::string_view token = nextToken(rest);
+        double value = 0;
+        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+        if (token.empty() || error != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
+          fail(file, lineNumber, "normal needs three finite numbers x y z, got '" + text + "'");
+      }
+      ++normals;
     } else if (keyword == "f") {
       int corners = 0;
       for (std::string_view corner = nextToken(rest); !corner.empty(); corner = nextToken(rest)) {
@@ -64,6 +74,19 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
         if (resolved < 1 || resolved > vertices)
           fail(file, lineNumber, "face index " + std::to_string(index) + " is out of range: " +
                                      std::to_string(vertices) + " vertices are defined before this line");
+        // v/vt/vn or v//vn: the normal's index, when given, must name a vn line above.
+        const std::size_t firstSlash = corner.find('/');
+        const std::size_t secondSlash = firstSlash == std::string_view::npos ? firstSlash : corner.find('/', firstSlash + 1);
+        if (secondSlash != std::string_view::npos) {
+          const std::string_view normal = corner.substr(secondSlash + 1);
+          long normalIndex = 0;
+          const auto [normalEnd, normalError] = std::from_chars(normal.data(), normal.data() + normal.size(), normalIndex);
+          const long normalResolved = normalIndex > 0 ? normalIndex : normals + 1 + normalIndex;
+          if (normal.empty() || normalError != std::errc() || normalEnd != normal.data() + normal.size() || normalIndex == 0 ||
+              normalResolved < 1 || normalResolved > normals)
+            fail(file, lineNumber, "face corner '" + std::string(corner) + "' names normal " + std::string(normal) + ", but " +
+                                       std::to_string(normals) + " normals (vn) are defined before this line");
+        }
         ++corners;
       }
       if (corners < 3) fail(file, lineNumber, "face needs at least 3 corners, got " + std::to_string(corners));
@@ -92,13 +115,22 @@ Mesh loadObj(const std::filesystem::path& file) {
   mesh.positions.reserve(positions.size() / 3);
   for (std::size_t i = 0; i + 2 < positions.size(); i += 3)
     mesh.positions.push_back({positions[i], positions[i + 1], positions[i + 2]});
+  const auto& normals = reader.GetAttrib().normals;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     std::size_t corner = 0;
     for (const unsigned char faceSize : shape.mesh.num_face_vertices) {
       const auto index = [&](std::size_t k) {
         return static_cast<std::uint32_t>(shape.mesh.indices[corner + k].vertex_index);
       };
-      for (std::size_t k = 1; k + 1 < faceSize; ++k) mesh.triangles.push_back({index(0), index(k), index(k + 1)});
+      // A corner without a normal (or with a zero one) gets a computed normal.
+      const auto normal = [&](std::size_t k) {
+        const int n = shape.mesh.indices[corner + k].normal_index;
+        return n < 0 ? dvec3(0) : dvec3(normals[3 * std::size_t(n)], normals[3 * std::size_t(n) + 1], normals[3 * std::size_t(n) + 2]);
+      };
+      for (std::size_t k = 1; k + 1 < faceSize; ++k) {
+        mesh.triangles.push_back({index(0), index(k), index(k + 1)});
+        if (!normals.empty()) mesh.cornerNormals.push_back({normal(0), normal(k), normal(k + 1)});
+      }
       corner += faceSize;
     }
   }

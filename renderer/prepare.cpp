@@ -88,9 +88,31 @@ dvec3 PreparedScene::faceNormal(std::uint32_t triangle) const {
 const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& stats) const {
   std::call_once(normalsBuilt_, [&] {
     PhaseTimer timer(stats, "normals");
-    // Each face's contribution at a vertex: its unit normal weighted by its angle there,
-    // so the result does not depend on how the surface around the vertex was triangulated.
     const std::size_t faces = triangles_.size();
+    cornerNormals_.assign(faces, {dvec3(0), dvec3(0), dvec3(0)});
+    // Step 1: the normals the mesh file gave, moved to world space by the inverse
+    // transpose of the copy's placement (which keeps them perpendicular to the surface
+    // under non-uniform scaling).
+    std::int64_t fromMesh = 0;
+    for (const Instance& instance : instances_) {
+      const Mesh& mesh = *scene_->objects[instance.object].mesh;
+      if (mesh.cornerNormals.empty()) continue;
+      const dmat3 normalMatrix = glm::transpose(glm::inverse(dmat3(instance.worldFromObject)));
+      for (std::uint32_t t = 0; t < instance.triangleCount; ++t)
+        for (int k = 0; k < 3; ++k) {
+          const dvec3 given = normalMatrix * mesh.cornerNormals[t][k];
+          if (glm::length(given) == 0) continue;
+          cornerNormals_[instance.firstTriangle + t][k] = glm::normalize(given);
+          ++fromMesh;
+        }
+    }
+    if (fromMesh == std::int64_t(3 * faces)) {
+      stats.add("normals from the mesh", fromMesh);
+      return;
+    }
+    // Step 2: every other corner: each face's contribution at a vertex is its unit normal
+    // weighted by its angle there, so the result does not depend on how the surface
+    // around the vertex was triangulated.
     std::vector<dvec3> unitNormal(faces);
     std::vector<std::array<double, 3>> cornerAngle(faces);
     for (std::size_t f = 0; f < faces; ++f) {
@@ -104,9 +126,10 @@ const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& sta
     const VertexTriangles around = buildVertexTriangles(positions_.size(), triangles_);
 
     const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180);
-    cornerNormals_.resize(faces);
+    std::int64_t computed = 0;
     for (std::size_t f = 0; f < faces; ++f)
       for (int k = 0; k < 3; ++k) {
+        if (glm::length(cornerNormals_[f][k]) > 0) continue;  // given by the mesh
         const std::uint32_t v = triangles_[f][k];
         dvec3 sum(0);
         for (const std::uint32_t other : around.around(v)) {
@@ -116,8 +139,10 @@ const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& sta
         }
         const double length = glm::length(sum);
         cornerNormals_[f][k] = length > 0 ? sum / length : unitNormal[f];
+        ++computed;
       }
-    stats.add("normals computed", static_cast<std::int64_t>(3 * faces));
+    stats.add("normals computed", computed);
+    if (fromMesh > 0) stats.add("normals from the mesh", fromMesh);
   });
   return cornerNormals_;
 }

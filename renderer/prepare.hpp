@@ -60,10 +60,11 @@ class PreparedScene {
 
   // Unit face normal (b - a) x (c - a); zero for a degenerate triangle.
   dvec3 faceNormal(std::uint32_t triangle) const;
-  // #T x 3 unit normals, one per triangle corner, built on first use (counted as
-  // "normals computed"): the angle-weighted average of the face normals around the
-  // corner's vertex that lie within kCreaseDegrees of this face's, so smooth surfaces
-  // shade smoothly and a cube keeps its edges.
+  // #T x 3 unit normals, one per triangle corner, built on first use: the mesh file's
+  // own where it gave one (OBJ vn; counted as "normals from the mesh"), and elsewhere
+  // (counted as "normals computed") the angle-weighted average of the face normals
+  // around the corner's vertex that lie within kCreaseDegrees of this face's, so smooth
+  // surfaces shade smoothly and a cube keeps its edges.
   static constexpr double kCreaseDegrees = 40;
   const std::vector<std::array<dvec3, 3>>& cornerNormals(Stats& stats) const;
 

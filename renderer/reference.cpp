@@ -466,7 +466,7 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
   if (effects.shadows) shadows.emplace(scene, stats);
   const PixelShader shader(scene, camera, stats, shadows ? &*shadows : nullptr);
   if (!effects.transparency) {
-    shadeFrame(scene, camera, image.frame, shader, threads, stats);
+    shadeFrame(scene, image.frame, shader, threads, stats);
   } else {
     // The exact blend: every surface along the pixel's ray, in exact depth order, each
     // "over" the ones behind it, from the nearest opaque one (or the background) forward.

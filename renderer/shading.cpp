@@ -111,7 +111,7 @@ dvec3 PixelShader::shade(std::uint32_t triangle, int x, int y, ShadingCounts& co
 
 std::uint8_t channelByte(double value) { return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 1.0) * 255)); }
 
-void shadeFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, const PixelShader& shader,
+void shadeFrame(const PreparedScene& scene, Frame& frame, const PixelShader& shader,
                 int threads, Stats& stats) {
   PhaseTimer timer(stats, "shading");
   const vec3 background = scene.scene().background;

@@ -63,7 +63,7 @@ SurfacePoint surfacePoint(const PreparedScene& scene, const CameraTransform& cam
 dvec3 towardLight(const Light& light, const dvec3& point);
 
 // Phase "shading": every covered pixel of frame.ids shaded, the background filled.
-void shadeFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, const PixelShader& shader,
+void shadeFrame(const PreparedScene& scene, Frame& frame, const PixelShader& shader,
                 int threads, Stats& stats);
 
 // The passes after shading, each only when the scene declares it: fog (phase "fog"),

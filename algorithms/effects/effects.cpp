@@ -13,7 +13,7 @@ Lighting::Lighting(const PreparedScene& scene, const CameraTransform& camera, in
 
 void finishFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats) {
   const Lighting lighting(scene, camera, threads, stats);
-  shadeFrame(scene, camera, frame, lighting.shader(), threads, stats);
+  shadeFrame(scene, frame, lighting.shader(), threads, stats);
   applyImageEffects(scene, camera, frame, threads, stats);
 }
 

@@ -97,7 +97,7 @@ Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& st
   // interpenetrate blend in the wrong order somewhere: only the painter's newell and
   // bsp variants split them.
   const effects::Lighting lighting(scene, geometry.camera, threads, stats);
-  shadeFrame(scene, geometry.camera, frame, lighting.shader(), threads, stats);
+  shadeFrame(scene, frame, lighting.shader(), threads, stats);
   const VisibleSet transparent = byOpacity(scene, visible, false);
   const ScreenGeometry glass = buildScreenTriangles(scene, true, threads, stats, true, &transparent);
   const painter::PaintOrder order = painter::sortOrder(glass, painter::SortKey::centroid, stats);

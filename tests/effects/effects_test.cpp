@@ -5,12 +5,14 @@
 // outlines against the faces' own edges, phong against lambert.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <set>
 
 #include "algorithms/effects/effects.hpp"
 #include "algorithms/effects/shadow_map.hpp"
 #include "algorithms/registry.hpp"
 #include "renderer/metrics.hpp"
+#include "renderer/obj.hpp"
 #include "renderer/reference.hpp"
 #include "test_support.hpp"
 
@@ -313,6 +315,35 @@ TEST(Effects, ThePlanSaysWhyEachPassRunsOrNot) {
                                             "outline"}));
   const auto lines = effects::planPasses(showcase.prepared, findAlgorithm("appel"), "");
   EXPECT_FALSE(lines.back().runs) << "a line drawing has nothing to shade";
+}
+
+// Lambert shading reads the normals an OBJ file gives (vn), and computes only the
+// corners the file leaves without one.
+TEST(Effects, LambertUsesTheMeshFilesNormalsWhereItGivesThem) {
+  const auto obj = test::outputPath("effects_normals.obj");
+  std::filesystem::create_directories(obj.parent_path());
+  // A square facing the camera (+z), lit head-on: by its own normal fully, by the file's
+  // tilted normal (0, 0.6, 0.8) to 0.8.
+  const auto centerRed = [&](const std::string& faces, Stats& stats) {
+    std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0.6 0.8\n" << faces;
+    Scene scene = test::sceneOf(Camera{}, 33, 33, {loadObj(obj)});
+    scene.effects.shading = Shading::lambert;
+    scene.ambient = 0;
+    scene.lights = {Light{"head-on", Light::Kind::directional, dvec3(0, 0, -1), dvec3(0), 1.0}};
+    scene.objects[0].color = vec3(1);
+    const PreparedScene prepared(scene);
+    return renderWith("zbuffer", prepared, stats).color[(16 * 33 + 16) * 4];
+  };
+  Stats given, computed, mixed;
+  EXPECT_EQ(centerRed("f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n", given), channelByte(0.8));
+  EXPECT_EQ(given.counter("normals from the mesh"), 6);
+  EXPECT_EQ(given.counter("normals computed"), 0);
+  EXPECT_EQ(centerRed("f 1 2 3\nf 1 3 4\n", computed), 255);
+  EXPECT_EQ(computed.counter("normals from the mesh"), 0);
+  EXPECT_EQ(computed.counter("normals computed"), 6);
+  centerRed("f 1//1 2//1 3//1\nf 1 3 4\n", mixed);
+  EXPECT_EQ(mixed.counter("normals from the mesh"), 3);
+  EXPECT_EQ(mixed.counter("normals computed"), 3);
 }
 
 TEST(Effects, APointLightCastsShadowsThroughSixViews) {

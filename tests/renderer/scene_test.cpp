@@ -147,6 +147,19 @@ TEST(Obj, BadInputNamesFileAndLine) {
   EXPECT_NE(objErrorOf(triangle + "f 1 2 0\n").find(":4: face corner '0' is not a vertex index"), std::string::npos);
   EXPECT_NE(objErrorOf(triangle + "f 1 2\n").find(":4: face needs at least 3 corners, got 2"), std::string::npos);
   EXPECT_NE(objErrorOf(triangle).find(":3: no faces"), std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "vn 0 nan 1\n").find(":4: normal needs three finite numbers x y z, got 'vn 0 nan 1'"),
+            std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "vn 0 0 1\nf 1//1 2//1 3//2\n")
+                .find(":5: face corner '3//2' names normal 2, but 1 normals (vn) are defined before this line"),
+            std::string::npos);
+  EXPECT_NE(objErrorOf(triangle + "vn 0 0 1\nf 1//1 2//1 3//x\n").find(":5: face corner '3//x' names normal x"), std::string::npos);
+  // Normals where the file gives them, zero (to be computed) where it does not.
+  objErrorOf(triangle + "v 1 1 0\nvn 0 0 1\nvn 0 0.6 0.8\nf 1//1 2//2 3//1\nf 2 4 3\n");
+  const Mesh withNormals = loadObj(test::outputPath("scene_test.obj"));
+  ASSERT_EQ(withNormals.cornerNormals.size(), 2u);
+  EXPECT_EQ(withNormals.cornerNormals[0][1], dvec3(0, 0.6f, 0.8f)) << "tinyobjloader reads normals as floats";
+  EXPECT_EQ(withNormals.cornerNormals[1][0], dvec3(0));
+  EXPECT_TRUE(loadObj((objErrorOf(triangle + "f 1 2 3\n"), test::outputPath("scene_test.obj"))).cornerNormals.empty());
   // Negative (relative) indices and slashes are valid OBJ.
   EXPECT_EQ(loadObj((objErrorOf(triangle + "f -3/1 -2/2 -1/3\n"), test::outputPath("scene_test.obj"))).triangles.size(), 1u);
 }
