@@ -67,4 +67,15 @@ void writeStudy(const std::filesystem::path& folder, const std::string& stem, co
   std::printf("wrote %s/%s.{csv,png,svg,gp}\n", folder.string().c_str(), stem.c_str());
 }
 
+std::string histogramBars(const std::string& block, const std::vector<std::string>& titles) {
+  std::string clause;
+  for (std::size_t c = 0; c < titles.size(); ++c) {
+    if (c > 0) clause += ", ";
+    clause += block + " using " + std::to_string(c + 2);
+    if (c == 0) clause += ":xtic(1)";
+    clause += " title '" + titles[c] + "'";
+  }
+  return clause;
+}
+
 }  // namespace hsr::cli

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "renderer/frame.hpp"
 
@@ -12,6 +13,10 @@ namespace hsr::cli {
 // `body` is the gnuplot text after the terminal and output lines, ending in a plot
 // command. Adds stem.gp, stem.png and stem.svg in `folder` to `files`.
 void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std::string& stem, const std::string& body);
+// A histogram's plot clause over a named data block whose first column labels the
+// x axis and whose next columns are the bars, one title each:
+// "$block using 2:xtic(1) title 'a', $block using 3 title 'b'".
+std::string histogramBars(const std::string& block, const std::vector<std::string>& titles);
 // A study's results: FOLDER/STEM.csv and its plot (addPlot), written together.
 void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody);
 

@@ -42,26 +42,25 @@ std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow&
 }
 
 // "name=value;name=value" for the CSV, "name value, name value" for the terminal.
-std::string joinedCounters(const ResultRow& row, const char* between, const char* separator) {
+template <typename Value, typename Format>
+std::string joined(const std::vector<std::pair<std::string, Value>>& items, const char* between, const char* separator,
+                   Format&& format) {
   std::string text;
-  for (const auto& [name, value] : row.counters) {
+  for (const auto& [name, value] : items) {
     if (!text.empty()) text += separator;
     text += name;
     text += between;
-    text += std::to_string(value);
+    text += format(value);
   }
   return text;
 }
 
+std::string joinedCounters(const ResultRow& row, const char* between, const char* separator) {
+  return joined(row.counters, between, separator, [](std::int64_t value) { return std::to_string(value); });
+}
+
 std::string joinedPasses(const ResultRow& row, const char* between, const char* separator) {
-  std::string text;
-  for (const auto& [pass, ms] : row.passMs) {
-    if (!text.empty()) text += separator;
-    text += pass;
-    text += between;
-    text += formatted(ms, "%.2f");
-  }
-  return text;
+  return joined(row.passMs, between, separator, [](double ms) { return formatted(ms, "%.2f"); });
 }
 
 }  // namespace

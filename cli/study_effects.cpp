@@ -107,12 +107,7 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
   data += "EOD\nset title 'Each effect added in turn: time per pass (z-buffer, median)'\nset ylabel 'ms'\n"
           "set style data histogram\nset style histogram rowstacked\nset style fill solid 0.85 border -1\nset boxwidth 0.7\n"
           "set grid ytics\nset xtics rotate by -25\nset key outside right font ',9'\nplot ";
-  for (std::size_t p = 0; p < passes.size(); ++p) {
-    if (p > 0) data += ", ";
-    data += "$steps using " + std::to_string(p + 2);
-    if (p == 0) data += ":xtic(1)";
-    data += " title '" + passes[p] + "'";
-  }
+  data += histogramBars("$steps", passes);
   writeStudy(folder, "effects", csvOf(rows), data + "\n");
   return 0;
 }

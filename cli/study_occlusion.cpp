@@ -308,12 +308,9 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
   data += "EOD\nset title 'Occluder fraction: frame time (culling + depth pass, median)'\nset ylabel 'ms'\nset style data histogram\n"
           "set style histogram clustered gap 1.5\nset style fill solid 0.85 border -1\nset boxwidth 0.9\nset grid ytics\n"
           "set key below horizontal maxcols 4 font ',9'\nplot ";
-  for (std::size_t c = 0; c < choices.size(); ++c) {
-    if (c > 0) data += ", ";
-    data += "$levels using " + std::to_string(c + 2);
-    if (c == 0) data += ":xtic(1)";
-    data += " title '" + choices[c].first + "'";
-  }
+  std::vector<std::string> titles;
+  for (const auto& choice : choices) titles.push_back(choice.first);
+  data += histogramBars("$levels", titles);
   writeStudy(folder, "occluder_fraction", csvOf(rows), data + "\n");
   return 0;
 }

@@ -190,6 +190,37 @@ class RayQuery {
   double originDistance_, slope_, originDistanceBound_, slopeBound_;
 };
 
+// One triangle against the ray, between the near and far planes: the hit's parameter t
+// within +-bound, decided in double precision where the error bounds allow and exactly
+// where they do not (`exact`, set whenever the exact test ran, hit or not). A sure hit
+// whose t - bound lies beyond `beyond` is dropped before any exact work (the nearest
+// hit's search passes its horizon).
+struct BoundedHit {
+  double t = 0, bound = 0;
+  bool hit = false, exact = false;
+};
+
+BoundedHit boundedHit(RayQuery& query, const PreparedScene::LeafTriangle& tri, double beyond, SurfaceReference::Counters& counters) {
+  ++counters.triangleTests;
+  const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
+  const double t = terms.scaledT / terms.det;
+  const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms, t);
+  Certainty hit = insideWithBounds(terms, bounds);
+  if (hit == Certainty::no) return {};
+  if (hit == Certainty::yes) {
+    if (t - bounds.t > beyond) return {};
+    hit = query.inRange(t, bounds.t);
+    if (hit == Certainty::no) return {};
+    if (hit == Certainty::yes) return {t, bounds.t, true, false};
+  }
+  // A center on an edge, a grazing ray, or a hit on the near or far plane.
+  ++counters.exactTriangleTests;
+  const std::optional<mpq_class> exact = query.exactHit(tri.a, tri.b, tri.c);
+  if (!exact) return {0, 0, false, true};
+  const double rounded = exact->get_d();
+  return {rounded, 2 * kUnitRoundoff * std::abs(rounded), true, true};
+}
+
 }  // namespace
 
 SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats)
@@ -210,30 +241,11 @@ ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& r
   std::vector<Candidate> candidates;
   double horizon = kInfinity;
   const auto offer = [&](std::uint32_t slot) {
-    const PackedTriangle& tri = triangles_[slot];
-    ++counters.triangleTests;
-    const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
-    double t = terms.scaledT / terms.det;
-    const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms, t);
-    Certainty hit = insideWithBounds(terms, bounds);
-    if (hit == Certainty::no) return;
-    double tBound = bounds.t;
-    if (hit == Certainty::yes) {
-      if (t - tBound > horizon) return;
-      hit = query.inRange(t, tBound);
-      if (hit == Certainty::no) return;
-    }
-    if (hit == Certainty::unsure) {
-      // A center on an edge, a grazing ray, or a hit on the near or far plane.
-      ++counters.exactTriangleTests;
-      result.usedExact = true;
-      const std::optional<mpq_class> exact = query.exactHit(tri.a, tri.b, tri.c);
-      if (!exact) return;
-      t = exact->get_d();
-      tBound = 2 * kUnitRoundoff * std::abs(t);
-    }
-    horizon = std::min(horizon, t + tBound);
-    candidates.push_back({t, tBound, slot});
+    const BoundedHit hit = boundedHit(query, triangles_[slot], horizon, counters);
+    result.usedExact = result.usedExact || hit.exact;
+    if (!hit.hit) return;
+    horizon = std::min(horizon, hit.t + hit.bound);
+    candidates.push_back({hit.t, hit.bound, slot});
     std::erase_if(candidates, [&](const Candidate& c) { return c.t - c.bound > horizon; });
   };
 
@@ -310,23 +322,8 @@ SurfaceReference::Layers SurfaceReference::traceAll(const CameraTransform& camer
   std::vector<Candidate> candidates;
   bvh_.visitPrimitives([&](const BvhNode& node) { return ++counters.nodesVisited, boxes.entry(node, kInfinity) < kInfinity; },
                        [&](std::uint32_t, std::uint32_t slot) {
-                         const PackedTriangle& tri = triangles_[slot];
-                         ++counters.triangleTests;
-                         const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
-                         const double t = terms.scaledT / terms.det;
-                         const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms, t);
-                         Certainty hit = insideWithBounds(terms, bounds);
-                         if (hit == Certainty::yes) hit = query.inRange(t, bounds.t);
-                         if (hit == Certainty::no) return;
-                         if (hit == Certainty::yes) {
-                           candidates.push_back({t, bounds.t, slot, false});
-                           return;
-                         }
-                         ++counters.exactTriangleTests;
-                         if (const std::optional<mpq_class> exact = query.exactHit(tri.a, tri.b, tri.c)) {
-                           const double rounded = exact->get_d();
-                           candidates.push_back({rounded, 2 * kUnitRoundoff * std::abs(rounded), slot, true});
-                         }
+                         const BoundedHit hit = boundedHit(query, triangles_[slot], kInfinity, counters);
+                         if (hit.hit) candidates.push_back({hit.t, hit.bound, slot, hit.exact});
                        });
   // Nearest first: by the double t where the bounds separate two hits, exactly where
   // they do not; exact ties go by id.
