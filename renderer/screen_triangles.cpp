@@ -164,7 +164,7 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
   parallelFor(parts.size(), workers, [&](std::size_t part, int) {
     const auto at = std::ptrdiff_t(offsets[part]);
     std::copy(parts[part].triangles.begin(), parts[part].triangles.end(), geometry.triangles.begin() + at);
-    std::copy(parts[part].corners.begin(), parts[part].corners.end(), geometry.corners.begin() + at);
+    if (keepCorners) std::copy(parts[part].corners.begin(), parts[part].corners.end(), geometry.corners.begin() + at);
   });
   Counts sum;
   for (std::size_t part = 0; part < parts.size(); ++part) {

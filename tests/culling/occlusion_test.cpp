@@ -240,7 +240,7 @@ TEST(Occlusion, AFractionOfOccludersIsTheLargestByTheChosenMeasure) {
     // Every chosen object measures at least as much as every other one.
     const auto measureOf = [&](std::uint32_t instance) {
       const Instance& object = scene.instances()[instance];
-      if (measure == Occluders::volume) {
+      if (settings.occluders == Occluders::volume) {
         const dvec3 size = object.box.hi - object.box.lo;
         return size.x * size.y * size.z;
       }
