@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/common.hpp"
 #include "cli/plot.hpp"
 #include "cli/results.hpp"
@@ -153,7 +154,9 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   std::map<std::pair<int, int>, ReferenceImage> references;  // one per resolution
   std::vector<ResultRow> rows;
   Progress progress(plan.size());
+  const InterruptibleRun interruptible;
   for (const auto& [configuration, size, label, swept] : plan) {
+    if (InterruptibleRun::requested()) break;
     progress.update(rows.size(), label);
     scene.prepared->setSize(size.first, size.second);
     // A line algorithm is judged by the line reference of the edges it draws instead.
@@ -164,9 +167,15 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     ResultRow row = measureConfiguration(scene.name, *scene.prepared, references[size], configuration, options.repeat,
                                          options.threads).row;
     row.swept = swept;
+    std::printf("  %zu/%zu %s: %.3f ms\n", rows.size() + 1, plan.size(), label.c_str(), row.time.median * 1e3);
+    std::fflush(stdout);
     rows.push_back(std::move(row));
   }
   progress.update(rows.size(), "done");
+  if (InterruptibleRun::requested()) {
+    reportInterrupted(rows.size(), plan.size(), "configurations");
+    if (rows.empty()) return kInterruptedExit;
+  }
   markParetoFront(rows);
   const bool lines = algorithm.kind == "line";
   const std::string errorName = lines ? "line error" : "pixel error";
@@ -218,7 +227,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       "     $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'configurations', \\\n"
       "     $points using 1:($2 * (1 + 0.25 * $4)):3 with labels left offset char 1,0 font ',9' notitle";
   writeResults(options.out, "sweep", rows, sweptKnobs, body);
-  return 0;
+  return InterruptibleRun::requested() ? kInterruptedExit : 0;
 }
 
 // Least-squares slope and intercept of log(time) against log(size): time ~ e^b size^a.
@@ -282,7 +291,9 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
   std::vector<ResultRow> rows;
   std::vector<double> sizes, times;
   Progress progress(steps.size());
+  const InterruptibleRun interruptible;
   for (const int step : steps) {
+    if (InterruptibleRun::requested()) break;
     std::unique_ptr<PreparedScene> grown;
     const PreparedScene* prepared = scene.prepared.get();
     std::string value;
@@ -309,9 +320,17 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     row.swept = {{options.scale, value}};
     sizes.push_back(options.scale == "pixels" ? double(step) * step : double(prepared->triangleCount()));
     times.push_back(row.time.median);
+    std::printf("  %zu/%zu %s %s: %.3f ms\n", rows.size() + 1, steps.size(), options.scale.c_str(), value.c_str(),
+                row.time.median * 1e3);
+    std::fflush(stdout);
     rows.push_back(std::move(row));
   }
   progress.update(rows.size(), "done");
+  if (InterruptibleRun::requested()) {
+    // A fit needs two sizes; with fewer there is nothing to write.
+    reportInterrupted(rows.size() < 2 ? 0 : rows.size(), steps.size(), "sizes");
+    if (rows.size() < 2) return kInterruptedExit;
+  }
   if (rows.size() < 2) throw InputError(options.scene + ": " + algorithm.name + " renders only one size; no exponent to fit");
   const auto [exponent, intercept] = powerFit(sizes, times);
   std::printf("%s on %s, growing %s\n%s  fit: time ~ %s^%.3f\n", algorithm.name.c_str(), options.scene.c_str(),
@@ -335,7 +354,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
                            "plot $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'measured', \\\n"
                            "     fit(x) with lines lw 2 lc rgb '#d95f02' title " + quotedLabel(key);
   writeResults(options.out, "scale_" + options.scale, rows, {options.scale}, body);
-  return 0;
+  return InterruptibleRun::requested() ? kInterruptedExit : 0;
 }
 
 }  // namespace

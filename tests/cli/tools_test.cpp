@@ -2,6 +2,7 @@
 // the columns README.md documents, and say what the measurements say.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cmath>
 #include <fstream>
 #include <regex>
@@ -252,6 +253,49 @@ TEST(Study, ShadowMapShowsAcneWithoutBiasAndLessErrorAtHigherResolution) {
   }
   EXPECT_LT(number(at.at("4096/1.5"), "error_fraction"), number(at.at("128/1.5"), "error_fraction"));
   EXPECT_GT(readImage(folder / "shadow_map.png").width, 0);
+}
+
+// Ctrl-C after the first configuration: the sweep stops after the row it is measuring
+// and writes the rows measured so far, complete and parseable, and exits with 130.
+TEST(Sweep, CtrlCKeepsTheRowsAlreadyMeasured) {
+  const auto folder = freshFolder("sweep-interrupted");
+  const std::string sizes = "--knob size=320x240,330x248,340x255,350x263,360x270,370x278,380x285,390x293,400x300,410x308";
+  // The shell prints its process id, then becomes hsr (exec keeps the id).
+  FILE* pipe = popen(("echo $$; exec " + std::string(HSR_BINARY) + " sweep " + kScenes + "bunny.toml --algo zbuffer " + sizes +
+                      " --repeat 3 --threads 1 --out " + folder.string() + " 2>&1")
+                         .c_str(),
+                     "r");
+  ASSERT_NE(pipe, nullptr);
+  char line[4096];
+  ASSERT_NE(std::fgets(line, sizeof line, pipe), nullptr);
+  const pid_t hsr = static_cast<pid_t>(std::stol(line));
+  std::string output;
+  bool interrupted = false;
+  while (std::fgets(line, sizeof line, pipe)) {
+    output += line;
+    if (!interrupted && std::string(line).rfind("  1/10 ", 0) == 0) {
+      kill(hsr, SIGINT);
+      interrupted = true;
+    }
+  }
+  const int status = pclose(pipe);
+  ASSERT_TRUE(interrupted) << output;
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << output;
+  const std::smatch found = [&] {
+    std::smatch match;
+    std::regex_search(output, match, std::regex("hsr: interrupted: (\\d+) of 10 configurations measured; their rows are written"));
+    return match;
+  }();
+  ASSERT_FALSE(found.empty()) << output;
+  const std::size_t measured = std::stoul(found[1].str());
+  EXPECT_GE(measured, 1u);
+  EXPECT_LT(measured, 10u);
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "sweep.csv", header);
+  EXPECT_EQ(rows.size(), measured);
+  for (const Row& row : rows) expectConsistentMeasurements(row);
+  EXPECT_EQ(test::parseJson(readText(folder / "sweep.json")).array().size(), measured);
 }
 
 TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
