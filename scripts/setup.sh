@@ -16,6 +16,7 @@ packages=(
   openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
   fonts-dejavu-core            # labels on hsr compare's contact sheet
   libgtest-dev libgmock-dev    # tests
+  clang libclang-rt-14-dev     # the sanitizer build (scripts/sanitize.sh)
   libbenchmark-dev             # bench/
   libosmesa6-dev               # the Mesa peer benchmark (bench/ only)
   libembree-dev                # the Embree peer benchmark (bench/ only)
