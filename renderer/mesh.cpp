@@ -184,7 +184,7 @@ double HeightFunction::evaluate(double u, double v) const {
   if (name == "holes")  // waves, undefined in patches
     return std::sin(u * frequency) * std::sin(v * frequency) > 0.5 ? kUndefined
                                                                     : amplitude * std::sin(u * frequency) * std::cos(v * frequency);
-  HSR_CHECK(!"height function names are validated when the scene is loaded");
+  HSR_CHECK(false && "height function names are validated when the scene is loaded");
   return 0.0;
 }
 
