@@ -78,6 +78,12 @@ const Instance& PreparedScene::instanceOf(std::uint32_t triangle) const {
   return *(after - 1);
 }
 
+Aabb PreparedScene::bounds() const {
+  Aabb box;
+  for (const Instance& instance : instances_) box.grow(instance.box);
+  return box;
+}
+
 dvec3 PreparedScene::faceNormal(std::uint32_t triangle) const {
   const Triangle& t = triangles_[triangle];
   const dvec3 n = glm::cross(positions_[t[1]] - positions_[t[0]], positions_[t[2]] - positions_[t[0]]);

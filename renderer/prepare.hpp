@@ -55,6 +55,9 @@ class PreparedScene {
   const std::vector<Instance>& instances() const { return instances_; }
   std::size_t triangleCount() const { return triangles_.size(); }
 
+  // The world-space box around every instance (empty for a scene with no triangles).
+  Aabb bounds() const;
+
   // The instance that owns a triangle (binary search over firstTriangle).
   const Instance& instanceOf(std::uint32_t triangle) const;
 

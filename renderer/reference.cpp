@@ -393,8 +393,7 @@ bool SurfaceReference::blocked(const Ray& segment, double tMin, std::uint32_t ex
 }
 
 ExactShadows::ExactShadows(const PreparedScene& scene, Stats& stats) : scene_(scene), reference_(scene, stats) {
-  Aabb bounds;
-  for (const Instance& instance : scene.instances()) bounds.grow(instance.box);
+  const Aabb bounds = scene.bounds();
   reach_ = bounds.empty() ? 1.0 : 2 * glm::length(bounds.hi - bounds.lo) + 1.0;
 }
 

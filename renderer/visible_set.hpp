@@ -23,4 +23,19 @@ struct VisibleSet {
   }
 };
 
+// The triangles of `submitted` (all when null) whose object is opaque (opacity 1), or
+// transparent: the z-buffer's depth pass and sorted pass, and the shadow maps' casters.
+inline VisibleSet trianglesByOpacity(const PreparedScene& scene, const VisibleSet* submitted, bool opaque) {
+  VisibleSet result;
+  const auto keep = [&](std::uint32_t triangle) {
+    if ((scene.instanceOf(triangle).opacity >= 1) == opaque) result.triangles.push_back(triangle);
+  };
+  if (submitted) {
+    for (const std::uint32_t triangle : submitted->triangles) keep(triangle);
+  } else {
+    for (std::uint32_t triangle = 0; triangle < scene.triangleCount(); ++triangle) keep(triangle);
+  }
+  return result;
+}
+
 }  // namespace hsr

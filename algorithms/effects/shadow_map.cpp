@@ -55,16 +55,12 @@ std::vector<CameraTransform> lightViews(const Light& light, const dvec3& center,
 ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& settings, int threads, Stats& stats)
     : scene_(scene), biasTexels_(settings.biasTexels) {
   PhaseTimer timer(stats, "shadow maps");
-  Aabb bounds;
-  for (const Instance& instance : scene.instances()) bounds.grow(instance.box);
+  const Aabb bounds = scene.bounds();
   const dvec3 center = bounds.empty() ? dvec3(0) : bounds.center();
   const double radius = bounds.empty() ? 1.0 : std::max(0.5 * glm::length(bounds.hi - bounds.lo), 1e-9);
   // Only opaque surfaces cast shadows: a transparent one lets the light through (and
   // tints nothing: there are no colored shadows).
-  VisibleSet casters;
-  for (const Instance& instance : scene.instances())
-    if (instance.opacity >= 1)
-      for (std::uint32_t t = 0; t < instance.triangleCount; ++t) casters.triangles.push_back(instance.firstTriangle + t);
+  const VisibleSet casters = trianglesByOpacity(scene, nullptr, true);
   for (const Light& light : scene.scene().lights) {
     std::vector<View>& lightViewsDrawn = views_.emplace_back();
     for (const CameraTransform& view : lightViews(light, center, radius, settings.resolution)) {

@@ -62,26 +62,13 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
   });
 }
 
-namespace {
-
-// The triangles of `submitted` (all when null) whose object is opaque, or transparent.
-VisibleSet byOpacity(const PreparedScene& scene, const VisibleSet* submitted, bool opaque) {
-  const VisibleSet everything = submitted ? VisibleSet{} : VisibleSet::everything(scene);
-  VisibleSet result;
-  for (const std::uint32_t triangle : (submitted ? *submitted : everything).triangles)
-    if ((scene.instanceOf(triangle).opacity >= 1) == opaque) result.triangles.push_back(triangle);
-  return result;
-}
-
-}  // namespace
-
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible) {
   Frame frame(scene.width(), scene.height());
   const bool clipFar = clipsFarPlane(knobs.depthFormat, scene.scene().camera.projection);
   // With transparency, the depth buffer holds the opaque surfaces only; the transparent
   // ones are blended over them afterwards, back to front.
   const bool transparency = scene.scene().effects.transparency;
-  const std::optional<VisibleSet> opaque = transparency ? std::make_optional(byOpacity(scene, visible, true)) : std::nullopt;
+  const std::optional<VisibleSet> opaque = transparency ? std::make_optional(trianglesByOpacity(scene, visible, true)) : std::nullopt;
   const ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats, false, opaque ? &*opaque : visible);
   if (knobs.variant == Variant::full)
     renderFullFrame(geometry, knobs.depthFormat, threads, frame, stats, knobs.depthTest);
@@ -98,7 +85,7 @@ Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& st
   // bsp variants split them.
   const effects::Lighting lighting(scene, geometry.camera, threads, stats);
   shadeFrame(scene, frame, lighting.shader(), threads, stats);
-  const VisibleSet transparent = byOpacity(scene, visible, false);
+  const VisibleSet transparent = trianglesByOpacity(scene, visible, false);
   const ScreenGeometry glass = buildScreenTriangles(scene, true, threads, stats, true, &transparent);
   const painter::PaintOrder order = painter::sortOrder(glass, painter::SortKey::centroid, stats);
   const painter::OpaqueBase base{frame, lighting.shader()};
