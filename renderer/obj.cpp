@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include <tiny_obj_loader.h>
@@ -99,15 +100,27 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
 }  // namespace
 
 Mesh loadObj(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot open the OBJ file (missing or unreadable)");
-  checkObjText(file, in);
+  // Only a regular file: a device or a pipe (/dev/zero, /dev/stdin) would be read forever.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    throw InputError(file.string() + ": cannot open the OBJ file (missing, or not a regular file)");
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (!in || !(text << in.rdbuf()))
+    throw InputError(file.string() + ": cannot read the OBJ file");
+  return parseObj(std::move(text).str(), file);
+}
+
+Mesh parseObj(const std::string& text, const std::filesystem::path& file) {
+  std::istringstream lines(text);
+  checkObjText(file, lines);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // fan-triangulated below, so a face keeps its corner order
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(file.string(), config))
+  // No material text: hsr reads no materials, and a mtllib line then opens no file.
+  if (!reader.ParseFromString(text, "", config))
     throw InputError(file.string() + ": " + reader.Error());
 
   Mesh mesh;

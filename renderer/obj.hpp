@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "renderer/mesh.hpp"
 
@@ -13,5 +14,8 @@ namespace hsr {
 // without three finite numbers, a face with fewer than three corners or a corner
 // index that is zero, not a number, or out of range, and a file with no faces.
 Mesh loadObj(const std::filesystem::path& file);
+
+// The same checks and mesh for OBJ text already in memory; `file` names it in messages.
+Mesh parseObj(const std::string& text, const std::filesystem::path& file);
 
 }  // namespace hsr

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
@@ -573,11 +574,19 @@ std::vector<dmat4> Instancing::copies() const {
 }
 
 Scene loadScene(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file))
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
     throw InputError(file.string() + ": cannot open the scene file (missing or not a file)");
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (!in || !(text << in.rdbuf())) throw InputError(file.string() + ": cannot read the scene file");
+  return parseScene(std::move(text).str(), file);
+}
+
+Scene parseScene(const std::string& text, const std::filesystem::path& file) {
   toml::table root;
   try {
-    root = toml::parse_file(file.string());
+    root = toml::parse(text, file.string());
   } catch (const toml::parse_error& error) {
     throw InputError(file.string() + ":" + std::to_string(error.source().begin.line) + ":" +
                      std::to_string(error.source().begin.column) + ": not valid TOML: " +

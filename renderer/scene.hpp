@@ -158,6 +158,9 @@ inline constexpr int kMaxShadowMapSide = 8192;
 
 // Throws InputError("file:line:column: key.path: what, expected ...") on any bad input.
 Scene loadScene(const std::filesystem::path& file);
+// The same for scene text already in memory, read as if it were `file`: messages name
+// it, and model paths are relative to its folder.
+Scene parseScene(const std::string& text, const std::filesystem::path& file);
 
 // Throws InputError when width x height is outside the limits above; `where` names the source.
 void checkImageSize(std::int64_t width, std::int64_t height, const std::string& where);

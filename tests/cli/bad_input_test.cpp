@@ -70,6 +70,9 @@ INSTANTIATE_TEST_SUITE_P(
              "range.obj:4: face index 7 is out of range: 3 vertices are defined before this line"},
         Case{"missing-obj", write("missing-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"gone.obj\"\n") + " -o OUT",
              "objects[0].file: " + test::outputPath("gone.obj").string() + ": cannot open the OBJ file"},
+        // A device would be read forever: only a regular file is opened.
+        Case{"obj-is-a-device", write("device-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"/dev/zero\"\n") + " -o OUT",
+             "objects[0].file: /dev/zero: cannot open the OBJ file (missing, or not a regular file)"},
         Case{"size-zero", kCube + " --size 0x100 -o OUT", "--size 0x100: image size 0x100 is out of range"},
         Case{"size-absurd", kCube + " --size 100000x100 -o OUT", "image size 100000x100 is out of range; expected 1 to 16384"},
         Case{"size-too-many-pixels", kCube + " --size 16384x16385 -o OUT", "at most 256 Mpixel"},
