@@ -17,6 +17,10 @@ using glm::vec3;
 
 using Triangle = std::array<std::uint32_t, 3>;  // vertex indices, counter-clockwise = front
 
+// Coordinates beyond this are refused on input (scenes and OBJ files): no scene needs
+// them, and the float stages (tinyobjloader's storage, depth buffers) stay finite.
+inline constexpr double kMaxCoordinate = 1e12;
+
 // Twice the signed area of (a, b, c) in a y-down image: positive when the three points
 // run clockwise on screen. Exact for the fixed-point coordinates the rasterizer uses.
 inline std::int64_t orient2d(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by,

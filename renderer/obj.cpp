@@ -52,6 +52,8 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
           fail(file, lineNumber, "vertex needs three numbers x y z, got '" + text + "'");
         if (!std::isfinite(value))
           fail(file, lineNumber, "vertex coordinate is not finite (NaN or Inf), got '" + std::string(token) + "'");
+        if (std::abs(value) > kMaxCoordinate)
+          fail(file, lineNumber, "vertex coordinate " + std::string(token) + " is out of range; expected at most 1e12 in size");
       }
       ++vertices;
     } else if (keyword == "vn") {
@@ -59,8 +61,9 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
         const std::string_view token = nextToken(rest);
         double value = 0;
         const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-        if (token.empty() || error != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
-          fail(file, lineNumber, "normal needs three finite numbers x y z, got '" + text + "'");
+        if (token.empty() || error != std::errc() || end != token.data() + token.size() || !std::isfinite(value) ||
+            std::abs(value) > kMaxCoordinate)
+          fail(file, lineNumber, "normal needs three finite numbers x y z of at most 1e12 in size, got '" + text + "'");
       }
       ++normals;
     } else if (keyword == "f") {

@@ -18,6 +18,14 @@
 namespace hsr {
 namespace {
 
+// A TOML integer's value, or nothing for any other node. (toml++'s value<int64_t>() also
+// converts floats, through a cast that is undefined behaviour for 4e80: the scene fuzz
+// target found it.)
+std::optional<std::int64_t> integerOf(const toml::node& node) {
+  if (const auto* integer = node.as_integer()) return integer->get();
+  return std::nullopt;
+}
+
 // Reads one TOML table, remembering which keys were used, so that finish() can
 // reject the keys nobody asked for. Every error names file:line:column, the key path
 // and what was expected.
@@ -59,8 +67,8 @@ class TableReader {
       if (!fallback) fail(nullptr, key, "missing; expected an integer in " + range(min, max));
       return *fallback;
     }
-    const auto value = node->value<std::int64_t>();
-    if (!node->is_integer() || !value || *value < min || *value > max)
+    const auto value = integerOf(*node);
+    if (!value || *value < min || *value > max)
       fail(node, key, "expected an integer in " + range(min, max) + ", got " + describe(*node));
     return static_cast<int>(*value);
   }
@@ -167,7 +175,6 @@ class TableReader {
   std::set<std::string> used_;
 };
 
-constexpr double kHuge = 1e12;  // coordinates beyond this are refused: no scene needs them
 
 void readImage(TableReader& image, Scene& scene) {
   scene.width = image.integer("width", 640, 1, kMaxImageSide);
@@ -193,7 +200,7 @@ void readCamera(TableReader& camera, Scene& scene) {
   Camera& c = scene.camera;
   const std::string type = camera.choice("type", "perspective", {"perspective", "orthographic"});
   c.projection = type == "perspective" ? Projection::perspective : Projection::orthographic;
-  c.target = camera.vector3("target", std::nullopt, -kHuge, kHuge);
+  c.target = camera.vector3("target", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
   std::vector<std::string> keys = {"type", "target", "near", "far", c.projection == Projection::perspective ? "fov_y" : "height"};
   if (camera.has("azimuth") || camera.has("elevation") || camera.has("distance")) {
     // The eye on a sphere around the target, as plots of z = f(x, y) are viewed: azimuth
@@ -203,22 +210,22 @@ void readCamera(TableReader& camera, Scene& scene) {
     if (camera.has("up")) camera.fail(camera.find("up"), "up", "is implied by azimuth and elevation; leave it out");
     const double azimuth = camera.number("azimuth", std::nullopt, -360, 360);
     const double elevation = camera.number("elevation", std::nullopt, -90, 90);
-    const double distance = camera.number("distance", std::nullopt, 1e-9, kHuge);
+    const double distance = camera.number("distance", std::nullopt, 1e-9, kMaxCoordinate);
     const dvec2 a = unitCircleDegrees(azimuth), e = unitCircleDegrees(elevation);  // (cos, sin)
     c.eye = c.target + distance * dvec3(e.x * a.y, e.y, e.x * a.x);
     c.up = dvec3(-e.y * a.y, e.x, -e.y * a.x);
     keys.insert(keys.end(), {"azimuth", "elevation", "distance"});
   } else {
-    c.eye = camera.vector3("eye", std::nullopt, -kHuge, kHuge);
-    c.up = camera.vector3("up", dvec3(0, 1, 0), -kHuge, kHuge);
+    c.eye = camera.vector3("eye", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
+    c.up = camera.vector3("up", dvec3(0, 1, 0), -kMaxCoordinate, kMaxCoordinate);
     keys.insert(keys.end(), {"eye", "up"});
   }
-  c.near = camera.number("near", 0.1, 1e-9, kHuge);
-  c.far = camera.number("far", 1000.0, 1e-9, kHuge);
+  c.near = camera.number("near", 0.1, 1e-9, kMaxCoordinate);
+  c.far = camera.number("far", 1000.0, 1e-9, kMaxCoordinate);
   if (c.projection == Projection::perspective)
     c.fovYDegrees = camera.number("fov_y", 45.0, 0.01, 179.0);
   else
-    c.orthoHeight = camera.number("height", std::nullopt, 1e-9, kHuge);
+    c.orthoHeight = camera.number("height", std::nullopt, 1e-9, kMaxCoordinate);
   camera.finish(keys);
   if (!(c.far > c.near)) camera.fail(nullptr, "far", "must be greater than near");
   const dvec3 forward = c.target - c.eye;
@@ -233,12 +240,12 @@ void readLight(TableReader& light, Scene& scene) {
   const std::string type = light.choice("type", "directional", {"directional", "point"});
   if (type == "directional") {
     result.kind = Light::Kind::directional;
-    result.direction = light.vector3("direction", std::nullopt, -kHuge, kHuge);
+    result.direction = light.vector3("direction", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
     if (glm::length(result.direction) == 0) light.fail(nullptr, "direction", "must not be zero");
     result.direction = glm::normalize(result.direction);
   } else {
     result.kind = Light::Kind::point;
-    result.position = light.vector3("position", std::nullopt, -kHuge, kHuge);
+    result.position = light.vector3("position", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
   }
   result.intensity = light.number("intensity", 1.0, 0.0, 1e6);
   light.finish({"name", "type", type == "directional" ? "direction" : "position", "intensity"});
@@ -251,15 +258,15 @@ Instancing readInstancing(TableReader& copies) {
   if (kind == "grid") {
     result.kind = Instancing::Kind::grid;
     result.gridCount = glm::ivec3(copies.vector3("count", std::nullopt, 1, 1000));
-    result.gridSpacing = copies.vector3("spacing", std::nullopt, -kHuge, kHuge);
+    result.gridSpacing = copies.vector3("spacing", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
     copies.finish({"kind", "count", "spacing"});
     return result;
   }
   result.count = copies.integer("count", std::nullopt, 1, 1000000);
   if (kind == "area") {
     result.kind = Instancing::Kind::area;
-    result.from = copies.vector3("from", std::nullopt, -kHuge, kHuge);
-    result.to = copies.vector3("to", std::nullopt, -kHuge, kHuge);
+    result.from = copies.vector3("from", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
+    result.to = copies.vector3("to", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
     result.seed = static_cast<std::uint64_t>(copies.integer("seed", 1, 0, 2147483647));
     result.minScales = copies.vector3("min_scale", dvec3(1), 1e-6, 1e6);
     result.maxScales = copies.vector3("max_scale", result.minScales, 1e-6, 1e6);
@@ -271,16 +278,16 @@ Instancing readInstancing(TableReader& copies) {
     }
     return result;
   }
-  result.center = copies.vector3("center", dvec3(0), -kHuge, kHuge);
+  result.center = copies.vector3("center", dvec3(0), -kMaxCoordinate, kMaxCoordinate);
   if (kind == "ring") {
     result.kind = Instancing::Kind::ring;
-    result.radius = copies.number("radius", std::nullopt, 0, kHuge);
+    result.radius = copies.number("radius", std::nullopt, 0, kMaxCoordinate);
     copies.finish({"kind", "count", "center", "radius"});
     return result;
   }
   result.kind = Instancing::Kind::scatter;
-  result.innerRadius = copies.number("inner_radius", 0.0, 0, kHuge);
-  result.radius = copies.number("radius", std::nullopt, 0, kHuge);
+  result.innerRadius = copies.number("inner_radius", 0.0, 0, kMaxCoordinate);
+  result.radius = copies.number("radius", std::nullopt, 0, kMaxCoordinate);
   result.seed = static_cast<std::uint64_t>(copies.integer("seed", 1, 0, 2147483647));
   result.minScale = copies.number("min_scale", 1.0, 1e-6, 1e6);
   result.maxScale = copies.number("max_scale", result.minScale, result.minScale, 1e6);
@@ -299,7 +306,7 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
   };
   const auto positive = [&](const std::string& key, double fallback) {
     keys.push_back(key);
-    return object.number(key, fallback, 1e-9, kHuge);
+    return object.number(key, fallback, 1e-9, kMaxCoordinate);
   };
   const auto size2 = [&]() {
     keys.push_back("size");
@@ -317,8 +324,8 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
     if (!node) return glm::ivec2(fallback);
     const toml::array* array = node->as_array();
     const auto valid = [&](std::size_t i) {
-      const auto value = array->get(i)->value<std::int64_t>();
-      return array->get(i)->is_integer() && value && *value >= 1 && *value <= 4096;
+      const auto value = integerOf(*array->get(i));
+      return value && *value >= 1 && *value <= 4096;
     };
     if (!array || array->size() != 2 || !valid(0) || !valid(1))
       object.fail(node, "segments", "expected an array of 2 integers in [1, 4096], got " + TableReader::describe(*node));
@@ -341,7 +348,7 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
   if (shape == "box") {
     keys.push_back("size");
     solid.kind = Solid::Kind::box;
-    solid.size = object.vector3("size", dvec3(1), 1e-9, kHuge, true);
+    solid.size = object.vector3("size", dvec3(1), 1e-9, kMaxCoordinate, true);
     return std::make_shared<const Mesh>(makeBox(solid.size));
   }
   if (shape == "sphere") {
@@ -368,8 +375,8 @@ std::shared_ptr<const Mesh> readShape(TableReader& object, std::vector<std::stri
   }
   keys.insert(keys.end(), {"function", "amplitude", "frequency"});
   solid.function.name = object.choice("function", std::nullopt, heightFunctionNames());
-  solid.function.amplitude = object.number("amplitude", 1.0, -kHuge, kHuge);
-  solid.function.frequency = object.number("frequency", 1.0, -kHuge, kHuge);
+  solid.function.amplitude = object.number("amplitude", 1.0, -kMaxCoordinate, kMaxCoordinate);
+  solid.function.frequency = object.number("frequency", 1.0, -kMaxCoordinate, kMaxCoordinate);
   return std::make_shared<const Mesh>(makeHeightField(solid.footprint, cells.x, cells.y, solid.function));
 }
 
@@ -389,9 +396,9 @@ void readObject(TableReader& object, Scene& scene,
       object.fail(object.find(key), key, "a material's highlight needs \"phong\" in the scene's effects");
   result.reflectivity = object.number("reflectivity", 0.4, 0.0, 1.0);
   result.shininess = object.number("shininess", 32.0, 1.0, 10000.0);
-  result.transform.translate = object.vector3("translate", dvec3(0), -kHuge, kHuge);
+  result.transform.translate = object.vector3("translate", dvec3(0), -kMaxCoordinate, kMaxCoordinate);
   result.transform.rotateDegrees = object.vector3("rotate", dvec3(0), -36000, 36000);
-  result.transform.scale = object.vector3("scale", dvec3(1), 1e-9, kHuge, true);
+  result.transform.scale = object.vector3("scale", dvec3(1), 1e-9, kMaxCoordinate, true);
   if (const toml::table* copies = object.table("copies")) {
     TableReader reader(*copies, object.keyPath("copies"), object.file());
     result.instancing = readInstancing(reader);
@@ -447,11 +454,11 @@ void readEffects(TableReader& reader, Scene& scene) {
     const std::string kind = fog->choice("kind", "linear", {"linear", "exponential"});
     f.kind = kind == "linear" ? FogSettings::Kind::linear : FogSettings::Kind::exponential;
     if (f.kind == FogSettings::Kind::linear) {
-      f.start = fog->number("start", 0.0, 0.0, kHuge);
-      f.end = fog->number("end", scene.camera.far, 0.0, kHuge);
+      f.start = fog->number("start", 0.0, 0.0, kMaxCoordinate);
+      f.end = fog->number("end", scene.camera.far, 0.0, kMaxCoordinate);
       if (!(f.end > f.start)) fog->fail(fog->find("end"), "end", "must be greater than start");
     } else {
-      f.density = fog->number("density", f.density, 0.0, kHuge);
+      f.density = fog->number("density", f.density, 0.0, kMaxCoordinate);
     }
     f.color = fog->color("color", f.color);
     if (f.kind == FogSettings::Kind::linear)

@@ -66,6 +66,9 @@ INSTANTIATE_TEST_SUITE_P(
              "nan.obj:4: vertex coordinate is not finite (NaN or Inf)"},
         Case{"inf-coordinate", meshScene("inf", "v 0 -inf 0\n" + kTriangle + "f 1 2 3\n") + " -o OUT",
              "inf.obj:1: vertex coordinate is not finite"},
+        // Found by the OBJ fuzz target: tinyobjloader stores floats, and this became Inf.
+        Case{"coordinate-too-large", meshScene("large", kTriangle + "v 1e105 0 0\nf 1 2 4\n") + " -o OUT",
+             "large.obj:4: vertex coordinate 1e105 is out of range; expected at most 1e12 in size"},
         Case{"face-out-of-range", meshScene("range", kTriangle + "f 1 2 7\n") + " -o OUT",
              "range.obj:4: face index 7 is out of range: 3 vertices are defined before this line"},
         Case{"missing-obj", write("missing-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"gone.obj\"\n") + " -o OUT",
@@ -73,6 +76,9 @@ INSTANTIATE_TEST_SUITE_P(
         // A device would be read forever: only a regular file is opened.
         Case{"obj-is-a-device", write("device-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"/dev/zero\"\n") + " -o OUT",
              "objects[0].file: /dev/zero: cannot open the OBJ file (missing, or not a regular file)"},
+        // Found by the scene fuzz target: toml++ converted the float to an integer with undefined behaviour.
+        Case{"integer-given-a-huge-float", write("float-height.toml", "[image]\nheight = 4e80\n" + kCamera + "[[objects]]\nshape = \"box\"\n") + " -o OUT",
+             "float-height.toml:2:10: image.height: expected an integer in [1, 16384], got 4e+80"},
         Case{"size-zero", kCube + " --size 0x100 -o OUT", "--size 0x100: image size 0x100 is out of range"},
         Case{"size-absurd", kCube + " --size 100000x100 -o OUT", "image size 100000x100 is out of range; expected 1 to 16384"},
         Case{"size-too-many-pixels", kCube + " --size 16384x16385 -o OUT", "at most 256 Mpixel"},

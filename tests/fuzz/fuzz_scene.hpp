@@ -1,0 +1,51 @@
+// What the scene and render fuzz targets share: how fuzz input becomes a scene, and the
+// promises a loaded scene keeps whatever text it came from.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "renderer/error.hpp"
+#include "renderer/scene.hpp"
+
+namespace hsr::fuzz {
+
+// The input is read as if it were scenes/fuzz.toml, so that the seed corpus (the shipped
+// scenes and the hard cases, tests/fuzz/corpus/) finds the models it names.
+inline std::optional<Scene> sceneOf(const std::uint8_t* data, std::size_t size) {
+  static const std::filesystem::path kFile = std::filesystem::path(HSR_SOURCE_DIR) / "scenes" / "fuzz.toml";
+  try {
+    return parseScene(std::string(reinterpret_cast<const char*>(data), size), kFile);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
+inline bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// The loader's promises (renderer/scene.hpp): everything it accepts is in range.
+inline std::int64_t checkLoadedScene(const Scene& scene) {
+  HSR_CHECK(scene.width >= 1 && scene.height >= 1 && scene.width <= kMaxImageSide && scene.height <= kMaxImageSide);
+  HSR_CHECK(std::int64_t{scene.width} * scene.height <= kMaxImagePixels);
+  HSR_CHECK(!scene.objects.empty());
+  HSR_CHECK(!scene.effects.lit() || !scene.lights.empty());
+  HSR_CHECK(finite(scene.camera.eye) && finite(scene.camera.target) && finite(scene.camera.up));
+  HSR_CHECK(scene.camera.near > 0 && scene.camera.near < scene.camera.far);
+  std::int64_t triangles = 0;
+  for (const SceneObject& object : scene.objects) {
+    HSR_CHECK(object.mesh && !object.mesh->triangles.empty());
+    HSR_CHECK(object.opacity >= 0 && object.opacity <= 1);
+    for (const Triangle& triangle : object.mesh->triangles)
+      for (const std::uint32_t corner : triangle) HSR_CHECK(corner < object.mesh->positions.size());
+    for (const dvec3& position : object.mesh->positions) HSR_CHECK(finite(position));
+    triangles += std::int64_t(object.mesh->triangles.size()) * std::int64_t(object.instancing.copyCount());
+  }
+  HSR_CHECK(triangles < kMaxTriangles);
+  return triangles;
+}
+
+}  // namespace hsr::fuzz
