@@ -160,8 +160,10 @@ AlgorithmEntry painterEntry() {
        {"bsp", "newell", "sort"}},
       {"key", "sort: the depth that orders a triangle: its centroid's, its nearest corner's or its farthest corner's",
        {"centroid", "nearest", "farthest"}, std::nullopt, {"sort"}},
-      {"split-cap", "newell: the most splits; past it, conflicts are painted unresolved and the image is labelled partial",
-       {"100000", "0", "10", "1000"}, KnobSpec::Range{0, 1e9, true}, {"newell"}},
+      {"split-cap",
+       "the most splits; newell: past it, conflicts are painted unresolved and the image is labelled partial; "
+       "bsp: past it, the build stops with an error",
+       {"100000", "0", "10", "1000"}, KnobSpec::Range{0, 1e9, true}, {"newell", "bsp"}},
       {"budget", "newell: refuses scenes with more triangle pairs n(n-1)/2 than this", {"1e9", "1e10", "1e11"},
        KnobSpec::Range{1, 1e15}, {"newell"}},
       {"build-budget", "bsp: refuses scenes whose tree build is estimated (n log2(n)^2) above this many plane-side tests",

@@ -8,8 +8,10 @@
 #include <initializer_list>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,7 +19,9 @@
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/camera.hpp"
+#include "renderer/depth.hpp"
 #include "renderer/prepare.hpp"
+#include "renderer/reference.hpp"
 #include "renderer/scene.hpp"
 
 namespace hsr::test {
@@ -179,27 +183,34 @@ inline double distanceToSegment(const dvec2& p, const dvec2& a, const dvec2& b) 
   return glm::length(p - (a + along * ab));
 }
 
-// A triangle's corners in pixel coordinates, or nothing when a corner is not in front
-// of the near plane (its projection would not bound the triangle's image).
-inline std::optional<std::array<dvec2, 3>> projectedCorners(const PreparedScene& scene, const CameraTransform& camera,
-                                                            std::uint32_t triangle) {
-  std::array<dvec2, 3> corners;
+// The outline in pixel coordinates of the part of a triangle in front of the near
+// plane: its corners there, and where its edges cross the plane (the rasterizer clips
+// there, so a triangle cut by the plane has an edge along the cut). Empty when the whole
+// triangle is behind the plane.
+inline std::vector<dvec2> projectedOutline(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle) {
+  const double near = camera.camera().near;
+  std::vector<dvec2> outline;
   for (int k = 0; k < 3; ++k) {
-    const ClipVertex v = camera.clipFromWorld(scene.positions()[scene.triangles()[triangle][std::size_t(k)]]);
-    if (!(v.d > camera.camera().near)) return std::nullopt;
-    corners[std::size_t(k)] = camera.pixelFromClip(v);
+    const dvec3 a = scene.positions()[scene.triangles()[triangle][std::size_t(k)]];
+    const dvec3 b = scene.positions()[scene.triangles()[triangle][std::size_t((k + 1) % 3)]];
+    const ClipVertex va = camera.clipFromWorld(a), vb = camera.clipFromWorld(b);
+    if (va.d >= near) outline.push_back(camera.pixelFromClip(va));
+    if ((va.d >= near) != (vb.d >= near)) {
+      outline.push_back(camera.pixelFromClip(camera.clipFromWorld(a + (va.d - near) / (va.d - vb.d) * (b - a))));
+    }
   }
-  return corners;
+  return outline;
 }
 
-// Distance in pixels from a point to a triangle's projected boundary (+infinity when
-// the triangle crosses the near plane).
+// Distance in pixels from a point to a triangle's projected (near-clipped) boundary;
+// +infinity when the triangle is wholly behind the near plane.
 inline double distanceToProjectedEdges(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle,
                                        const dvec2& point) {
-  const auto c = projectedCorners(scene, camera, triangle);
-  if (!c) return std::numeric_limits<double>::infinity();
-  return std::min({distanceToSegment(point, (*c)[0], (*c)[1]), distanceToSegment(point, (*c)[1], (*c)[2]),
-                   distanceToSegment(point, (*c)[2], (*c)[0])});
+  const std::vector<dvec2> outline = projectedOutline(scene, camera, triangle);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < outline.size(); ++k)
+    nearest = std::min(nearest, distanceToSegment(point, outline[k], outline[(k + 1) % outline.size()]));
+  return nearest;
 }
 
 // Snapping vertices to 1/256 pixel moves an edge by at most sqrt(2)/512 pixel: a pixel
@@ -230,24 +241,88 @@ inline double hitDistance(const PreparedScene& scene, const CameraTransform& cam
   return glm::dot(ray.origin + along * ray.direction - camera.camera().eye, camera.forward());
 }
 
+// An exact algorithm's depth tolerance: whether two view distances at a pixel center are
+// too close for it to order. The painter's and ray casting's: the coplanar tolerance
+// (1e-10 of the depth; 1e-9 here, for the rounding of this check itself).
+using DepthTie = std::function<bool(double shown, double exact)>;
+inline bool coplanar(double shown, double exact) { return std::abs(shown - exact) <= 1e-9 * std::abs(exact); }
+
+// The z-buffer's: the two depths, in the float32 encoding its buffer stores, are within
+// two float32 steps of each other.
+inline DepthTie float32DepthTie(const CameraTransform& camera) {
+  const DepthEncoding encoding = depthEncoding(DepthFormat::float32, camera);
+  return [camera, encoding](double shown, double exact) {
+    const auto stored = [&](double d) { return float(encoding.z(camera.screenAffineDepth(d))); };
+    const float larger = std::max(stored(shown), stored(exact));
+    const float step = std::nextafter(larger, 2.0f) - larger;  // one float32 step at that depth
+    return std::abs(stored(shown) - stored(exact)) <= 2 * step;
+  };
+}
+
+// An exact algorithm may show another triangle than the reference at a non-ambiguous
+// pixel for one of two documented reasons (each algorithm's README):
+//   snapping: the center lies within 1/256 pixel of either triangle's projected outline;
+//   depth tie: both triangles meet the pixel's ray at depths the algorithm cannot order.
+// Every other differing pixel is unexplained: a bug.
+struct WrongPixels {
+  long snapping = 0, depthTie = 0, unexplained = 0;
+  std::string firstUnexplained;  // "pixel x,y shows id a, exactly id b", for the failure message
+  long total() const { return snapping + depthTie + unexplained; }
+};
+
+// Classifies the pixels where `shown` differs from `exact` (ids, 0 = background) and
+// `ambiguous` is 0.
+inline WrongPixels classifyDifferences(const PreparedScene& scene, std::span<const std::uint32_t> shown,
+                                       std::span<const std::uint32_t> exact, std::span<const std::uint8_t> ambiguous,
+                                       const DepthTie& tied) {
+  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  WrongPixels result;
+  for (std::size_t p = 0; p < shown.size(); ++p) {
+    if (ambiguous[p] || shown[p] == exact[p]) continue;
+    const dvec2 center(double(p % std::size_t(scene.width())) + 0.5, double(p / std::size_t(scene.width())) + 0.5);
+    if (nearestProjectedEdge(scene, camera, {shown[p], exact[p]}, center) < kSnapDistance) {
+      ++result.snapping;
+      continue;
+    }
+    if (shown[p] != 0 && exact[p] != 0) {
+      const Ray ray = camera.rayThroughPixel(center.x, center.y);
+      const double shownDistance = hitDistance(scene, camera, shown[p] - 1, ray);
+      const double exactDistance = hitDistance(scene, camera, exact[p] - 1, ray);
+      if (std::isfinite(shownDistance) && std::isfinite(exactDistance) && tied(shownDistance, exactDistance)) {
+        ++result.depthTie;
+        continue;
+      }
+    }
+    if (result.unexplained++ == 0)
+      result.firstUnexplained = "pixel " + std::to_string(p % std::size_t(scene.width())) + "," +
+                                std::to_string(p / std::size_t(scene.width())) + " shows id " + std::to_string(shown[p]) +
+                                ", exactly id " + std::to_string(exact[p]);
+  }
+  return result;
+}
+
+inline WrongPixels classifyWrongPixels(const PreparedScene& scene, const Frame& frame, const ReferenceImage& truth,
+                                       const DepthTie& tied = coplanar) {
+  return classifyDifferences(scene, frame.ids, truth.frame.ids, truth.ambiguous, tied);
+}
+
 // Compares a frame's ids with brute-force rays. Snapping moves vertices by at most
 // 1/512 pixel, so a pixel is "clear" when its center is at least 0.01 pixel from the
-// projected edges of every triangle in front of the near plane, and the rays through
-// its center and four points 0.01 pixel away all hit the same triangle (this covers
-// the triangles cut by the near plane). On a clear pixel the rasterizer must agree exactly.
+// projected (near-clipped) outline of every triangle, and the rays through its center
+// and four points 0.01 pixel away all hit the same triangle. On a clear pixel the
+// rasterizer must agree exactly.
 inline Agreement agreementWithRays(const PreparedScene& scene, const Frame& frame) {
   const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
-  std::vector<std::array<dvec2, 3>> projected;
+  std::vector<std::uint32_t> inFront;
   for (std::uint32_t t = 0; t < scene.triangleCount(); ++t)
-    if (const auto corners = projectedCorners(scene, camera, t)) projected.push_back(*corners);
+    if (!projectedOutline(scene, camera, t).empty()) inFront.push_back(t);
   Agreement result;
   const double offsets[5][2] = {{0, 0}, {0.01, 0}, {-0.01, 0}, {0, 0.01}, {0, -0.01}};
   for (int y = 0; y < frame.height; ++y)
     for (int x = 0; x < frame.width; ++x) {
       const dvec2 center(x + 0.5, y + 0.5);
-      const bool nearAnEdge = std::any_of(projected.begin(), projected.end(), [&](const std::array<dvec2, 3>& c) {
-        return distanceToSegment(center, c[0], c[1]) < 0.01 || distanceToSegment(center, c[1], c[2]) < 0.01 ||
-               distanceToSegment(center, c[2], c[0]) < 0.01;
+      const bool nearAnEdge = std::any_of(inFront.begin(), inFront.end(), [&](std::uint32_t t) {
+        return distanceToProjectedEdges(scene, camera, t, center) < 0.01;
       });
       if (nearAnEdge) continue;
       std::uint32_t ids[5];

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <optional>
 
+#include "renderer/error.hpp"
+
 namespace hsr::painter {
 namespace {
 
@@ -185,6 +187,12 @@ BspTree::BspTree(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
           case Side::positive: positive.push_back(polygon); break;
           case Side::negative: negative.push_back(polygon); break;
           case Side::straddles: {
+            // A bad splitter on an adversarial scene splits quadratically often: stop
+            // before memory runs out, naming the knob, rather than after.
+            if (double(builder.splits) >= knobs.splitCap)
+              throw InputError("painter bsp: the tree needs more than " + std::to_string(builder.splits) +
+                               " splits (--knob split-cap=" + std::to_string(static_cast<long long>(knobs.splitCap)) +
+                               "); raise the cap, or try --knob splitter=least-splits with more --knob candidates");
             ++builder.splits;
             BuildPolygon& source = builder.polygons[polygon];
             SplitPolygon pieces = splitPolygon(source.vertices, sides, heights);

@@ -69,6 +69,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Found by the OBJ fuzz target: tinyobjloader stores floats, and this became Inf.
         Case{"coordinate-too-large", meshScene("large", kTriangle + "v 1e105 0 0\nf 1 2 4\n") + " -o OUT",
              "large.obj:4: vertex coordinate 1e105 is out of range; expected at most 1e12 in size"},
+        // Found by the OBJ fuzz target: a lone carriage return ends a line for tinyobjloader.
+        Case{"lone-carriage-return", meshScene("cr", kTriangle + "f 1 2\r3\n") + " -o OUT",
+             "cr.obj:4: face needs at least 3 corners, got 2"},
         Case{"face-out-of-range", meshScene("range", kTriangle + "f 1 2 7\n") + " -o OUT",
              "range.obj:4: face index 7 is out of range: 3 vertices are defined before this line"},
         Case{"missing-obj", write("missing-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"gone.obj\"\n") + " -o OUT",
@@ -157,6 +160,8 @@ INSTANTIATE_TEST_SUITE_P(
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",
              "painter split-cap must be an integer in [0, 1e+09]"},
+        Case{"bsp-over-split-cap", std::string(HSR_SOURCE_DIR) + "/scenes/hard/cyclic_overlap.toml --algo painter --knob split-cap=0 -o OUT",
+             "painter bsp: the tree needs more than 0 splits (--knob split-cap=0); raise the cap"},
         Case{"newell-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/trees.toml --algo painter --variant newell -o OUT",
              "painter cannot render it: newell may test 1.64e+09 triangle pairs (57242 triangles), more than --knob "
              "budget=1e+09"},

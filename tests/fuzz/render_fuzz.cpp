@@ -15,7 +15,7 @@
 namespace hsr::fuzz {
 namespace {
 
-constexpr std::int64_t kMaxTriangles = 3000;
+constexpr std::int64_t kMaxTriangles = 1000;
 
 void checkFrame(const PreparedScene& prepared, const Frame& frame, int width, int height) {
   HSR_CHECK(frame.width == width && frame.height == height);

@@ -13,7 +13,7 @@
 //   ray_casting march: the same bits on 1 and 3 threads (its error against the
 //     reference is the method's, tabled in algorithms/ray_casting/README.md);
 //   painter bsp and newell: every pixel that differs from the exact reference is
-//     explained by snapping or coplanarity (tests/painter/painter_support.hpp);
+//     explained by snapping or coplanarity (tests/test_support.hpp);
 //   painter sort: the same bits on 1 and 3 threads (its error is the lesson).
 // ray_casting naive has no goldens of its own: it must reproduce bvh's.
 // A configuration the registry refuses on a scene (over a budget, or a transparent
@@ -27,7 +27,6 @@
 
 #include "algorithms/effects/effects.hpp"
 #include "algorithms/registry.hpp"
-#include "painter/painter_support.hpp"
 #include "renderer/line_reference.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/reference.hpp"

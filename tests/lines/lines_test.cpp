@@ -10,6 +10,7 @@
 #include "renderer/line_reference.hpp"
 #include "renderer/lines.hpp"
 #include "renderer/raster.hpp"
+#include "lines/qi_support.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -83,59 +84,17 @@ TEST(LineAlgorithms, RobertsAndAppelDrawTheSameOnConvexSolids) {
   }
 }
 
-// An independent count of the front faces in front of a point: every front-facing
-// triangle the sight line crosses before the point, in plain double precision (the
-// points tested are generic, away from every edge).
-int frontFacesInFront(const PreparedScene& scene, const CameraTransform& camera, const dvec3& x) {
-  const dvec3 origin = camera.perspective() ? camera.camera().eye : x - camera.forward() * 1e6;
-  const dvec3 direction = x - origin;
-  int count = 0;
-  for (std::size_t t = 0; t < scene.triangleCount(); ++t) {
-    const Triangle& tri = scene.triangles()[t];
-    const dvec3 &a = scene.positions()[tri[0]], &b = scene.positions()[tri[1]], &c = scene.positions()[tri[2]];
-    const dvec3 normal = glm::cross(b - a, c - a);
-    if (glm::dot(normal, origin - a) <= 0) continue;  // not facing the viewer
-    const double along = glm::dot(normal, direction);
-    if (along == 0) continue;
-    const double hit = glm::dot(normal, a - origin) / along;
-    if (hit <= 0 || hit >= 1 - 1e-9) continue;
-    const dvec3 p = origin + hit * direction;
-    if (glm::dot(glm::cross(b - a, p - a), normal) >= 0 && glm::dot(glm::cross(c - b, p - b), normal) >= 0 &&
-        glm::dot(glm::cross(a - c, p - c), normal) >= 0)
-      ++count;
-  }
-  return count;
-}
-
 TEST(Appel, QuantitativeInvisibilityInvariants) {
   for (const char* name : {"bunny.toml", "blocks.toml", "hard/torus.toml"}) {
     const test::LoadedScene loaded(test::sourcePath(std::string("scenes/") + name));
-    const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+    const AlgorithmEntry& appel = findAlgorithm("appel");
     Stats stats;
-    const LineSet lines = draw("appel", loaded.prepared);
-    appel::run(loaded.prepared, appel::Knobs{}, stats);
-    EXPECT_EQ(stats.counter("QI mismatches"), 0) << name;  // every edge's end agrees with its vertex
-    EXPECT_EQ(stats.counter("negative QI"), 0) << name;
-    int checked = 0, maximum = 0;
-    for (std::size_t i = 0; i < lines.segments.size(); ++i) {
-      const LineSegment& piece = lines.segments[i];
-      EXPECT_GE(piece.qi, 0) << name;
-      maximum = std::max(maximum, piece.qi);
-      // Along an edge QI changes only at a crossing, by exactly one.
-      if (i + 1 < lines.segments.size() && lines.segments[i + 1].edge == piece.edge) {
-        EXPECT_EQ(std::abs(lines.segments[i + 1].qi - piece.qi), 1) << name << " edge " << piece.edge;
-      }
-      // Inside a long enough piece, the QI is the count of front faces in front of it.
-      const FeatureEdge& edge = lines.edges[piece.edge];
-      if ((piece.end - piece.begin) * edge.lengthPixels() < 2) continue;
-      const double s = edge.edgeParameter((piece.begin + piece.end) / 2);
-      EXPECT_EQ(piece.qi, frontFacesInFront(loaded.prepared, camera, edge.from + s * (edge.to - edge.from)))
-          << name << " edge " << piece.edge;
-      ++checked;
-    }
-    EXPECT_GT(checked, 20) << name;
+    const LineSet lines = appel.drawLines(loaded.prepared, resolveKnobs(appel, {}), 1, stats);
+    const test::QiCheck check = test::checkQiInvariants(loaded.prepared, lines, stats);
+    EXPECT_EQ(check.violations, 0) << name << ": " << check.firstViolation;
+    EXPECT_GT(check.counted, 20) << name;
     if (std::string(name) == "hard/torus.toml") {
-      EXPECT_GE(maximum, 2);  // behind both near walls of the tube
+      EXPECT_GE(check.maximum, 2);  // behind both near walls of the tube
     }
   }
 }

@@ -4,7 +4,8 @@
 #include <cmath>
 
 #include "algorithms/painter/painter.hpp"
-#include "painter_support.hpp"
+#include "renderer/metrics.hpp"
+#include "test_support.hpp"
 
 namespace hsr {
 namespace {

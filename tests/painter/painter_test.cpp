@@ -7,7 +7,8 @@
 
 #include "algorithms/painter/bsp.hpp"
 #include "algorithms/registry.hpp"
-#include "painter_support.hpp"
+#include "renderer/metrics.hpp"
+#include "test_support.hpp"
 
 namespace hsr {
 namespace {
@@ -37,7 +38,7 @@ TEST(PainterAgainstReference, NewellAndBspWrongPixelsAreOnlySnappingOrCoplanarit
       }
       std::printf("%-28s %-6s wrong %5ld of %6ld: snapping %4ld, coplanar %4ld, unexplained %5ld\n",
                   entry.path().filename().c_str(), variant == Variant::sort ? "sort" : variant == Variant::bsp ? "bsp" : "newell",
-                  long(error.wrongPixels), long(error.comparedPixels), wrong.snapping, wrong.coplanar, wrong.unexplained);
+                  long(error.wrongPixels), long(error.comparedPixels), wrong.snapping, wrong.depthTie, wrong.unexplained);
     }
   }
 }
