@@ -8,6 +8,8 @@
 
 #include <unistd.h>
 
+#include "cli/interrupt.hpp"
+
 namespace hsr::cli {
 namespace {
 
@@ -65,6 +67,21 @@ void writeStudy(const std::filesystem::path& folder, const std::string& stem, co
   addPlot(files, folder, stem, plotBody);
   files.commit();
   std::printf("wrote %s/%s.{csv,png,svg,gp}\n", folder.string().c_str(), stem.c_str());
+}
+
+int finishStudy(const std::filesystem::path& folder, const std::string& stem, const std::vector<CsvRow>& rows,
+                std::size_t plannedRows, const std::string& plotBody) {
+  if (!InterruptibleRun::requested()) {
+    writeStudy(folder, stem, csvOf(rows), plotBody);
+    return 0;
+  }
+  reportInterrupted(rows.size(), plannedRows, "rows");
+  if (rows.empty()) return kInterruptedExit;
+  OutputFiles files;
+  files.addText(folder / (stem + ".csv"), csvOf(rows));
+  files.commit();
+  std::printf("wrote %s/%s.csv (no plot: the study was cut short)\n", folder.string().c_str(), stem.c_str());
+  return kInterruptedExit;
 }
 
 std::string histogramBars(const std::string& block, const std::vector<std::string>& titles) {

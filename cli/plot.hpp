@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/results.hpp"
 #include "renderer/frame.hpp"
 
 namespace hsr::cli {
@@ -19,6 +20,13 @@ void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std:
 std::string histogramBars(const std::string& block, const std::vector<std::string>& titles);
 // A study's results: FOLDER/STEM.csv and its plot (addPlot), written together.
 void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody);
+
+// The end of a study measured row by row under an InterruptibleRun (cli/interrupt): all
+// of writeStudy when it ran to the end (returns 0); when Ctrl-C cut it short, the CSV of
+// the rows measured, complete, and no plot, since a plot of part of a study misleads
+// (returns kInterruptedExit).
+int finishStudy(const std::filesystem::path& folder, const std::string& stem, const std::vector<CsvRow>& rows,
+                std::size_t plannedRows, const std::string& plotBody);
 
 // A bar on stderr, shown only on a terminal and only once the work has taken a second.
 class Progress {

@@ -21,6 +21,7 @@
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/plot.hpp"
 #include "cli/results.hpp"
 #include "renderer/error.hpp"
@@ -367,20 +368,25 @@ int study(const StudyOptions& options) {
   Progress progress(scenes.size() * std::size_t(resolved.frames));
   std::size_t done = 0;
   std::vector<SceneResult> results;
+  const InterruptibleRun interruptible;  // stops after the scene in progress
   for (const std::string& scene : scenes) {
+    if (InterruptibleRun::requested()) break;
     results.push_back(runScene(scene, resolved, progress, done));
     std::printf("%s", table(results.back(), resolved).c_str());
     std::fflush(stdout);
   }
-  std::printf("%s", conclusions(results).c_str());
+  const bool cutShort = InterruptibleRun::requested();
+  if (cutShort) reportInterrupted(results.size(), scenes.size(), "scenes");
+  if (results.empty()) return kInterruptedExit;
+  if (!cutShort) std::printf("%s", conclusions(results).c_str());
 
   OutputFiles files;
   files.addText(folder / "culling_combos.csv", csv(results, resolved));
   files.addText(folder / "culling_combos.json", json(results, resolved));
-  addPlot(files, folder, "culling_combos", plot(results));
+  if (!cutShort) addPlot(files, folder, "culling_combos", plot(results));  // a plot of part of a study misleads
   files.commit();
-  std::printf("wrote %s/culling_combos.{csv,json,png,svg,gp}\n", folder.string().c_str());
-  return 0;
+  std::printf("wrote %s/culling_combos.{csv,json%s}\n", folder.string().c_str(), cutShort ? "" : ",png,svg,gp");
+  return cutShort ? kInterruptedExit : 0;
 }
 
 }  // namespace hsr::cli

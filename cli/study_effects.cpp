@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/contact_sheet.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/plot.hpp"
 #include "cli/results.hpp"
 #include "renderer/metrics.hpp"
@@ -138,10 +139,13 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
   std::vector<CsvRow> rows;
   std::string data = "$errors << EOD\n";
   std::vector<double> passMs(resolutions.size(), 0);
+  const InterruptibleRun interruptible;
   for (const double bias : biases) {
+    if (InterruptibleRun::requested()) break;
     std::printf("  %-8g", bias);
     data += formatted(bias, "%g");
     for (std::size_t r = 0; r < resolutions.size(); ++r) {
+      if (InterruptibleRun::requested()) break;
       std::vector<double> times;
       std::optional<effects::ShadowMaps> maps;
       for (int k = 0; k < repeats; ++k) {
@@ -165,6 +169,7 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
     }
     data += "\n";
     std::printf("\n");
+    std::fflush(stdout);  // a line per bias as it is measured, also through a pipe
   }
   std::printf("  %-8s", "pass ms");
   for (const double ms : passMs) std::printf(" %16.2f", ms);
@@ -180,8 +185,7 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
   }
   data += "\nunset logscale y\nset logscale x 2\nset title 'Shadow pass time'\nset xlabel 'resolution (texels per side)'\n"
           "set ylabel 'ms'\nset key off\nplot $times using 1:2 with linespoints\nunset multiplot\n";
-  writeStudy(folder, "shadow_map", csvOf(rows), data);
-  return 0;
+  return finishStudy(folder, "shadow_map", rows, biases.size() * resolutions.size(), data);
 }
 
 }  // namespace

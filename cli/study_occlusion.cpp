@@ -21,6 +21,7 @@
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/plot.hpp"
 #include "cli/results.hpp"
 #include "renderer/metrics.hpp"
@@ -182,11 +183,14 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
   std::vector<CsvRow> rows;
   std::string data = "$sizes << EOD\n";
   const std::vector<std::string> sizes = {"64x64", "128x128", "256x128", "256x256", "512x256"};
+  const InterruptibleRun interruptible;
   for (const std::string& size : sizes) {
+    if (InterruptibleRun::requested()) break;
     const std::string width = size.substr(0, size.find('x')), height = size.substr(size.find('x') + 1);
     data += size;
     for (const std::string rule : {"conservative", "center"})
       for (const std::string pyramid : {"off", "on"}) {
+        if (InterruptibleRun::requested()) break;
         const culling::Pipeline pipeline = culling::parsePipeline("occlusion:map-width=" + width + ":map-height=" + height +
                                                                   ":raster=" + rule + ":pyramid=" + pyramid);
         std::vector<double> ms;
@@ -204,6 +208,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
         const std::int64_t lost = objectsFalselyCulled(scene, truth, kept);
         std::printf("  %-9s %-13s %-8s %12lld %14lld %14.3f\n", size.c_str(), rule.c_str(), pyramid.c_str(),
                     static_cast<long long>(culled), static_cast<long long>(lost), median);
+        std::fflush(stdout);
         rows.push_back({{"map", size}, {"rule", rule}, {"pyramid", pyramid}, {"objects_culled", std::to_string(culled)},
                         {"visible_objects_culled", std::to_string(lost)}, {"culling_ms_median", formatted(median, "%.4f")}});
         data += ' ';
@@ -226,6 +231,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
   std::printf("\n  %-10s %16s %16s\n", "queries", "flat ns/query", "pyramid ns/query");
   data += "EOD\n$queries << EOD\n";
   for (std::int64_t count = 10; count <= 1000000; count *= 10) {
+    if (InterruptibleRun::requested()) break;
     std::vector<culling::occlusion::BoxFootprint> boxes(static_cast<std::size_t>(count));
     for (auto& box : boxes) {
       box.x0 = int(random() % 256), box.y0 = int(random() % 128);
@@ -242,6 +248,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
     }
     std::printf("  %-10lld %16.1f %16.1f   (hidden: %lld flat, %lld pyramid)\n", static_cast<long long>(count), perQuery[0],
                 perQuery[1], static_cast<long long>(hidden[0]), static_cast<long long>(hidden[1]));
+    std::fflush(stdout);
     rows.push_back({{"map", "256x128"}, {"rule", "conservative"}, {"pyramid", "queries=" + std::to_string(count)},
                     {"objects_culled", ""}, {"visible_objects_culled", ""},
                     {"culling_ms_median", formatted(perQuery[0], "%.2f") + "/" + formatted(perQuery[1], "%.2f") + " ns"}});
@@ -252,8 +259,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
           "'conservative + pyramid', '' using 6 title 'center', '' using 8 title 'center + pyramid'\n"
           "set title 'Time per occludee query (256x128)'\nset logscale x\nset xlabel 'queries'\nset ylabel 'ns'\n"
           "plot $queries using 1:2 title 'flat' with linespoints, '' using 1:3 title 'pyramid' with linespoints\nunset multiplot\n";
-  writeStudy(folder, "hzb_resolution", csvOf(rows), data);
-  return 0;
+  return finishStudy(folder, "hzb_resolution", rows, sizes.size() * 4 + 6, data);
 }
 
 // ---------------------------------------------------------------------------------
@@ -273,7 +279,9 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
   const int repeats = options.frames > 0 ? options.frames : 20;
   std::vector<CsvRow> rows;
   std::string data = "$levels << EOD\n";
+  const InterruptibleRun interruptible;
   for (const auto& [level, description] : levels) {
+    if (InterruptibleRun::requested()) break;
     LoadedScene loaded = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "study" / (level + ".toml")).string(), options.size);
     const PreparedScene& scene = *loaded.prepared;
     Stats referenceStats;
@@ -284,6 +292,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
     data += level;
     Frame frame(scene.width(), scene.height());
     for (const auto& [name, cull] : choices) {
+      if (InterruptibleRun::requested()) break;
       const culling::Pipeline pipeline = culling::parsePipeline(cull);
       std::vector<double> cullMs, renderMs;
       FrameResult result;
@@ -296,6 +305,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
       const std::int64_t lost = objectsFalselyCulled(scene, truth, result.kept);
       std::printf("  %-18s %12zu %12.3f %12.3f %12.3f %12lld\n", name.c_str(), result.kept.triangles.size(), cullMedian, renderMedian,
                   cullMedian + renderMedian, static_cast<long long>(lost));
+      std::fflush(stdout);
       rows.push_back({{"level", level}, {"occluders", name}, {"culling", cull},
                       {"triangles_drawn", std::to_string(result.kept.triangles.size())},
                       {"culling_ms_median", formatted(cullMedian, "%.4f")}, {"render_ms_median", formatted(renderMedian, "%.4f")},
@@ -311,8 +321,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
   std::vector<std::string> titles;
   for (const auto& choice : choices) titles.push_back(choice.first);
   data += histogramBars("$levels", titles);
-  writeStudy(folder, "occluder_fraction", csvOf(rows), data + "\n");
-  return 0;
+  return finishStudy(folder, "occluder_fraction", rows, levels.size() * choices.size(), data + "\n");
 }
 
 }  // namespace

@@ -257,45 +257,74 @@ TEST(Study, ShadowMapShowsAcneWithoutBiasAndLessErrorAtHigherResolution) {
 
 // Ctrl-C after the first configuration: the sweep stops after the row it is measuring
 // and writes the rows measured so far, complete and parseable, and exits with 130.
-TEST(Sweep, CtrlCKeepsTheRowsAlreadyMeasured) {
-  const auto folder = freshFolder("sweep-interrupted");
-  const std::string sizes = "--knob size=320x240,330x248,340x255,350x263,360x270,370x278,380x285,390x293,400x300,410x308";
-  // The shell prints its process id, then becomes hsr (exec keeps the id).
-  FILE* pipe = popen(("echo $$; exec " + std::string(HSR_BINARY) + " sweep " + kScenes + "bunny.toml --algo zbuffer " + sizes +
-                      " --repeat 3 --threads 1 --out " + folder.string() + " 2>&1")
-                         .c_str(),
-                     "r");
-  ASSERT_NE(pipe, nullptr);
-  char line[4096];
-  ASSERT_NE(std::fgets(line, sizeof line, pipe), nullptr);
-  const pid_t hsr = static_cast<pid_t>(std::stol(line));
+// Runs an hsr command line and sends it SIGINT (Ctrl-C) when it prints a line starting
+// with `prefix`: its exit status (-1 unless it exited) and everything it printed.
+struct Interrupted {
+  bool sent = false;
+  int exitCode = -1;
   std::string output;
-  bool interrupted = false;
+};
+Interrupted interruptAfter(const std::string& arguments, const std::string& prefix) {
+  Interrupted result;
+  // The shell prints its process id, then becomes hsr (exec keeps the id).
+  FILE* pipe = popen(("echo $$; exec " + std::string(HSR_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  char line[4096];
+  if (!std::fgets(line, sizeof line, pipe)) return result;
+  const pid_t hsr = static_cast<pid_t>(std::stol(line));
   while (std::fgets(line, sizeof line, pipe)) {
-    output += line;
-    if (!interrupted && std::string(line).rfind("  1/10 ", 0) == 0) {
+    result.output += line;
+    if (!result.sent && std::string(line).rfind(prefix, 0) == 0) {
       kill(hsr, SIGINT);
-      interrupted = true;
+      result.sent = true;
     }
   }
   const int status = pclose(pipe);
-  ASSERT_TRUE(interrupted) << output;
-  ASSERT_TRUE(WIFEXITED(status)) << output;
-  EXPECT_EQ(WEXITSTATUS(status), 130) << output;
-  const std::smatch found = [&] {
-    std::smatch match;
-    std::regex_search(output, match, std::regex("hsr: interrupted: (\\d+) of 10 configurations measured; their rows are written"));
-    return match;
-  }();
-  ASSERT_FALSE(found.empty()) << output;
-  const std::size_t measured = std::stoul(found[1].str());
-  EXPECT_GE(measured, 1u);
+  if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
+  return result;
+}
+
+// How many rows an interrupted run says it measured, of how many.
+std::size_t measuredRows(const std::string& output, const std::string& planned) {
+  std::smatch match;
+  if (!std::regex_search(output, match, std::regex("hsr: interrupted: (\\d+) of " + planned + " measured; their rows are written")))
+    return 0;
+  return std::stoul(match[1].str());
+}
+
+TEST(Sweep, CtrlCKeepsTheRowsAlreadyMeasured) {
+  const auto folder = freshFolder("sweep-interrupted");
+  const std::string sizes = "--knob size=320x240,330x248,340x255,350x263,360x270,370x278,380x285,390x293,400x300,410x308";
+  const Interrupted run = interruptAfter("sweep " + kScenes + "bunny.toml --algo zbuffer " + sizes +
+                                         " --repeat 3 --threads 1 --out " + folder.string(), "  1/10 ");
+  const std::string& output = run.output;
+  ASSERT_TRUE(run.sent) << output;
+  EXPECT_EQ(run.exitCode, 130) << output;
+  const std::size_t measured = measuredRows(output, "10 configurations");
+  EXPECT_GE(measured, 1u) << output;
   EXPECT_LT(measured, 10u);
   std::vector<std::string> header;
   const std::vector<Row> rows = readCsv(folder / "sweep.csv", header);
   EXPECT_EQ(rows.size(), measured);
   for (const Row& row : rows) expectConsistentMeasurements(row);
   EXPECT_EQ(test::parseJson(readText(folder / "sweep.json")).array().size(), measured);
+}
+
+// A study stops the same way: here after the first line of the shadow-map table (six
+// rows, one per resolution, at bias 0), with the rows measured in its CSV and no plot.
+TEST(Study, CtrlCKeepsTheRowsAlreadyMeasured) {
+  const auto folder = freshFolder("study-interrupted");
+  const Interrupted run = interruptAfter("study shadow-map --size 160x100 --frames 1 --out " + folder.string(), "  0 ");
+  ASSERT_TRUE(run.sent) << run.output;
+  EXPECT_EQ(run.exitCode, 130) << run.output;
+  const std::size_t measured = measuredRows(run.output, "42 rows");
+  EXPECT_GE(measured, 6u) << run.output;
+  EXPECT_LT(measured, 42u) << run.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "shadow_map.csv", header);
+  EXPECT_EQ(rows.size(), measured);
+  for (const Row& row : rows) EXPECT_EQ(row.size(), header.size());
+  EXPECT_FALSE(std::filesystem::exists(folder / "shadow_map.png")) << "a plot of part of a study misleads";
 }
 
 TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
