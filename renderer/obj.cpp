@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include <tiny_obj_loader.h>
 
@@ -30,15 +31,22 @@ std::string_view nextToken(std::string_view& rest) {
   return token;
 }
 
+// Where each v and vn statement stands, so that a value tinyobjloader reads differently
+// from the check below can still be reported at its line.
+struct StatementLines {
+  std::vector<long> vertices, normals;
+};
+
 // The strict pass: checks every v and f statement and counts vertices, so that face
 // indices (1-based, or negative = relative to the vertices so far) can be range-checked
 // where they stand. tinyobjloader would accept "v 1 abc" as (1, 0, 0) and keep going.
-void checkObjText(const std::filesystem::path& file, std::istream& in) {
+StatementLines checkObjText(const std::filesystem::path& file, std::istream& in) {
   std::string text;
   long lineNumber = 0;
   long vertices = 0;
   long normals = 0;
   long faces = 0;
+  StatementLines lines;
   while (std::getline(in, text)) {
     ++lineNumber;
     std::string_view rest = text;
@@ -56,6 +64,7 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
           fail(file, lineNumber, "vertex coordinate " + std::string(token) + " is out of range; expected at most 1e12 in size");
       }
       ++vertices;
+      lines.vertices.push_back(lineNumber);
     } else if (keyword == "vn") {
       for (int axis = 0; axis < 3; ++axis) {
         const std::string_view token = nextToken(rest);
@@ -66,6 +75,7 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
           fail(file, lineNumber, "normal needs three finite numbers x y z of at most 1e12 in size, got '" + text + "'");
       }
       ++normals;
+      lines.normals.push_back(lineNumber);
     } else if (keyword == "f") {
       int corners = 0;
       for (std::string_view corner = nextToken(rest); !corner.empty(); corner = nextToken(rest)) {
@@ -98,6 +108,18 @@ void checkObjText(const std::filesystem::path& file, std::istream& in) {
     }
   }
   if (faces == 0) fail(file, lineNumber, "no faces (f statements) in the file");
+  return lines;
+}
+
+// tinyobjloader parses numbers its own way and stores floats: "0e669798", which the check
+// reads as 0, becomes NaN (the OBJ fuzz target found it). Each value it stored must be
+// finite and in range, or the statement's line is reported.
+void checkStoredValues(const std::filesystem::path& file, const std::vector<float>& values, const std::vector<long>& lines,
+                       const char* what) {
+  for (std::size_t i = 0; i < values.size() && i / 3 < lines.size(); ++i)
+    if (!std::isfinite(values[i]) || std::abs(values[i]) > kMaxCoordinate)
+      fail(file, lines[i / 3], std::string(what) + " reads as " + std::to_string(values[i]) +
+                                   " to tinyobjloader; expected plain decimal numbers of at most 1e12 in size");
 }
 
 }  // namespace
@@ -124,7 +146,7 @@ Mesh parseObj(const std::string& original, const std::filesystem::path& file) {
     if (original[i] != '\r') text += original[i];
     else if (i + 1 == original.size() || original[i + 1] != '\n') text += '\n';
   std::istringstream lines(text);
-  checkObjText(file, lines);
+  const StatementLines statements = checkObjText(file, lines);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // fan-triangulated below, so a face keeps its corner order
@@ -133,6 +155,9 @@ Mesh parseObj(const std::string& original, const std::filesystem::path& file) {
   // No material text: hsr reads no materials, and a mtllib line then opens no file.
   if (!reader.ParseFromString(text, "", config))
     throw InputError(file.string() + ": " + reader.Error());
+
+  checkStoredValues(file, reader.GetAttrib().vertices, statements.vertices, "vertex");
+  checkStoredValues(file, reader.GetAttrib().normals, statements.normals, "normal");
 
   Mesh mesh;
   const auto& positions = reader.GetAttrib().vertices;

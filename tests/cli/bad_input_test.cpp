@@ -72,6 +72,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Found by the OBJ fuzz target: a lone carriage return ends a line for tinyobjloader.
         Case{"lone-carriage-return", meshScene("cr", kTriangle + "f 1 2\r3\n") + " -o OUT",
              "cr.obj:4: face needs at least 3 corners, got 2"},
+        // Found by the OBJ fuzz target: tinyobjloader reads 0e669798 as 0 x Inf = NaN.
+        Case{"exponent-tinyobjloader-reads-as-nan", meshScene("nanread", kTriangle + "v 0e669798 0 0\nf 1 2 4\n") + " -o OUT",
+             "nanread.obj:4: vertex reads as"},
         Case{"face-out-of-range", meshScene("range", kTriangle + "f 1 2 7\n") + " -o OUT",
              "range.obj:4: face index 7 is out of range: 3 vertices are defined before this line"},
         Case{"missing-obj", write("missing-obj.toml", kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"gone.obj\"\n") + " -o OUT",
