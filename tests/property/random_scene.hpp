@@ -95,7 +95,7 @@ inline RandomScene randomScene(std::uint64_t seed) {
   scene.height = 24;
   result.separate = random.chance(0.5);
   const int objects = 1 + random.below(4);
-  const dvec3 cells[4] = {{-1.6, 0, -1.6}, {1.6, 0, -1.6}, {-1.6, 0, 1.6}, {1.6, 0, 1.6}};
+  const dvec3 cells[4] = {{-1.8, 0, -1.8}, {1.8, 0, -1.8}, {-1.8, 0, 1.8}, {1.8, 0, 1.8}};
   for (int i = 0; i < objects; ++i) {
     SceneObject object;
     object.name = "object" + std::to_string(i);
@@ -111,7 +111,8 @@ inline RandomScene randomScene(std::uint64_t seed) {
     } else {
       object.mesh = std::make_shared<const Mesh>(detail::triangleSoup(random));
     }
-    // A separate object stays inside its cell (a box's half-diagonal is at most 1.22).
+    // A separate object stays inside its cell, 1.8 from its center each way: a box's
+    // half-diagonal is at most 1.22, and the offset from the center at most 0.52.
     object.transform.rotateDegrees = {random.uniform(0, 360), random.uniform(0, 360), random.uniform(0, 360)};
     object.transform.translate = result.separate ? cells[i] + random.point(0.3) : random.point(1.5);
     object.color = vec3(float(random.uniform(0.2, 1)), float(random.uniform(0.2, 1)), float(random.uniform(0.2, 1)));
