@@ -106,9 +106,11 @@ class Newell {
       if (outOfSplits || !splitSomething(candidate, *hidden)) {
         // Out of splits, or no plane left to split by: paint out of order and say so,
         // rather than loop. The second happens in about 1 random scene in 300 (the
-        // property tests, tests/property, count them): a chain of moved polygons whose
-        // every pair the plane tests order consistently, yet which keeps closing on
-        // itself. Why is open (algorithms/painter/README.md, "Known limits").
+        // property tests, tests/property, count them), always at the point where three
+        // mutually piercing triangles' planes meet: each pair's pieces are already cut
+        // by each other's planes, rounding of the split points lets their projections
+        // overlap by slivers, and the three orders the cuts give close a cycle
+        // (algorithms/painter/README.md, "Known limits").
         if (canMove && !outOfSplits && movesSinceLastPaint <= pool_.size()) {
           moveToFront(*hidden);
           ++movesSinceLastPaint;
