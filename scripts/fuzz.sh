@@ -36,7 +36,6 @@ for target in "${targets[@]}"; do
     echo "fuzz: $target FAILED; the input is in $artifacts/ (add it to tests/fuzz/regressions/$target/ once fixed)" >&2
     exit 1
   fi
-  grep -E '^#[0-9]+.*(DONE|pulse)' "$log" | tail -n 1
-  grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' "$log" | tr '\n' ' '
+  { grep -E '^#[0-9]+.*(DONE|pulse)' "$log" | tail -n 1; grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' "$log" | tr '\n' ' '; } || true
   echo
 done
