@@ -160,10 +160,10 @@ AlgorithmEntry painterEntry() {
        {"bsp", "newell", "sort"}},
       {"key", "sort: the depth that orders a triangle: its centroid's, its nearest corner's or its farthest corner's",
        {"centroid", "nearest", "farthest"}, std::nullopt, {"sort"}},
-      {"split-cap",
-       "the most splits; newell: past it, conflicts are painted unresolved and the image is labelled partial; "
-       "bsp: past it, the build stops with an error",
-       {"100000", "0", "10", "1000"}, KnobSpec::Range{0, 1e9, true}, {"newell", "bsp"}},
+      {"split-cap", "newell: the most splits; past it, conflicts are painted unresolved and the image is labelled partial",
+       {"100000", "0", "10", "1000"}, KnobSpec::Range{0, 1e9, true}, {"newell"}},
+      {"split-limit", "bsp: the most splits the build may make (each keeps a polygon, about 100 bytes); past it, it stops "
+       "with an error", {"1e7", "1e5", "1e6", "1e8"}, KnobSpec::Range{0, 1e9, true}, {"bsp"}},
       {"budget", "newell: refuses scenes with more triangle pairs n(n-1)/2 than this", {"1e9", "1e10", "1e11"},
        KnobSpec::Range{1, 1e15}, {"newell"}},
       {"build-budget", "bsp: refuses scenes whose tree build is estimated (n log2(n)^2) above this many plane-side tests",
@@ -183,6 +183,7 @@ AlgorithmEntry painterEntry() {
     knobs.variant = choiceOf<painter::Variant>(entry, values, "variant");
     knobs.key = choiceOf<painter::SortKey>(entry, values, "key");
     knobs.splitCap = knobNumber(values, "split-cap").value;
+    knobs.splitLimit = knobNumber(values, "split-limit").value;
     knobs.budget = knobNumber(values, "budget").value;
     knobs.buildBudget = knobNumber(values, "build-budget").value;
     knobs.splitter = choiceOf<painter::Splitter>(entry, values, "splitter");

@@ -6,6 +6,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +22,18 @@ class InputError : public std::runtime_error {
 [[noreturn]] inline void checkFailed(const char* condition, const char* file, int line) {
   std::fprintf(stderr, "hsr: internal error: %s:%d: check failed: %s\n", file, line, condition);
   std::abort();
+}
+
+// The whole of a user's input file (`what`: "scene", "OBJ"), or InputError. Only a
+// regular file is opened: a device or a pipe (/dev/zero, /dev/stdin) would be read forever.
+inline std::string readInputFile(const std::filesystem::path& file, const std::string& what) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    throw InputError(file.string() + ": cannot open the " + what + " file (missing, or not a regular file)");
+  std::ifstream in(file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.is_open() || in.bad()) throw InputError(file.string() + ": cannot read the " + what + " file");
+  return text;
 }
 
 }  // namespace hsr

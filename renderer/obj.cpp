@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -124,17 +123,7 @@ void checkStoredValues(const std::filesystem::path& file, const std::vector<floa
 
 }  // namespace
 
-Mesh loadObj(const std::filesystem::path& file) {
-  // Only a regular file: a device or a pipe (/dev/zero, /dev/stdin) would be read forever.
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(file, error))
-    throw InputError(file.string() + ": cannot open the OBJ file (missing, or not a regular file)");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!in || !(text << in.rdbuf()))
-    throw InputError(file.string() + ": cannot read the OBJ file");
-  return parseObj(std::move(text).str(), file);
-}
+Mesh loadObj(const std::filesystem::path& file) { return parseObj(readInputFile(file, "OBJ"), file); }
 
 Mesh parseObj(const std::string& original, const std::filesystem::path& file) {
   // Lines end at \n, \r\n or a lone \r, as tinyobjloader reads them: both passes must

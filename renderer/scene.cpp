@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -580,15 +579,7 @@ std::vector<dmat4> Instancing::copies() const {
   return result;
 }
 
-Scene loadScene(const std::filesystem::path& file) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(file, error))
-    throw InputError(file.string() + ": cannot open the scene file (missing or not a file)");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!in || !(text << in.rdbuf())) throw InputError(file.string() + ": cannot read the scene file");
-  return parseScene(std::move(text).str(), file);
-}
+Scene loadScene(const std::filesystem::path& file) { return parseScene(readInputFile(file, "scene"), file); }
 
 Scene parseScene(const std::string& text, const std::filesystem::path& file) {
   toml::table root;

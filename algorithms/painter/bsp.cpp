@@ -189,10 +189,10 @@ BspTree::BspTree(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
           case Side::straddles: {
             // A bad splitter on an adversarial scene splits quadratically often: stop
             // before memory runs out, naming the knob, rather than after.
-            if (double(builder.splits) >= knobs.splitCap)
+            if (double(builder.splits) >= knobs.splitLimit)
               throw InputError("painter bsp: the tree needs more than " + std::to_string(builder.splits) +
-                               " splits (--knob split-cap=" + std::to_string(static_cast<long long>(knobs.splitCap)) +
-                               "); raise the cap, or try --knob splitter=least-splits with more --knob candidates");
+                               " splits (--knob split-limit=" + std::to_string(static_cast<long long>(knobs.splitLimit)) +
+                               "); raise the limit, or try --knob splitter=least-splits with more --knob candidates");
             ++builder.splits;
             BuildPolygon& source = builder.polygons[polygon];
             SplitPolygon pieces = splitPolygon(source.vertices, sides, heights);

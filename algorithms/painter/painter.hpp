@@ -42,7 +42,8 @@ enum class Splitter { leastSplits, first, random };
 struct Knobs {
   Variant variant = Variant::bsp;
   SortKey key = SortKey::centroid;  // sort: which depth of a triangle orders it
-  double splitCap = 100000;         // no more splits than this (newell: the image is then labelled partial; bsp: an error)
+  double splitCap = 100000;         // newell: no more splits than this (the image is then labelled partial)
+  double splitLimit = 1e7;          // bsp: no more splits than this (the build then stops with an error)
   double budget = 1e9;              // newell: refuses scenes with more triangle pairs than this
   double buildBudget = 1e8;         // bsp: refuses scenes whose build is estimated above this many plane-side tests
   Splitter splitter = Splitter::leastSplits;  // bsp: how each node's plane is chosen

@@ -2,6 +2,8 @@
 // was expected; exit status 2; no output file, not even a partial one.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <fstream>
 
 #include "renderer/frame.hpp"
@@ -19,9 +21,14 @@ struct Case {
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
 
+// Every test process writes these files when it starts (the cases are built then), while
+// other processes of the same suite may be reading them: write a temporary file and
+// rename it over the old one, so that a reader sees one whole file or the other.
 std::string write(const std::string& name, const std::string& text) {
   const auto path = test::outputPath(name);
-  std::ofstream(path) << text;
+  const auto temporary = test::outputPath(name + "." + std::to_string(getpid()));
+  std::ofstream(temporary) << text;
+  std::filesystem::rename(temporary, path);
   return path.string();
 }
 
@@ -163,8 +170,8 @@ INSTANTIATE_TEST_SUITE_P(
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",
              "painter split-cap must be an integer in [0, 1e+09]"},
-        Case{"bsp-over-split-cap", std::string(HSR_SOURCE_DIR) + "/scenes/hard/cyclic_overlap.toml --algo painter --knob split-cap=0 -o OUT",
-             "painter bsp: the tree needs more than 0 splits (--knob split-cap=0); raise the cap"},
+        Case{"bsp-over-split-limit", std::string(HSR_SOURCE_DIR) + "/scenes/hard/cyclic_overlap.toml --algo painter --knob split-limit=0 -o OUT",
+             "painter bsp: the tree needs more than 0 splits (--knob split-limit=0); raise the limit"},
         Case{"newell-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/trees.toml --algo painter --variant newell -o OUT",
              "painter cannot render it: newell may test 1.64e+09 triangle pairs (57242 triangles), more than --knob "
              "budget=1e+09"},

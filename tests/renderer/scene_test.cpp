@@ -147,7 +147,7 @@ TEST(Obj, BadInputNamesFileAndLine) {
   EXPECT_NE(objErrorOf(triangle + "f 1 2 0\n").find(":4: face corner '0' is not a vertex index"), std::string::npos);
   EXPECT_NE(objErrorOf(triangle + "f 1 2\n").find(":4: face needs at least 3 corners, got 2"), std::string::npos);
   EXPECT_NE(objErrorOf(triangle).find(":3: no faces"), std::string::npos);
-  EXPECT_NE(objErrorOf(triangle + "vn 0 nan 1\n").find(":4: normal needs three finite numbers x y z, got 'vn 0 nan 1'"),
+  EXPECT_NE(objErrorOf(triangle + "vn 0 nan 1\n").find(":4: normal needs three finite numbers x y z of at most 1e12 in size, got 'vn 0 nan 1'"),
             std::string::npos);
   EXPECT_NE(objErrorOf(triangle + "vn 0 0 1\nf 1//1 2//1 3//2\n")
                 .find(":5: face corner '3//2' names normal 2, but 1 normals (vn) are defined before this line"),
