@@ -10,7 +10,7 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
 #include "renderer/prepare.hpp"
-#include "tests/fuzz/fuzz_scene.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
 
 namespace hsr::fuzz {
 namespace {

@@ -1,5 +1,5 @@
-// What the scene and render fuzz targets share: how fuzz input becomes a scene, and the
-// promises a loaded scene keeps whatever text it came from.
+// What the fuzz targets share: how fuzz input becomes a scene, and the promises a loaded
+// mesh and a loaded scene keep whatever text they came from.
 #pragma once
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "renderer/error.hpp"
+#include "renderer/mesh.hpp"
 #include "renderer/scene.hpp"
 
 namespace hsr::fuzz {
@@ -27,6 +28,17 @@ inline std::optional<Scene> sceneOf(const std::uint8_t* data, std::size_t size) 
 
 inline bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// The OBJ loader's and the primitives' promises (renderer/obj.hpp, renderer/mesh.hpp):
+// triangles, each naming vertices that exist, at finite positions, and corner normals
+// for every triangle or none.
+inline void checkLoadedMesh(const Mesh& mesh) {
+  HSR_CHECK(!mesh.triangles.empty());
+  for (const dvec3& position : mesh.positions) HSR_CHECK(finite(position));
+  for (const Triangle& triangle : mesh.triangles)
+    for (const std::uint32_t corner : triangle) HSR_CHECK(corner < mesh.positions.size());
+  HSR_CHECK(mesh.cornerNormals.empty() || mesh.cornerNormals.size() == mesh.triangles.size());
+}
+
 // The loader's promises (renderer/scene.hpp): everything it accepts is in range.
 inline std::int64_t checkLoadedScene(const Scene& scene) {
   HSR_CHECK(scene.width >= 1 && scene.height >= 1 && scene.width <= kMaxImageSide && scene.height <= kMaxImageSide);
@@ -37,11 +49,9 @@ inline std::int64_t checkLoadedScene(const Scene& scene) {
   HSR_CHECK(scene.camera.near > 0 && scene.camera.near < scene.camera.far);
   std::int64_t triangles = 0;
   for (const SceneObject& object : scene.objects) {
-    HSR_CHECK(object.mesh && !object.mesh->triangles.empty());
+    HSR_CHECK(object.mesh);
+    checkLoadedMesh(*object.mesh);
     HSR_CHECK(object.opacity >= 0 && object.opacity <= 1);
-    for (const Triangle& triangle : object.mesh->triangles)
-      for (const std::uint32_t corner : triangle) HSR_CHECK(corner < object.mesh->positions.size());
-    for (const dvec3& position : object.mesh->positions) HSR_CHECK(finite(position));
     triangles += std::int64_t(object.mesh->triangles.size()) * std::int64_t(object.instancing.copyCount());
   }
   HSR_CHECK(triangles < kMaxTriangles);
