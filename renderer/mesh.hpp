@@ -21,6 +21,12 @@ struct Mesh {
   // Per triangle, its corners' object-space normals as the file gave them (OBJ vn); empty
   // when the file gave none, and a zero vector for a corner it gave none for.
   std::vector<std::array<dvec3, 3>> cornerNormals;
+  // How far each coordinate may lie from the one its source meant: an OBJ file's
+  // decimal rounding (obj.cpp: half a unit in the last digit of numbers written with six
+  // or more significant digits), in object units. 0 for the procedural primitives, which
+  // are computed in double: their own rounding (an ulp or two of sin and cos) lies within
+  // the placement's rounding bound (Instance::placementRounding).
+  double statedRounding = 0;
 };
 
 // Axis-aligned box centered at the origin with the given edge lengths: 12 triangles.

@@ -1,5 +1,6 @@
 #include "renderer/obj.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -30,52 +31,85 @@ std::string_view nextToken(std::string_view& rest) {
   return token;
 }
 
-// Where each v and vn statement stands, so that a value tinyobjloader reads differently
-// from the check below can still be reported at its line.
-struct StatementLines {
-  std::vector<long> vertices, normals;
+// What the strict pass read: every v and vn value, correctly rounded to the nearest
+// double by std::from_chars, with the line each statement stands on.
+struct ObjNumbers {
+  std::vector<dvec3> positions, normals;
+  std::vector<long> positionLines, normalLines;
+  double statedRounding = 0;  // Mesh::statedRounding: the largest decimalRounding of a coordinate
 };
 
-// The strict pass: checks every v and f statement and counts vertices, so that face
-// indices (1-based, or negative = relative to the vertices so far) can be range-checked
-// where they stand. tinyobjloader would accept "v 1 abc" as (1, 0, 0) and keep going.
-StatementLines checkObjText(const std::filesystem::path& file, std::istream& in) {
+// How far the number a token names may lie from the value its writer meant: half a unit
+// in its last written digit when it has six or more significant digits (what exporters
+// write: %g gives six, %.6f six decimals), else 0. A shorter number ("1", "0.25",
+// "1.5e-3") is taken as written exactly: nobody rounds to fewer than six digits.
+// "1.000000" is rounded at 5e-7, "123456" at 0.5, "1.2345678e-3" at 5e-11.
+double decimalRounding(std::string_view token) {
+  const std::size_t exponentAt = token.find_first_of("eE");
+  const std::string_view mantissa = token.substr(0, exponentAt);
+  long exponent = 0;
+  if (exponentAt != std::string_view::npos) {
+    std::string_view digits = token.substr(exponentAt + 1);
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+    std::from_chars(digits.data(), digits.data() + digits.size(), exponent);
+  }
+  const std::size_t point = mantissa.find('.');
+  const long decimals = point == std::string_view::npos ? 0 : long(mantissa.size() - point - 1);
+  int significant = 0;
+  bool leading = true;
+  for (const char c : mantissa) {
+    if (c < '0' || c > '9') continue;
+    leading = leading && c == '0';
+    significant += !leading;
+  }
+  if (significant < 6) return 0;
+  return 0.5 * std::pow(10.0, double(exponent - decimals));
+}
+
+// Three numbers of a v or vn statement, each correctly rounded; fails naming the line
+// unless each is a finite number of at most kMaxCoordinate in size.
+dvec3 readTriple(std::string_view rest, const std::filesystem::path& file, long lineNumber, const std::string& text,
+                 bool isNormal, double* statedRounding) {
+  dvec3 values;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string_view token = nextToken(rest);
+    double value = 0;
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    const bool number = !token.empty() && error == std::errc() && end == token.data() + token.size();
+    if (isNormal && (!number || !std::isfinite(value) || std::abs(value) > kMaxCoordinate))
+      fail(file, lineNumber, "normal needs three finite numbers x y z of at most 1e12 in size, got '" + text + "'");
+    if (!number) fail(file, lineNumber, "vertex needs three numbers x y z, got '" + text + "'");
+    if (!std::isfinite(value))
+      fail(file, lineNumber, "vertex coordinate is not finite (NaN or Inf), got '" + std::string(token) + "'");
+    if (std::abs(value) > kMaxCoordinate)
+      fail(file, lineNumber, "vertex coordinate " + std::string(token) + " is out of range; expected at most 1e12 in size");
+    if (statedRounding) *statedRounding = std::max(*statedRounding, decimalRounding(token));
+    values[axis] = value;
+  }
+  return values;
+}
+
+// The strict pass: checks every v, vn and f statement and reads the numbers, so that
+// face indices (1-based, or negative = relative to the vertices so far) can be
+// range-checked where they stand. tinyobjloader would accept "v 1 abc" as (1, 0, 0).
+ObjNumbers checkObjText(const std::filesystem::path& file, std::istream& in) {
   std::string text;
   long lineNumber = 0;
-  long vertices = 0;
-  long normals = 0;
   long faces = 0;
-  StatementLines lines;
+  ObjNumbers numbers;
   while (std::getline(in, text)) {
     ++lineNumber;
     std::string_view rest = text;
     const std::string_view keyword = nextToken(rest);
     if (keyword == "v") {
-      for (int axis = 0; axis < 3; ++axis) {
-        const std::string_view token = nextToken(rest);
-        double value = 0;
-        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-        if (token.empty() || error != std::errc() || end != token.data() + token.size())
-          fail(file, lineNumber, "vertex needs three numbers x y z, got '" + text + "'");
-        if (!std::isfinite(value))
-          fail(file, lineNumber, "vertex coordinate is not finite (NaN or Inf), got '" + std::string(token) + "'");
-        if (std::abs(value) > kMaxCoordinate)
-          fail(file, lineNumber, "vertex coordinate " + std::string(token) + " is out of range; expected at most 1e12 in size");
-      }
-      ++vertices;
-      lines.vertices.push_back(lineNumber);
+      numbers.positions.push_back(readTriple(rest, file, lineNumber, text, false, &numbers.statedRounding));
+      numbers.positionLines.push_back(lineNumber);
     } else if (keyword == "vn") {
-      for (int axis = 0; axis < 3; ++axis) {
-        const std::string_view token = nextToken(rest);
-        double value = 0;
-        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-        if (token.empty() || error != std::errc() || end != token.data() + token.size() || !std::isfinite(value) ||
-            std::abs(value) > kMaxCoordinate)
-          fail(file, lineNumber, "normal needs three finite numbers x y z of at most 1e12 in size, got '" + text + "'");
-      }
-      ++normals;
-      lines.normals.push_back(lineNumber);
+      numbers.normals.push_back(readTriple(rest, file, lineNumber, text, true, nullptr));
+      numbers.normalLines.push_back(lineNumber);
     } else if (keyword == "f") {
+      const auto vertices = static_cast<long>(numbers.positions.size());
+      const auto normals = static_cast<long>(numbers.normals.size());
       int corners = 0;
       for (std::string_view corner = nextToken(rest); !corner.empty(); corner = nextToken(rest)) {
         const std::string_view position = corner.substr(0, corner.find('/'));
@@ -107,18 +141,28 @@ StatementLines checkObjText(const std::filesystem::path& file, std::istream& in)
     }
   }
   if (faces == 0) fail(file, lineNumber, "no faces (f statements) in the file");
-  return lines;
+  return numbers;
 }
 
-// tinyobjloader parses numbers its own way and stores floats: "0e669798", which the check
-// reads as 0, becomes NaN (the OBJ fuzz target found it). Each value it stored must be
-// finite and in range, or the statement's line is reported.
-void checkStoredValues(const std::filesystem::path& file, const std::vector<float>& values, const std::vector<long>& lines,
-                       const char* what) {
-  for (std::size_t i = 0; i < values.size() && i / 3 < lines.size(); ++i)
-    if (!std::isfinite(values[i]) || std::abs(values[i]) > kMaxCoordinate)
-      fail(file, lines[i / 3], std::string(what) + " reads as " + std::to_string(values[i]) +
-                                   " to tinyobjloader; expected plain decimal numbers of at most 1e12 in size");
+// tinyobjloader reads the file's structure (faces, their corners and normal indices);
+// the numbers hsr keeps are the strict pass's, correctly rounded. tinyobjloader's own
+// parser, even in its double build, is off by up to four units in the last place on
+// about half the values of the bunny and the dragon (and reads -9.75702e+06 as
+// -9757019.9999999981). Its values must still agree with the strict pass's to far
+// better than a float, or the two passes did not read the same statement: "0e669798"
+// is 0 to std::from_chars and 0 x Inf = NaN to tinyobjloader (the OBJ fuzz target found it).
+void checkSameStatements(const std::filesystem::path& file, const std::vector<tinyobj::real_t>& parsed,
+                         const std::vector<dvec3>& numbers, const std::vector<long>& lines, const char* what) {
+  if (parsed.size() != 3 * numbers.size())
+    fail(file, lines.empty() ? 0 : lines.back(),
+         std::string("tinyobjloader read ") + std::to_string(parsed.size() / 3) + " " + what + " statements, hsr " +
+             std::to_string(numbers.size()) + "; expected plain v and vn lines");
+  for (std::size_t i = 0; i < parsed.size(); ++i) {
+    const double exact = numbers[i / 3][int(i % 3)];
+    if (!(std::abs(parsed[i] - exact) <= 1e-12 * std::abs(exact) + 1e-300))
+      fail(file, lines[i / 3], std::string(what) + " reads as " + std::to_string(parsed[i]) + " to tinyobjloader and " +
+                                   std::to_string(exact) + " to hsr; expected plain decimal numbers");
+  }
 }
 
 }  // namespace
@@ -135,7 +179,7 @@ Mesh parseObj(const std::string& original, const std::filesystem::path& file) {
     if (original[i] != '\r') text += original[i];
     else if (i + 1 == original.size() || original[i + 1] != '\n') text += '\n';
   std::istringstream lines(text);
-  const StatementLines statements = checkObjText(file, lines);
+  const ObjNumbers numbers = checkObjText(file, lines);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // fan-triangulated below, so a face keeps its corner order
@@ -144,16 +188,13 @@ Mesh parseObj(const std::string& original, const std::filesystem::path& file) {
   // No material text: hsr reads no materials, and a mtllib line then opens no file.
   if (!reader.ParseFromString(text, "", config))
     throw InputError(file.string() + ": " + reader.Error());
-
-  checkStoredValues(file, reader.GetAttrib().vertices, statements.vertices, "vertex");
-  checkStoredValues(file, reader.GetAttrib().normals, statements.normals, "normal");
+  checkSameStatements(file, reader.GetAttrib().vertices, numbers.positions, numbers.positionLines, "vertex");
+  checkSameStatements(file, reader.GetAttrib().normals, numbers.normals, numbers.normalLines, "normal");
 
   Mesh mesh;
-  const auto& positions = reader.GetAttrib().vertices;
-  mesh.positions.reserve(positions.size() / 3);
-  for (std::size_t i = 0; i + 2 < positions.size(); i += 3)
-    mesh.positions.push_back({positions[i], positions[i + 1], positions[i + 2]});
-  const auto& normals = reader.GetAttrib().normals;
+  mesh.positions = numbers.positions;
+  mesh.statedRounding = numbers.statedRounding;
+  const bool withNormals = !numbers.normals.empty();
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     std::size_t corner = 0;
     for (const unsigned char faceSize : shape.mesh.num_face_vertices) {
@@ -163,11 +204,11 @@ Mesh parseObj(const std::string& original, const std::filesystem::path& file) {
       // A corner without a normal (or with a zero one) gets a computed normal.
       const auto normal = [&](std::size_t k) {
         const int n = shape.mesh.indices[corner + k].normal_index;
-        return n < 0 ? dvec3(0) : dvec3(normals[3 * std::size_t(n)], normals[3 * std::size_t(n) + 1], normals[3 * std::size_t(n) + 2]);
+        return n < 0 ? dvec3(0) : numbers.normals[std::size_t(n)];
       };
       for (std::size_t k = 1; k + 1 < faceSize; ++k) {
         mesh.triangles.push_back({index(0), index(k), index(k + 1)});
-        if (!normals.empty()) mesh.cornerNormals.push_back({normal(0), normal(k), normal(k + 1)});
+        if (withNormals) mesh.cornerNormals.push_back({normal(0), normal(k), normal(k + 1)});
       }
       corner += faceSize;
     }

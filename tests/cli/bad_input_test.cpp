@@ -73,7 +73,7 @@ INSTANTIATE_TEST_SUITE_P(
              "nan.obj:4: vertex coordinate is not finite (NaN or Inf)"},
         Case{"inf-coordinate", meshScene("inf", "v 0 -inf 0\n" + kTriangle + "f 1 2 3\n") + " -o OUT",
              "inf.obj:1: vertex coordinate is not finite"},
-        // Found by the OBJ fuzz target: tinyobjloader stores floats, and this became Inf.
+        // Found by the OBJ fuzz target when tinyobjloader still stored floats: this became Inf.
         Case{"coordinate-too-large", meshScene("large", kTriangle + "v 1e105 0 0\nf 1 2 4\n") + " -o OUT",
              "large.obj:4: vertex coordinate 1e105 is out of range; expected at most 1e12 in size"},
         // Found by the OBJ fuzz target: a lone carriage return ends a line for tinyobjloader.

@@ -157,11 +157,38 @@ TEST(Obj, BadInputNamesFileAndLine) {
   objErrorOf(triangle + "v 1 1 0\nvn 0 0 1\nvn 0 0.6 0.8\nf 1//1 2//2 3//1\nf 2 4 3\n");
   const Mesh withNormals = loadObj(test::outputPath("scene_test.obj"));
   ASSERT_EQ(withNormals.cornerNormals.size(), 2u);
-  EXPECT_EQ(withNormals.cornerNormals[0][1], dvec3(0, 0.6f, 0.8f)) << "tinyobjloader reads normals as floats";
+  EXPECT_EQ(withNormals.cornerNormals[0][1], dvec3(0, 0.6, 0.8)) << "normals are read as correctly rounded doubles";
   EXPECT_EQ(withNormals.cornerNormals[1][0], dvec3(0));
   EXPECT_TRUE(loadObj((objErrorOf(triangle + "f 1 2 3\n"), test::outputPath("scene_test.obj"))).cornerNormals.empty());
   // Negative (relative) indices and slashes are valid OBJ.
   EXPECT_EQ(loadObj((objErrorOf(triangle + "f -3/1 -2/2 -1/3\n"), test::outputPath("scene_test.obj"))).triangles.size(), 1u);
+}
+
+// Every input path keeps double precision (README, "Robustness"): OBJ numbers are read
+// correctly rounded, as std::from_chars reads them, so a file far from the origin keeps
+// separations far below a float's step, and numbers an exporter wrote exactly stay exact.
+TEST(Obj, CoordinatesAreCorrectlyRoundedDoubles) {
+  const Mesh mesh = parseObj("v 100000.0000005 0 -9.75702e+06\nv 100000 1e-310 0.1\nv 0.333333 8 1\nf 1 2 3\n", "far.obj");
+  ASSERT_EQ(mesh.positions.size(), 3u);
+  EXPECT_EQ(mesh.positions[0].x, 100000.0000005);      // a float would read 100000
+  EXPECT_EQ(mesh.positions[0].x - mesh.positions[1].x, 100000.0000005 - 100000.0);
+  EXPECT_EQ(mesh.positions[0].z, -9757020.0);          // tinyobjloader's own parser reads -9757019.9999999981
+  EXPECT_EQ(mesh.positions[1].y, 1e-310);
+  EXPECT_EQ(mesh.positions[2].x, 0.333333);
+  // Every one of the bunny's values as std::from_chars reads it.
+  const Mesh bunny = loadObj(test::sourcePath("models/bunny.obj"));
+  EXPECT_EQ(bunny.positions[0], dvec3(1.301895, 0.122622, 2.550061));
+}
+
+TEST(Obj, StatedRoundingIsHalfAUnitInTheLastDigitOfSixOrMoreDigits) {
+  const auto rounding = [](const std::string& coordinates) { return parseObj(coordinates + "\nv 0 0 0\nv 1 0 0\nf 1 2 3\n", "x.obj").statedRounding; };
+  EXPECT_EQ(rounding("v 1 0.25 -3"), 0);                      // short numbers are exact
+  EXPECT_EQ(rounding("v 1.5e-3 2 0"), 0);
+  EXPECT_DOUBLE_EQ(rounding("v 0.333333 0 0"), 5e-7);         // %g: six digits
+  EXPECT_DOUBLE_EQ(rounding("v 1.000000 0 0"), 5e-7);         // %.6f
+  EXPECT_DOUBLE_EQ(rounding("v 123456 0 0"), 0.5);
+  EXPECT_DOUBLE_EQ(rounding("v 1.2345678e-3 0 0"), 5e-11);
+  EXPECT_DOUBLE_EQ(rounding("v 1.000000 -1234.56789 0.5"), 5e-6);  // the largest of the file's
 }
 
 }  // namespace
