@@ -45,8 +45,19 @@ PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& scene
       for (std::uint32_t copy = 0; copy < copies.size(); ++copy) {
         const dmat4 worldFromObject = sceneCopy * copies[copy] * motion * objectToWorld;
         const auto firstVertex = static_cast<std::uint32_t>(positions_.size());
-        for (const dvec3& p : object.mesh->positions) positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
         Instance instance;
+        for (const dvec3& p : object.mesh->positions) {
+          positions_.push_back(dvec3(worldFromObject * dvec4(p, 1.0)));
+          for (int i = 0; i < 3; ++i) {  // glm's matrices are indexed [column][row]
+            const double terms = std::abs(worldFromObject[0][i] * p.x) + std::abs(worldFromObject[1][i] * p.y) +
+                                 std::abs(worldFromObject[2][i] * p.z) + std::abs(worldFromObject[3][i]);
+            instance.placementRounding = std::max(instance.placementRounding, roundingGamma(4) * terms);
+          }
+        }
+        for (int i = 0; i < 3; ++i)
+          instance.statedRounding = std::max(instance.statedRounding, object.mesh->statedRounding *
+                                                                          (std::abs(worldFromObject[0][i]) + std::abs(worldFromObject[1][i]) +
+                                                                           std::abs(worldFromObject[2][i])));
         instance.firstVertex = firstVertex;
         instance.vertexCount = static_cast<std::uint32_t>(object.mesh->positions.size());
         setBounds(std::span(positions_).subspan(firstVertex), instance);
@@ -82,6 +93,18 @@ Aabb PreparedScene::bounds() const {
   Aabb box;
   for (const Instance& instance : instances_) box.grow(instance.box);
   return box;
+}
+
+RoundedPlane PreparedScene::planeUpToPlacement(std::uint32_t planeTriangle) const {
+  const Triangle& t = triangles_[planeTriangle];
+  return RoundedPlane(positions_[t[0]], positions_[t[1]], positions_[t[2]], instanceOf(planeTriangle).placementRounding);
+}
+
+bool PreparedScene::liesOn(const RoundedPlane& plane, std::uint32_t triangle) const {
+  const double rounding = instanceOf(triangle).placementRounding;
+  for (const std::uint32_t corner : triangles_[triangle])
+    if (!plane.holds(positions_[corner], rounding)) return false;
+  return true;
 }
 
 dvec3 PreparedScene::faceNormal(std::uint32_t triangle) const {

@@ -9,6 +9,7 @@
 
 #include "renderer/adjacency.hpp"
 #include "renderer/bvh.hpp"
+#include "renderer/rounding.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/stats.hpp"
 
@@ -30,6 +31,14 @@ struct Instance {
   vec3 color{0.8f};
   double opacity = 1;
   dmat4 worldFromObject{1.0};  // the copy's placement: its triangles are the object's mesh moved by it
+  // Bounds on how far each world coordinate of its vertices lies from the exact
+  // placement of the model (renderer/rounding.hpp uses them):
+  //   placementRounding: the rounding of computing worldFromObject * p in double, at most
+  //     gamma_4 (sum_j |M_ij p_j| + |t_i|), the largest over its vertices and axes;
+  //   statedRounding: the mesh file's own (Mesh::statedRounding) carried to world units
+  //     by the placement's linear part (its largest row sum of magnitudes).
+  double placementRounding = 0;
+  double statedRounding = 0;
 };
 
 class PreparedScene {
@@ -60,6 +69,14 @@ class PreparedScene {
 
   // The instance that owns a triangle (binary search over firstTriangle).
   const Instance& instanceOf(std::uint32_t triangle) const;
+
+  // Coplanarity up to the placements' rounding (Instance::placementRounding,
+  // rounding.hpp): planeUpToPlacement(p) is triangle p's plane, and liesOn says whether
+  // every corner of `triangle` lies on it within what that rounding can move: true for
+  // faces coplanar as modelled, false for any whose separation rounding cannot explain
+  // and when the plane's triangle has no area.
+  RoundedPlane planeUpToPlacement(std::uint32_t planeTriangle) const;
+  bool liesOn(const RoundedPlane& plane, std::uint32_t triangle) const;
 
   // Unit face normal (b - a) x (c - a); zero for a degenerate triangle.
   dvec3 faceNormal(std::uint32_t triangle) const;

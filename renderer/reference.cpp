@@ -11,12 +11,12 @@
 #include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
 #include "renderer/parallel.hpp"
+#include "renderer/rounding.hpp"
 #include "renderer/shading.hpp"
 
 namespace hsr {
 namespace {
 
-constexpr double kUnitRoundoff = 0x1p-53;  // u: every double operation is exact to a factor (1 + e), |e| <= u
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Woop, Benthin, Wald 2013, section 4, the per-ray set-up: kz is the dominant axis of

@@ -9,9 +9,12 @@
 // as deep as the scene has triangles.
 //
 // The side tests are exact (renderer/predicates). The one tolerance: a polygon whose
-// every vertex lies within kCoplanarTolerance of the plane (relative to the coordinates)
-// is coplanar with it, because faces coplanar in the model are coplanar only up to the
-// rounding of the scene's transforms.
+// triangle lies within what the placements' rounding can move of the plane
+// (PreparedScene::liesOn: a bound relative to the coordinates' magnitude and the
+// placement, renderer/rounding.hpp) is coplanar with it, because faces coplanar in the
+// model are coplanar only up to that rounding, and splitting them by rounding noise would
+// cost slivers. Far from the origin the bound grows with the coordinates (at 1e5 it is
+// about 1e-10), so planes half a micrometre apart there stay apart.
 #include "algorithms/painter/bsp.hpp"
 
 #include <algorithm>
@@ -23,7 +26,6 @@
 namespace hsr::painter {
 namespace {
 
-constexpr double kCoplanarTolerance = 1e-10;
 constexpr std::size_t kSplitSample = 256;  // least-splits: polygons a candidate plane is tried on
 
 struct BuildPolygon {
@@ -63,34 +65,33 @@ class Builder {
   // A triangle's plane, with what its tests need computed once.
   struct SplittingPlane {
     std::uint32_t triangle;
-    dvec3 a, b, c, normal;            // corners, and (b - a) x (c - a) in double precision
-    double normalLength, scale;       // |normal|, and the corners' largest distance from the origin
+    dvec3 a, b, c, normal;  // corners, and (b - a) x (c - a) in double precision
+    RoundedPlane rounded;   // for the coplanar test
   };
   SplittingPlane splittingPlane(std::uint32_t triangle) const {
     const dvec3 &a = corner(triangle, 0), &b = corner(triangle, 1), &c = corner(triangle, 2);
-    const dvec3 normal = glm::cross(b - a, c - a);
-    return {triangle, a, b, c, normal, glm::length(normal), std::max({glm::length(a), glm::length(b), glm::length(c)})};
+    return {triangle, a, b, c, glm::cross(b - a, c - a), scene_.planeUpToPlacement(triangle)};
   }
 
-  // Step 2's test: the exact side of each vertex, with the coplanar tolerance applied
-  // to the polygon as a whole. Fills sides and heights for a split.
+  // Step 2's test: the exact side of each vertex; a polygon whose triangle is coplanar
+  // with the plane up to the placements' rounding counts as coplanar. Fills sides and
+  // heights for a split.
   Side classify(const BuildPolygon& polygon, const SplittingPlane& plane, std::vector<int>* sides = nullptr,
                 std::vector<double>* heights = nullptr) {
     ++classifications;
     if (polygon.triangle == plane.triangle) return Side::coplanar;
-    bool anyPositive = false, anyNegative = false, withinTolerance = true;
+    bool anyPositive = false, anyNegative = false;
     for (const dvec3& v : polygon.vertices) {
       const int s = predicates.orient3d(plane.a, plane.b, plane.c, v);
-      const double height = glm::dot(plane.normal, v - plane.a);
       anyPositive |= s > 0;
       anyNegative |= s < 0;
-      withinTolerance &= std::abs(height) <= kCoplanarTolerance * plane.normalLength * std::max(plane.scale, glm::length(v));
       if (sides) sides->push_back(s);
-      if (heights) heights->push_back(height);
+      if (heights) heights->push_back(glm::dot(plane.normal, v - plane.a));
     }
-    if (withinTolerance) return Side::coplanar;
+    if (!anyPositive && !anyNegative) return Side::coplanar;
+    if (scene_.liesOn(plane.rounded, polygon.triangle)) return Side::coplanar;
     if (anyPositive && anyNegative) return Side::straddles;
-    return anyNegative ? Side::negative : Side::positive;
+    return anyPositive ? Side::positive : Side::negative;
   }
 
   // Step 1: the splitting plane for a list (an index into it), or none when no triangle

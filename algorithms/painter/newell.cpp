@@ -19,13 +19,15 @@
 //   4. A marked Q that must move again closes a cycle of three or more polygons: split.
 //
 // The sign tests (c, d, e and the splits) are exact (renderer/predicates) on the
-// screen-space coordinates. The one tolerance: a polygon within kCoplanarTolerance of
-// another's plane (relative to the depths involved) is taken as coplanar with it,
-// because faces that are coplanar in world space are coplanar only up to rounding once
-// projected, and either order is right for them (the reference marks their pixels
-// ambiguous). A piece cut from a polygon by Q's plane is on its side of that plane by
-// construction and is never tested against it again, so rounding of the split points
-// cannot make it straddle the plane that made it.
+// screen-space coordinates. The one tolerance: a polygon whose world triangle lies within
+// what the placements' rounding can move of another's world plane
+// (PreparedScene::liesOn, renderer/rounding.hpp: relative to the coordinates' magnitude)
+// is taken as coplanar with it, because faces coplanar as modelled are coplanar only up
+// to that rounding, and either order is right for them (the reference marks their pixels
+// ambiguous, or orders them by a depth difference within rounding). A piece cut from a
+// polygon by Q's plane is on its side of that plane by construction and is never tested
+// against it again, so rounding of the split points cannot make it straddle the plane
+// that made it.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,8 +38,6 @@
 
 namespace hsr::painter {
 namespace {
-
-constexpr double kCoplanarTolerance = 1e-10;  // relative depth difference taken as "in the plane"
 
 // A convex polygon in screen space: a screen triangle, or a piece of one.
 struct Polygon {
@@ -69,6 +69,7 @@ class Newell {
     planes_.resize(count);
     normals_.resize(count);
     winding_.resize(count);
+    worldPlanes_.resize(count);
     for (std::uint32_t s = 0; s < count; ++s) {
       for (int k = 0; k < 3; ++k) planes_[s][k] = screenPoint(geometry.corners[s][k]);
       normals_[s] = glm::cross(planes_[s][1] - planes_[s][0], planes_[s][2] - planes_[s][0]);
@@ -189,8 +190,8 @@ class Newell {
     return predicates_.orient3d(corners[0], corners[1], corners[2], v) * winding_[plane];
   }
 
-  // v.z minus the plane's z at (v.x, v.y), in double precision: for the tolerance and
-  // for placing split points, never for a sign that decides anything.
+  // v.z minus the plane's z at (v.x, v.y), in double precision: for placing split
+  // points, never for a sign that decides anything.
   double depthAbovePlane(std::uint32_t plane, const dvec3& v) const {
     const dvec3& n = normals_[plane];
     return glm::dot(n, v - planes_[plane][0]) / n.z;
@@ -202,18 +203,24 @@ class Newell {
     const std::uint32_t triangle = geometry_.triangles[plane].triangle;
     for (const Cut& cut : polygon.cuts)
       if (cut.plane == triangle) return (cut.positive ? 1 : -1) == -eyeSideOf(triangle) ? Side::behind : Side::inFront;
-    const auto& corners = planes_[plane];
-    const double scale = std::max({std::abs(corners[0].z), std::abs(corners[1].z), std::abs(corners[2].z)});
-    bool anyBehind = false, anyInFront = false, withinTolerance = true;
+    bool anyBehind = false, anyInFront = false;
     for (const dvec3& v : polygon.vertices) {
       const int s = depthSide(plane, v);
       anyBehind |= s > 0;
       anyInFront |= s < 0;
-      withinTolerance &= std::abs(depthAbovePlane(plane, v)) <= kCoplanarTolerance * std::max(scale, std::abs(v.z));
     }
-    if (withinTolerance) return Side::coplanar;
+    if (!anyBehind && !anyInFront) return Side::coplanar;
+    if (scene_.liesOn(worldPlane(plane), geometry_.triangles[polygon.screenTriangle].triangle)) return Side::coplanar;
     if (anyBehind && anyInFront) return Side::straddles;
     return anyInFront ? Side::inFront : Side::behind;
+  }
+
+  // The world plane of a screen triangle's triangle, up to the placements' rounding,
+  // made when first needed.
+  const RoundedPlane& worldPlane(std::uint32_t plane) {
+    std::optional<RoundedPlane>& rounded = worldPlanes_[plane];
+    if (!rounded) rounded = scene_.planeUpToPlacement(geometry_.triangles[plane].triangle);
+    return *rounded;
   }
 
   int eyeSideOf(std::uint32_t triangle) {
@@ -333,6 +340,7 @@ class Newell {
   std::vector<dvec3> normals_;                // (b - a) x (c - a) of those corners, in double precision
   std::vector<int> winding_;                  // orient2d of those corners: 0 = no area on screen
   std::map<std::uint32_t, int> eyeSides_;     // by global triangle, computed when first needed
+  std::vector<std::optional<RoundedPlane>> worldPlanes_;  // per screen triangle: worldPlane()
   std::vector<Polygon> pool_;
   std::vector<std::uint32_t> pending_;  // sorted by maxZ, farthest at the back
   std::vector<std::uint32_t> ahead_;    // moved in front of the list; the last is the candidate

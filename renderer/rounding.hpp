@@ -1,0 +1,85 @@
+// How far rounding can move what the object-space tests measure, so that the few
+// tolerances the suite keeps are relative to the magnitude of their operands, with a
+// reason, rather than absolute numbers.
+//
+// Every sign that decides visibility is exact (renderer/predicates). What rounding still
+// touches is the input to those signs: a model's faces that are coplanar as modelled are
+// coplanar in world space only up to the rounding of their placement
+// (Instance::placementRounding) and of the file they came from (Mesh::statedRounding).
+// heightUncertainty bounds how far that rounding can move a point's height above a
+// plane, so a test can treat a point within it as on the plane, knowing that nothing
+// farther is.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "renderer/math.hpp"
+
+namespace hsr {
+
+// u = 2^-53, the unit roundoff of double precision: one rounding moves a value x by at
+// most u |x|.
+inline constexpr double kUnitRoundoff = 0x1p-53;
+
+// Higham's gamma_n = n u / (1 - n u): n roundings in a row (a sum of n products, say)
+// move the result by at most gamma_n times the sum of the terms' magnitudes.
+constexpr double roundingGamma(int n) { return n * kUnitRoundoff / (1 - n * kUnitRoundoff); }
+
+// How much the height of v above the plane through a, b and c can differ from the same
+// height for the unrounded points, when each coordinate of a, b and c may be off by up to
+// planeRounding and each of v's by pointRounding, plus the rounding of computing the
+// height in double precision. First order, doubled for the rest:
+//   - v moving by d changes the height by at most |d|;
+//   - a corner moving by d along the normal moves the plane under v by the corner's
+//     barycentric weight at v's foot times d, so the plane's corners count with the sum
+//     of |weights|, which is 1 over the triangle and grows with v's distance from it;
+//   - computing n . (v - a) / |n| rounds by a few ulps of |v - a| / sin(corner angle).
+// Infinite for a triangle with no plane (zero area).
+inline double heightUncertainty(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& v, double planeRounding,
+                                double pointRounding) {
+  const dvec3 n = glm::cross(b - a, c - a);
+  const double nn = glm::dot(n, n);
+  if (!(nn > 0)) return std::numeric_limits<double>::infinity();
+  const double weights = std::abs(glm::dot(glm::cross(b - v, c - v), n)) + std::abs(glm::dot(glm::cross(c - v, a - v), n)) +
+                         std::abs(glm::dot(glm::cross(a - v, b - v), n));
+  const double lever = weights / nn;
+  const double arithmetic = 8 * kUnitRoundoff * glm::length(v - a) * glm::length(b - a) * glm::length(c - a) / std::sqrt(nn);
+  return 2 * std::sqrt(3.0) * (pointRounding + planeRounding * lever) + arithmetic;
+}
+
+// A triangle's plane, ready to say of many points whether they lie on it up to rounding:
+// a first look with a cheap upper bound of heightUncertainty settles the points clearly
+// off it, and heightUncertainty itself decides the rest.
+class RoundedPlane {
+ public:
+  // Each coordinate of a, b and c may be off by up to `rounding`.
+  RoundedPlane(const dvec3& a, const dvec3& b, const dvec3& c, double rounding)
+      : a_(a), b_(b), c_(c), normal_(glm::cross(b - a, c - a)), rounding_(rounding) {
+    normalLength_ = glm::length(normal_);
+    center_ = (a + b + c) / 3.0;
+    radius_ = std::max({glm::length(a - center_), glm::length(b - center_), glm::length(c - center_)});
+    sides_ = glm::length(b - a) * glm::length(c - a);
+  }
+
+  // Whether v, each of whose coordinates may be off by up to pointRounding, lies on the
+  // plane within heightUncertainty. False for a triangle with no plane.
+  bool holds(const dvec3& v, double pointRounding) const {
+    if (!(normalLength_ > 0)) return false;
+    const double height = std::abs(glm::dot(normal_, v - a_)) / normalLength_;
+    // Every corner lies within `reach` of v: each barycentric weight at v's foot is at
+    // most reach^2 / |n|, and |v - a| at most reach.
+    const double reach = glm::length(v - center_) + radius_;
+    const double roughBound = 2 * std::sqrt(3.0) * (pointRounding + rounding_ * 3 * reach * reach / normalLength_) +
+                              8 * kUnitRoundoff * reach * sides_ / normalLength_;
+    if (height > roughBound) return false;
+    return height <= heightUncertainty(a_, b_, c_, v, rounding_, pointRounding);
+  }
+
+ private:
+  dvec3 a_, b_, c_, normal_, center_;
+  double rounding_, normalLength_, radius_, sides_;
+};
+
+}  // namespace hsr
