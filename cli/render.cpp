@@ -107,10 +107,12 @@ int render(const RenderOptions& options) {
   Stats stats;
   OutputFiles outputs;
   Frame frame;
+  std::string partial;  // why the image or drawing may be wrong somewhere, as the algorithm says
   if (lines) {
     const LineSet drawing = algorithm.drawLines(*scene.prepared, knobs, options.threads, stats);
     if (output.extension() == ".svg") outputs.addText(output, lineSetSvg(drawing, style));
     else outputs.addColorPng(output, lineSetFrame(drawing, style));
+    partial = drawing.partial;
   } else {
     if (pipeline.empty()) {
       frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
@@ -119,12 +121,13 @@ int render(const RenderOptions& options) {
       frame = algorithm.renderVisible(*scene.prepared, knobs, visible, options.threads, stats);
     }
     outputs.addColorPng(output, frame);
+    partial = frame.partial;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
-  if (!frame.partial.empty()) std::fprintf(stderr, "hsr: warning: the image is partial: %s\n", frame.partial.c_str());
+  if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
   if (options.stats) std::printf("%s", stats.report().c_str());
   if (options.explain) printDecisions(stats, seconds);
   return 0;

@@ -72,6 +72,35 @@ class Bvh {
       for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) visit(order_[slot], slot);
     }
   }
+  // Calls visit(a, slot of a, b, slot of b) once for each unordered pair of distinct
+  // primitives whose leaves are reached by pairs of nodes that all pass overlap(node,
+  // node): the tree queried against itself, for the pairs of boxes that may touch.
+  template <typename Overlap, typename Visit>
+  void visitPairs(Overlap&& overlap, Visit&& visit) const {
+    if (empty()) return;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> stack = {{0, 0}};  // disjoint subtrees, or a node and itself
+    while (!stack.empty()) {
+      const auto [i, j] = stack.back();
+      stack.pop_back();
+      const BvhNode &a = nodes_[i], &b = nodes_[j];
+      if (i != j && !overlap(a, b)) continue;
+      if (a.leaf() && b.leaf()) {
+        for (std::uint32_t slotA = a.index; slotA < a.index + a.count; ++slotA)
+          for (std::uint32_t slotB = i == j ? slotA + 1 : b.index; slotB < b.index + b.count; ++slotB)
+            visit(order_[slotA], slotA, order_[slotB], slotB);
+      } else if (i == j) {  // a node against itself: each child against itself, and the two against each other
+        stack.push_back({a.index, a.index});
+        stack.push_back({a.index + 1, a.index + 1});
+        stack.push_back({a.index, a.index + 1});
+      } else if (!a.leaf()) {
+        stack.push_back({a.index, j});
+        stack.push_back({a.index + 1, j});
+      } else {
+        stack.push_back({i, b.index});
+        stack.push_back({i, b.index + 1});
+      }
+    }
+  }
   const std::vector<std::uint32_t>& order() const { return order_; }  // primitive ids by leaf
   int depth() const { return depth_; }                                // root alone = 1
   bool empty() const { return order_.empty(); }

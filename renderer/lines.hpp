@@ -114,6 +114,9 @@ struct LineSet {
   std::vector<LineSegment> segments;
   // A drawing of curves (the floating horizon's): one per edge. Empty otherwise.
   std::vector<CurvePlace> curvePlaces;
+  // Why the drawing may be wrong somewhere, when the algorithm knows it may be ("" when
+  // it is exact wherever its method is); hsr render prints it as a warning.
+  std::string partial;
 };
 
 // Per edge, its projected length and its visible sub-intervals merged (the line error's

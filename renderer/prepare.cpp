@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <span>
+#include <unordered_map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -212,6 +213,25 @@ const EdgeAdjacency& PreparedScene::edgeAdjacency(Stats& stats) const {
     stats.add("mesh edges built", static_cast<std::int64_t>(edgeAdjacency_.edges.size()));
   });
   return edgeAdjacency_;
+}
+
+const std::vector<std::uint32_t>& PreparedScene::distinctPoints(Stats& stats) const {
+  std::call_once(pointsBuilt_, [&] {
+    PhaseTimer timer(stats, "distinct points");
+    const auto hash = [](const dvec3& p) {
+      const std::hash<double> h;
+      return h(p.x) ^ (h(p.y) * 0x9e3779b97f4a7c15ull) ^ (h(p.z) * 0xc2b2ae3d27d4eb4full);
+    };
+    std::unordered_map<dvec3, std::uint32_t, decltype(hash)> firstAt(positions_.size(), hash);
+    distinctPoints_.resize(positions_.size());
+    for (std::uint32_t v = 0; v < positions_.size(); ++v) distinctPoints_[v] = firstAt.try_emplace(positions_[v], v).first->second;
+  });
+  return distinctPoints_;
+}
+
+const SurfaceIntersections& PreparedScene::surfaceIntersections(Stats& stats) const {
+  std::call_once(intersectionsBuilt_, [&] { surfaceIntersections_ = findSurfaceIntersections(*this, stats); });
+  return surfaceIntersections_;
 }
 
 const std::vector<PreparedScene::LeafTriangle>& PreparedScene::leafTriangles(Stats& stats) const {

@@ -9,6 +9,7 @@
 
 #include "renderer/adjacency.hpp"
 #include "renderer/bvh.hpp"
+#include "renderer/intersections.hpp"
 #include "renderer/rounding.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/stats.hpp"
@@ -109,6 +110,15 @@ class PreparedScene {
   // "edge adjacency", counter "mesh edges built").
   const EdgeAdjacency& edgeAdjacency(Stats& stats) const;
 
+  // Per vertex, the first vertex at exactly the same position: vertices of different
+  // meshes at one place (solids touching at a corner or along an edge) are one point.
+  // Built on first use (phase "distinct points").
+  const std::vector<std::uint32_t>& distinctPoints(Stats& stats) const;
+
+  // Where the surfaces pass through one another (renderer/intersections.hpp), built on
+  // first use.
+  const SurfaceIntersections& surfaceIntersections(Stats& stats) const;
+
  private:
   const Scene* scene_;
   int width_, height_;
@@ -124,6 +134,10 @@ class PreparedScene {
   mutable Bvh objectBvh_;
   mutable std::once_flag adjacencyBuilt_;
   mutable EdgeAdjacency edgeAdjacency_;
+  mutable std::once_flag pointsBuilt_;
+  mutable std::vector<std::uint32_t> distinctPoints_;
+  mutable std::once_flag intersectionsBuilt_;
+  mutable SurfaceIntersections surfaceIntersections_;
 };
 
 }  // namespace hsr

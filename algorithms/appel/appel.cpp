@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <unordered_map>
 
 #include "renderer/camera.hpp"
 #include "renderer/error.hpp"
@@ -13,50 +12,8 @@
 
 namespace hsr::appel {
 
-namespace {
-
-// The first mesh edge that passes through a triangle of another object copy, as
-// "object 'a' passes through object 'b'", or "". (Strictly through: touching is fine.)
-std::string interpenetration(const PreparedScene& scene) {
-  if (scene.instances().size() < 2) return "";
-  Stats ignored;
-  const EdgeAdjacency& adjacency = scene.edgeAdjacency(ignored);
-  const Bvh& bvh = scene.triangleBvh(ignored);
-  ExactPredicates exact;
-  for (const MeshEdge& edge : adjacency.edges) {
-    const dvec3 &p = scene.positions()[edge.a], &q = scene.positions()[edge.b];
-    const dvec3 lo = glm::min(p, q), hi = glm::max(p, q);
-    const Instance& own = scene.instanceOf(edge.faces[0]);
-    const Instance* other = nullptr;
-    bvh.visitPrimitives(
-        [&](const BvhNode& node) {
-          for (int axis = 0; axis < 3; ++axis)
-            if (double(node.bounds[0][axis]) > hi[axis] || double(node.bounds[1][axis]) < lo[axis]) return false;
-          return other == nullptr;
-        },
-        [&](std::uint32_t t, std::uint32_t) {
-          const Instance& owner = scene.instanceOf(t);
-          if (&owner == &own || other) return;
-          const Triangle& tri = scene.triangles()[t];
-          const dvec3 &a = scene.positions()[tri[0]], &b = scene.positions()[tri[1]], &c = scene.positions()[tri[2]];
-          if (exact.orient3d(a, b, c, p) * exact.orient3d(a, b, c, q) >= 0) return;
-          const int s0 = exact.orient3d(p, q, a, b), s1 = exact.orient3d(p, q, b, c), s2 = exact.orient3d(p, q, c, a);
-          if (s0 != 0 && s0 == s1 && s1 == s2) other = &owner;
-        });
-    if (other)
-      return "object '" + scene.scene().objects[own.object].name + "' passes through object '" +
-             scene.scene().objects[other->object].name + "'";
-  }
-  return "";
-}
-
-}  // namespace
-
 std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
   if (std::string nearPlane = nearPlaneRefusal(scene); !nearPlane.empty()) return nearPlane;
-  // An edge entering another body changes its QI where no contour is crossed.
-  if (std::string through = interpenetration(scene); !through.empty())
-    return through + "; quantitative invisibility changes only at contours, so Appel needs bodies that do not interpenetrate";
   if (knobs.surfaces == Surfaces::any) return "";
   Stats ignored;
   const EdgeAdjacency& adjacency = scene.edgeAdjacency(ignored);
@@ -80,13 +37,6 @@ namespace {
 
 constexpr std::uint32_t kUnknown = std::numeric_limits<std::uint32_t>::max();
 
-struct PositionHash {
-  std::size_t operator()(const std::array<double, 3>& p) const {
-    const std::hash<double> hash;
-    return hash(p[0]) ^ (hash(p[1]) * 0x9e3779b97f4a7c15ull) ^ (hash(p[2]) * 0xc2b2ae3d27d4eb4full);
-  }
-};
-
 // An edge where the count of surfaces changes in the image: the counted faces around it
 // do not balance (a contour: one front face; with every face counted, also a boundary or
 // a non-manifold edge). The crossing test needs its ends and, per counted face, on which
@@ -98,9 +48,12 @@ struct Contour {
 };
 
 // A change of QI along an edge.
+// A change of QI along an edge: by `change`, or, after a degenerate piercing
+// (intersections.hpp), to whatever a fresh count finds.
 struct Crossing {
   double u;
   int change;
+  bool recount = false;
 };
 
 class QuantitativeInvisibility {
@@ -110,7 +63,9 @@ class QuantitativeInvisibility {
         camera_(scene.scene().camera, scene.width(), scene.height()),
         viewer_(camera_),
         stats_(stats),
-        adjacency_(scene.edgeAdjacency(stats)) {
+        adjacency_(scene.edgeAdjacency(stats)),
+        point_(scene.distinctPoints(stats)),
+        intersections_(scene.surfaceIntersections(stats)) {
     // Step 1: facing, feature edges, contours.
     facing_ = viewFacing(scene, camera_, stats);
     countEveryFace_ = knobs.surfaces == Surfaces::any;
@@ -133,7 +88,19 @@ class QuantitativeInvisibility {
       contours_.push_back(std::move(contour));
     }
     stats.add("contour edges", static_cast<std::int64_t>(contours_.size()));
-    // The grid covers every feature edge's projection and lists the contours through each cell.
+    // Vertices of different meshes at the same position (solids touching at a corner or
+    // along an edge) are one point: the faces of both meet there, and a contour ending
+    // there ends at the walk's vertex.
+    std::vector<Triangle> welded(scene.triangles().begin(), scene.triangles().end());
+    for (Triangle& t : welded)
+      for (std::uint32_t& v : t) v = point_[v];
+    aroundPoint_ = buildVertexTriangles(point_.size(), welded);
+    // Where surfaces pass through each other (renderer/intersections.hpp): the lines where
+    // faces cross join the drawing's edges.
+    firstJunction_ = static_cast<std::uint32_t>(lines_.edges.size());
+    for (const Junction& junction : intersections_.junctions)
+      lines_.edges.push_back(projectEdge(camera_, junction.from, junction.to, EdgeKind::junction));
+    // The grid covers every edge's projection and lists the contours through each cell.
     dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const FeatureEdge& edge : lines_.edges) {
       lo = glm::min(lo, glm::min(edge.pixelFrom, edge.pixelTo));
@@ -143,30 +110,20 @@ class QuantitativeInvisibility {
     grid_->bin(contours_.size(), [&](std::size_t i, auto&& add) { grid_->cellsOnSegment(contours_[i].pixelFrom, contours_[i].pixelTo, add); });
     stats.add("grid cells", static_cast<std::int64_t>(grid_->cellCount()));
     seen_.assign(contours_.size(), kUnknown);
-    // Vertices of different meshes at the same position (solids touching at a corner or
-    // along an edge) are one point: the faces of both meet there, and a contour ending
-    // there ends at the walk's vertex.
-    std::unordered_map<std::array<double, 3>, std::uint32_t, PositionHash> firstAt;
-    point_.resize(scene.positions().size());
-    for (std::uint32_t v = 0; v < point_.size(); ++v) point_[v] = firstAt.try_emplace({position(v).x, position(v).y, position(v).z}, v).first->second;
-    std::vector<Triangle> welded(scene.triangles().begin(), scene.triangles().end());
-    for (Triangle& t : welded)
-      for (std::uint32_t& v : t) v = point_[v];
-    aroundPoint_ = buildVertexTriangles(point_.size(), welded);
-    // Feature edges around each vertex, for the walk.
+    // Mesh edges around each vertex, for the walk.
     edgesAt_.resize(scene.positions().size());
-    for (std::uint32_t e = 0; e < lines_.edges.size(); ++e) {
+    for (std::uint32_t e = 0; e < firstJunction_; ++e) {
       edgesAt_[lines_.edges[e].vertexFrom].push_back(e);
       edgesAt_[lines_.edges[e].vertexTo].push_back(e);
     }
   }
 
   LineSet run() {
-    // Steps 2 and 3, once per connected set of feature edges.
+    // Steps 2 and 3, once per connected set of mesh edges.
     baseQi_.assign(scene_.positions().size(), kUnknownQi);
     std::vector<std::vector<LineSegment>> pieces(lines_.edges.size());
-    std::vector<std::uint8_t> walked(lines_.edges.size(), 0);
-    for (std::uint32_t seed = 0; seed < lines_.edges.size(); ++seed) {
+    std::vector<std::uint8_t> walked(firstJunction_, 0);
+    for (std::uint32_t seed = 0; seed < firstJunction_; ++seed) {
       if (walked[seed]) continue;
       const std::uint32_t start = startVertex(lines_.edges[seed].vertexFrom);
       std::vector<std::uint32_t> frontier = {start};
@@ -180,6 +137,9 @@ class QuantitativeInvisibility {
         }
       }
     }
+    // Step 4: the intersection lines.
+    for (std::uint32_t e = firstJunction_; e < lines_.edges.size(); ++e)
+      drawJunction(e, intersections_.junctions[e - firstJunction_], pieces[e]);
     for (auto& edgePieces : pieces) lines_.segments.insert(lines_.segments.end(), edgePieces.begin(), edgePieces.end());
     stats_.add("crossings tested", crossingsTested_);
     stats_.add("QI changes", qiChanges_);
@@ -187,6 +147,13 @@ class QuantitativeInvisibility {
     stats_.add("QI mismatches", mismatches_);
     stats_.add("negative QI", negativeQi_);
     stats_.add("exact fall-backs", viewer_.exact().exactFallbacks);
+    // A count that does not close is a configuration the tie rules do not settle (an edge
+    // passing exactly through a corner of another surface): say so rather than draw it
+    // silently wrong.
+    if (mismatches_ > 0 || negativeQi_ > 0)
+      lines_.partial = "appel: " + std::to_string(mismatches_) + " edges ended with another QI than their vertex had and " +
+                       std::to_string(negativeQi_) + " pieces got a negative QI (surfaces touching exactly at a corner or an edge); "
+                       "the drawing may be wrong near them";
     return std::move(lines_);
   }
 
@@ -213,7 +180,10 @@ class QuantitativeInvisibility {
     for (std::size_t i = 0;; ++i) {
       const std::uint32_t vertex = tried[i];
       bool degenerate = false;
-      const int qi = frontFacesBefore(vertex, degenerate);
+      const int qi = facesBefore(position(vertex), degenerate, [&](std::uint32_t face) {
+        const Triangle& corners = scene_.triangles()[face];
+        return std::find(corners.begin(), corners.end(), vertex) != corners.end();
+      });
       stats_.add("start-vertex ray casts");
       for (const std::uint32_t e : edgesAt_[vertex]) {
         const std::uint32_t other = lines_.edges[e].vertexFrom == vertex ? lines_.edges[e].vertexTo : lines_.edges[e].vertexFrom;
@@ -227,10 +197,11 @@ class QuantitativeInvisibility {
     }
   }
 
-  // The counted faces crossed by the line of sight to a vertex before it reaches the
-  // vertex; the faces around the vertex are the walk's to count (vertexHiding).
-  int frontFacesBefore(std::uint32_t vertex, bool& degenerate) {
-    const dvec3& v = position(vertex);
+  // The counted faces crossed by the line of sight to a point before it reaches it, but
+  // those that skip() names: at a vertex, the faces around it, which are the walk's to
+  // count (vertexHiding); on an intersection line, the two faces it lies on.
+  template <typename Skip>
+  int facesBefore(const dvec3& v, bool& degenerate, Skip&& skip) {
     const Ray ray = camera_.perspective() ? Ray{camera_.camera().eye, v - camera_.camera().eye} : Ray{v, -camera_.forward()};
     const double reach = camera_.perspective() ? 1.0 : std::numeric_limits<double>::infinity();
     const RayBoxTest boxTest(ray.origin, ray.direction);
@@ -240,9 +211,8 @@ class QuantitativeInvisibility {
         [&](const BvhNode& node) { return boxTest.entry(node, reach) != std::numeric_limits<double>::infinity(); },
         [&](std::uint32_t triangle, std::uint32_t slot) {
           const auto& t = triangles[slot];
-          const Triangle& corners = scene_.triangles()[triangle];
-          if (!counted(triangle) || std::find(corners.begin(), corners.end(), vertex) != corners.end()) return;
-          // The vertex must lie behind the plane, on the side away from the viewer.
+          if (!counted(triangle) || skip(triangle)) return;
+          // The point must lie behind the plane, on the side away from the viewer.
           if (viewer_.exact().orient3d(t.a, t.b, t.c, v) != -facing_[triangle]) return;
           const int sides[3] = {viewer_.side(v, t.a, t.b), viewer_.side(v, t.b, t.c), viewer_.side(v, t.c, t.a)};
           const bool positive = sides[0] >= 0 && sides[1] >= 0 && sides[2] >= 0;
@@ -286,10 +256,11 @@ class QuantitativeInvisibility {
 
   // Step 3 along one edge: its QI changes where its projection crosses a contour edge in
   // front of it, by the faces of the contour whose side it enters less those whose side
-  // it leaves. A point on a contour's line counts as behind all of its faces (closed, as
-  // the line reference's triangles are), and a contour end on the edge's line counts as
-  // on its positive side, so a contour chain through that line is crossed once, not twice.
-  std::vector<Crossing> crossings(std::uint32_t e) {
+  // it leaves, and where it passes through a counted face (addPiercings). A point on a
+  // contour's line counts as behind all of its faces (closed, as the line reference's
+  // triangles are), and a contour end on the edge's line counts as on its positive side,
+  // so a contour chain through that line is crossed once, not twice.
+  std::vector<Crossing> changesAlong(std::uint32_t e) {
     const FeatureEdge& edge = lines_.edges[e];
     const dvec3 &p = edge.from, &q = edge.to;
     std::vector<Crossing> found;
@@ -297,8 +268,17 @@ class QuantitativeInvisibility {
       if (seen_[index] == e) return;
       seen_[index] = e;
       const Contour& c = contours_[index];
-      const std::uint32_t p0 = point_[edge.vertexFrom], p1 = point_[edge.vertexTo];
-      if (point_[c.from] == p0 || point_[c.from] == p1 || point_[c.to] == p0 || point_[c.to] == p1) return;  // meets at a vertex
+      if (edge.vertexFrom != FeatureEdge::kNone) {  // a mesh edge
+        const std::uint32_t p0 = point_[edge.vertexFrom], p1 = point_[edge.vertexTo];
+        if (point_[c.from] == p0 || point_[c.from] == p1 || point_[c.to] == p0 || point_[c.to] == p1) return;  // meets at a vertex
+      } else {  // an intersection line: it ends on a side of one of its faces, and passes behind none of them
+        const Junction& junction = intersections_.junctions[e - firstJunction_];
+        if (hasSide(junction.faces[0], c.from, c.to) || hasSide(junction.faces[1], c.from, c.to)) return;
+      }
+      // A first look in the image: projections that clearly miss each other (a margin of a
+      // millionth of their sizes, far above the projection's rounding) cannot cross, and
+      // the exact signs below would say so.
+      if (clearlyApart(edge.pixelFrom, edge.pixelTo, c.pixelFrom, c.pixelTo)) return;
       ++crossingsTested_;
       const dvec3 &r = position(c.from), &s = position(c.to);
       const int sideOfR = viewer_.side(p, q, r), sideOfS = viewer_.side(p, q, s);
@@ -314,9 +294,68 @@ class QuantitativeInvisibility {
       if (order == 0 || order == spread) return;
       found.push_back({crossingParameter(edge, c), change});
     }); });
+    if (edge.meshEdge != FeatureEdge::kNone) {
+      addPiercings(edge, intersections_.byEdge[edge.meshEdge], edge.vertexFrom != adjacency_.edges[edge.meshEdge].a, found);
+    } else {
+      // Its two faces hold it, and their neighbours across a side meet it only at its ends.
+      const Junction& junction = intersections_.junctions[e - firstJunction_];
+      std::vector<std::uint32_t> skip;
+      for (const std::uint32_t face : junction.faces)
+        for (int k = 0; k < 3; ++k) {
+          const Triangle& t = scene_.triangles()[face];
+          for (const std::uint32_t other : aroundPoint_.around(point_[t[std::size_t(k)]]))
+            if (hasSide(other, t[std::size_t(k)], t[std::size_t(k + 1) % 3])) skip.push_back(other);
+        }
+      const double rounding = std::max(scene_.instanceOf(junction.faces[0]).placementRounding,
+                                       scene_.instanceOf(junction.faces[1]).placementRounding);
+      addPiercings(edge, segmentPiercings(scene_, edge.from, edge.to, rounding, skip), false, found);
+    }
     std::sort(found.begin(), found.end(), [](const Crossing& a, const Crossing& b) { return a.u < b.u; });
     qiChanges_ += static_cast<std::int64_t>(found.size());
     return found;
+  }
+
+  // Where an edge passes through a counted face (intersections.hpp), that face lies in
+  // front of its points on one side and not on the other: +1 going behind it, -1 coming
+  // out. A point on the face's plane is not behind it (a face through a point does not
+  // hide it, as in the line reference). After a degenerate piercing the QI is counted
+  // afresh. `reversed`: the piercings' parameter runs from the edge's end to its start.
+  void addPiercings(const FeatureEdge& edge, const std::vector<Piercing>& piercings, bool reversed, std::vector<Crossing>& found) {
+    for (const Piercing& piercing : piercings) {
+      if (!counted(piercing.face)) continue;
+      const double u = edge.projectedParameter(reversed ? 1 - piercing.s : piercing.s);
+      if (piercing.degenerate) {
+        found.push_back({u, 0, true});
+        continue;
+      }
+      const bool firstBehind = piercing.first * facing_[piercing.face] < 0;
+      const bool startBehind = reversed ? !firstBehind : firstBehind;
+      found.push_back({u, startBehind ? -1 : 1});
+    }
+  }
+
+  // Whether segments ab and cd, in pixels, are certainly disjoint: their boxes are apart,
+  // or c and d lie on the same side of line ab, each beyond the margin.
+  static bool clearlyApart(const dvec2& a, const dvec2& b, const dvec2& c, const dvec2& d) {
+    const double margin = 1e-6 * (glm::length(b - a) + glm::length(d - c)) + 1e-9;
+    if (std::max(c.x, d.x) < std::min(a.x, b.x) - margin || std::min(c.x, d.x) > std::max(a.x, b.x) + margin ||
+        std::max(c.y, d.y) < std::min(a.y, b.y) - margin || std::min(c.y, d.y) > std::max(a.y, b.y) + margin)
+      return true;
+    const dvec2 along = b - a;
+    const double sideOfC = along.x * (c.y - a.y) - along.y * (c.x - a.x), sideOfD = along.x * (d.y - a.y) - along.y * (d.x - a.x);
+    const double threshold = margin * glm::length(along);
+    return (sideOfC > threshold && sideOfD > threshold) || (sideOfC < -threshold && sideOfD < -threshold);
+  }
+
+  // Whether the face has a side from the point of vertex a to the point of vertex b.
+  bool hasSide(std::uint32_t face, std::uint32_t a, std::uint32_t b) const {
+    const Triangle& t = scene_.triangles()[face];
+    const auto has = [&](std::uint32_t v) { return point_[t[0]] == point_[v] || point_[t[1]] == point_[v] || point_[t[2]] == point_[v]; };
+    return has(a) && has(b);
+  }
+
+  static bool onJunction(const Junction& junction, std::uint32_t face) {
+    return face == junction.faces[0] || face == junction.faces[1];
   }
 
   static double crossingParameter(const FeatureEdge& edge, const Contour& contour) {
@@ -326,32 +365,77 @@ class QuantitativeInvisibility {
     return std::clamp((offset.x * dq.y - offset.y * dq.x) / denominator, 0.0, 1.0);
   }
 
+  // The QI of a piece of edge e, [from, to] in u, counted afresh by a ray cast to a
+  // point inside it, not counting the faces the edge lies on (skip). A sight line grazing
+  // a side is passed over for another point, as at the start vertices.
+  template <typename Skip>
+  int recount(std::uint32_t e, double from, double to, Skip&& skip) {
+    const FeatureEdge& edge = lines_.edges[e];
+    int qi = 0;
+    for (const double at : {0.5, 0.3, 0.7}) {
+      bool degenerate = false;
+      const double s = edge.edgeParameter(from + at * (to - from));
+      qi = facesBefore(edge.from + s * (edge.to - edge.from), degenerate, skip);
+      stats_.add("recount ray casts");
+      if (!degenerate) return qi;
+    }
+    stats_.add("degenerate recounts");
+    return qi;
+  }
+
+  // The pieces of edge e between its changes (sorted), with their QIs, filled outward
+  // from one piece whose QI is known: the first (`anchor` 0) or the last (`anchor`
+  // kLastPiece) with QI `known`, or, without `known`, the longest, counted afresh.
+  // Returns the QIs of the first and the last piece.
+  static constexpr std::size_t kLastPiece = std::numeric_limits<std::size_t>::max();
+  template <typename Skip>
+  std::pair<int, int> appendPieces(std::uint32_t e, const std::vector<Crossing>& changes, std::size_t anchor, std::optional<int> known,
+                                   Skip&& skip, std::vector<LineSegment>& pieces) {
+    std::vector<double> bounds = {0.0};
+    for (const Crossing& crossing : changes) bounds.push_back(crossing.u);
+    bounds.push_back(1.0);
+    const std::size_t count = changes.size() + 1;
+    if (anchor == kLastPiece) anchor = count - 1;
+    if (!known)
+      for (std::size_t piece = 0; piece < count; ++piece)
+        if (bounds[piece + 1] - bounds[piece] > bounds[anchor + 1] - bounds[anchor]) anchor = piece;
+    std::vector<int> qi(count);
+    qi[anchor] = known ? *known : recount(e, bounds[anchor], bounds[anchor + 1], skip);
+    for (std::size_t piece = anchor + 1; piece < count; ++piece) {  // forward, across changes[piece - 1]
+      const Crossing& between = changes[piece - 1];
+      qi[piece] = between.recount ? recount(e, bounds[piece], bounds[piece + 1], skip) : qi[piece - 1] + between.change;
+    }
+    for (std::size_t piece = anchor; piece-- > 0;) {  // backward, across changes[piece]
+      const Crossing& between = changes[piece];
+      qi[piece] = between.recount ? recount(e, bounds[piece], bounds[piece + 1], skip) : qi[piece + 1] - between.change;
+    }
+    for (std::size_t piece = 0; piece < count; ++piece) {
+      if (piece > 0 && qi[piece] == qi[piece - 1]) {  // a recount that found no change: one piece
+        pieces.back().end = bounds[piece + 1];
+        continue;
+      }
+      pieces.push_back({e, bounds[piece], bounds[piece + 1], qi[piece]});
+      negativeQi_ += qi[piece] < 0;
+    }
+    return {qi.front(), qi.back()};
+  }
+
   // Walks edge e from `from` (whose QI is known) and returns its other vertex when that
   // vertex's QI was not known before, else kUnknown.
   std::uint32_t walkEdge(std::uint32_t e, std::uint32_t from, std::vector<LineSegment>& pieces) {
     const FeatureEdge& edge = lines_.edges[e];
     const bool forward = edge.vertexFrom == from;
     const std::uint32_t to = forward ? edge.vertexTo : edge.vertexFrom;
-    const std::vector<Crossing> changes = crossings(e);
-    int total = 0;
-    for (const Crossing& crossing : changes) total += crossing.change;
-    // The QI just after `from`, then at the edge's own start (u = 0).
+    // The QI just after `from`: its own, plus the faces around it that hide the edge's start.
     const int leaving = baseQi_[from] + vertexHiding(from, to);
-    int qi = forward ? leaving : leaving - total;
-    double u = 0;
-    for (const Crossing& crossing : changes) {
-      pieces.push_back({e, u, crossing.u, qi});
-      negativeQi_ += qi < 0;
-      qi += crossing.change;
-      u = crossing.u;
-    }
-    pieces.push_back({e, u, 1.0, qi});
-    negativeQi_ += qi < 0;
+    // A recount along the edge must not count the faces the edge lies on.
+    const auto onEdge = [&](std::uint32_t face) { return hasSide(face, from, to); };
+    const auto [atStart, atEnd] = appendPieces(e, changesAlong(e), forward ? 0 : kLastPiece, leaving, onEdge, pieces);
+    const int arriving = forward ? atEnd : atStart;
     // The QI just before `to`, less what the faces around `to` add: the QI of `to` itself.
-    const int atEnd = forward ? qi : leaving - total;
     const int hiding = vertexHiding(to, from);
     vertexCorrections_ += hiding != 0;
-    const int base = atEnd - hiding;
+    const int base = arriving - hiding;
     if (baseQi_[to] == kUnknownQi) {
       baseQi_[to] = base;
       return to;
@@ -360,19 +444,28 @@ class QuantitativeInvisibility {
     return kUnknown;
   }
 
+  // Step 4: an intersection line belongs to no walk (its ends are no vertices), so the QI
+  // of its longest piece is counted by a ray cast, not counting the two faces it lies on,
+  // and changes along it as along any edge.
+  void drawJunction(std::uint32_t e, const Junction& junction, std::vector<LineSegment>& pieces) {
+    appendPieces(e, changesAlong(e), 0, std::nullopt, [&](std::uint32_t face) { return onJunction(junction, face); }, pieces);
+  }
+
   const PreparedScene& scene_;
   CameraTransform camera_;
   ViewerPredicates viewer_;
   Stats& stats_;
   const EdgeAdjacency& adjacency_;
+  const std::vector<std::uint32_t>& point_;  // per vertex: the first vertex at the same position
+  const SurfaceIntersections& intersections_;
   std::vector<std::int8_t> facing_;
   bool countEveryFace_ = false;
   LineSet lines_;
   std::vector<Contour> contours_;
   std::optional<ImageGrid> grid_;
   std::vector<std::uint32_t> seen_;  // per contour: the last edge that tested it
-  std::vector<std::vector<std::uint32_t>> edgesAt_;
-  std::vector<std::uint32_t> point_;  // per vertex: the first vertex at the same position
+  std::vector<std::vector<std::uint32_t>> edgesAt_;  // per vertex: the mesh edges of the drawing there
+  std::uint32_t firstJunction_ = 0;  // lines_.edges from here on are intersection lines
   VertexTriangles aroundPoint_;      // the triangles around each such point
   std::vector<int> baseQi_;  // per vertex: its QI, not counting the faces around it
   std::int64_t crossingsTested_ = 0, qiChanges_ = 0, vertexCorrections_ = 0, mismatches_ = 0, negativeQi_ = 0;

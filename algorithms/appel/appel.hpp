@@ -13,8 +13,11 @@
 //   3. Propagate: walk edge by edge; along each edge, find where its projection crosses a
 //      contour edge that lies in front of it (an image-plane grid of contour edges keeps
 //      the search short) and add +1 entering the region behind that contour's front face,
-//      -1 leaving it; at each vertex, correct for the faces around the vertex that hide one
+//      -1 leaving it, and where it passes through a counted face, +1 going behind it, -1
+//      coming out; at each vertex, correct for the faces around the vertex that hide one
 //      edge's end or the next edge's start.
+//   4. Intersection lines: where two faces cross, the line between them is drawn too,
+//      its QI counted by a ray cast to its longest piece, then changing as along any edge.
 // Every decision is an exact predicate on the scene's doubles (renderer/predicates), so
 // the QI is exact wherever it is defined; where an edge's projection runs exactly along a
 // contour, or through a contour vertex, the rules below settle it the way the line
@@ -24,10 +27,11 @@
 // run it in opposite directions), all beyond the near plane; anything else is refused
 // with the first edge that breaks the assumption, unless surfaces=any (below) is asked
 // for. The contours are then every edge where the counted faces around it do not
-// balance: a rim, a non-manifold fan. Bodies must not interpenetrate (an
-// edge passing into another body changes its QI at no contour, which the walk cannot
-// see): a scene where an edge passes through another object's triangle is refused. A
-// mesh passing through itself is not detected; the line reference's error shows it.
+// balance: a rim, a non-manifold fan. Surfaces may pass through each other and through
+// themselves (renderer/intersections.hpp finds where). Where an edge passes exactly
+// through a side or corner of a face, or ends on its plane, the QI after that point is
+// counted afresh by a ray cast; a count that still does not close labels the drawing
+// partial (LineSet::partial).
 // Output: a LineSet of the feature edges (renderer/lines) with each piece's QI.
 #pragma once
 
@@ -55,9 +59,10 @@ struct Knobs {
 std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 
 // Stats: "contour edges", "grid cells", "crossings tested", "QI changes", "vertex
-// corrections", "start-vertex ray casts", "QI mismatches" (an edge's end disagreeing with
-// the QI its vertex already has: 0 unless a degenerate start ray was used),
-// "degenerate start rays", "negative QI".
+// corrections", "start-vertex ray casts", "recount ray casts" (steps 3 and 4),
+// "QI mismatches" (an edge's end disagreeing with the QI its vertex already has),
+// "degenerate start rays", "degenerate recounts", "negative QI", and the surface
+// intersections' counters on first use.
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats);
 
 }  // namespace hsr::appel
