@@ -45,6 +45,13 @@ class ExactSum {
       if (terms_[i] != 0) return terms_[i] > 0 ? 1 : -1;
     return 0;
   }
+  // The sum, rounded: the components do not overlap and grow, so adding them smallest
+  // first loses less than an ulp of the result.
+  double value() const {
+    double sum = 0;
+    for (int i = 0; i < count_; ++i) sum += terms_[i];
+    return sum;
+  }
 
  private:
   void add(double value) {
@@ -94,16 +101,32 @@ int ExactPredicates::facing(const dvec3& a, const dvec3& b, const dvec3& c, cons
   return orient3dOfVectors(a, b, c, direction, false);
 }
 
-// det[b - a, c - a, w], where w is d - a for a point d, or d itself for a direction.
-// A direction carries no rounding of its own, so the orient3d bound covers both.
+double ExactPredicates::orient3dValue(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d) {
+  if (d == a || d == b || d == c) {  // as in orient3d: exactly zero, which no bound certifies
+    ++evaluations;
+    return 0;
+  }
+  return orient3dDeterminant(a, b, c, d, true, 1e-12);
+}
+
 int ExactPredicates::orient3dOfVectors(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint) {
+  const double det = orient3dDeterminant(a, b, c, d, dIsPoint, 1.0);
+  return det > 0 ? 1 : det < 0 ? -1 : 0;
+}
+
+// det[b - a, c - a, w], where w is d - a for a point d, or d itself for a direction (a
+// direction carries no rounding of its own, so the orient3d bound covers both): the
+// double evaluation when its error bound is under `relativeBound` of it, else the exact
+// value rounded to double, whose sign is the exact sign.
+double ExactPredicates::orient3dDeterminant(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint,
+                                            double relativeBound) {
   ++evaluations;
   const dvec3 u = b - a, v = c - a, w = dIsPoint ? d - a : d;
   const double m0 = v.y * w.z, m1 = v.z * w.y, m2 = v.x * w.z, m3 = v.z * w.x, m4 = v.x * w.y, m5 = v.y * w.x;
   const double det = u.x * (m0 - m1) - u.y * (m2 - m3) + u.z * (m4 - m5);
   const double permanent = std::abs(u.x) * (std::abs(m0) + std::abs(m1)) + std::abs(u.y) * (std::abs(m2) + std::abs(m3)) +
                            std::abs(u.z) * (std::abs(m4) + std::abs(m5));
-  if (std::abs(det) > kOrient3dBound * permanent) return det > 0 ? 1 : -1;
+  if (kOrient3dBound * permanent < relativeBound * std::abs(det)) return det;
   dvec3 eu(0), ev(0), ew = d;
   bool exact = true;
   for (int i = 0; i < 3; ++i) {
@@ -118,7 +141,7 @@ int ExactPredicates::orient3dOfVectors(const dvec3& a, const dvec3& b, const dve
     sum.addProduct(eu.y, ev.z, ew.x);
     sum.addProduct(eu.z, ev.x, ew.y);
     sum.addProduct(-eu.z, ev.y, ew.x);
-    return sum.sign();
+    return sum.value();
   }
   ++exactFallbacks;
   mpq_class qu[3], qv[3], qw[3];
@@ -129,7 +152,8 @@ int ExactPredicates::orient3dOfVectors(const dvec3& a, const dvec3& b, const dve
   }
   const mpq_class value = qu[0] * (qv[1] * qw[2] - qv[2] * qw[1]) - qu[1] * (qv[0] * qw[2] - qv[2] * qw[0]) +
                           qu[2] * (qv[0] * qw[1] - qv[1] * qw[0]);
-  return signOf(value);
+  // GMP rounds toward zero; a nonzero value far from underflow keeps its sign.
+  return sgn(value) == 0 ? 0.0 : value.get_d();
 }
 
 }  // namespace hsr

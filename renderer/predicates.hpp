@@ -27,11 +27,19 @@ class ExactPredicates {
   // relative to a direction (0: the plane is parallel to it).
   int facing(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& direction);
 
+  // The value of orient3d's determinant, to within a few units in its own last place
+  // (its sign is orient3d's): the double evaluation where its error bound is under 1e-12
+  // of it, else the exact value rounded. For placing where a segment crosses a plane:
+  // the heights of its ends, so computed, have opposite signs and no cancellation between
+  // them, so the crossing is as accurate as its ends however thin the cut.
+  double orient3dValue(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d);
+
   std::int64_t evaluations = 0;     // predicate calls
   std::int64_t exactFallbacks = 0;  // calls that needed rational arithmetic
 
  private:
   int orient3dOfVectors(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint);
+  double orient3dDeterminant(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint, double relativeBound);
 };
 
 }  // namespace hsr

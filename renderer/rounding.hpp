@@ -7,8 +7,7 @@
 // coplanar in world space only up to the rounding of their placement
 // (Instance::placementRounding) and of the file they came from (Mesh::statedRounding).
 // heightUncertainty bounds how far that rounding can move a point's height above a
-// plane, so a test can treat a point within it as on the plane, knowing that nothing
-// farther is.
+// plane; RoundedPlane says whether a point lies on a plane up to that rounding.
 #pragma once
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include <limits>
 
 #include "renderer/math.hpp"
+#include "renderer/predicates.hpp"
 
 namespace hsr {
 
@@ -49,37 +49,44 @@ inline double heightUncertainty(const dvec3& a, const dvec3& b, const dvec3& c, 
   return 2 * std::sqrt(3.0) * (pointRounding + planeRounding * lever) + arithmetic;
 }
 
-// A triangle's plane, ready to say of many points whether they lie on it up to rounding:
-// a first look with a cheap upper bound of heightUncertainty settles the points clearly
-// off it, and heightUncertainty itself decides the rest.
+// A triangle's plane, ready to say of many points whether they lie on it up to the
+// rounding their coordinates carry, in two senses:
+//   holds: within kRoundings times that rounding (the plane's and the point's), measured
+//     by the exact height (ExactPredicates::orient3dValue). Tight, for shortcuts that skip
+//     exact work: the painter's "coplanar, do not split" and Appel's "touching, not
+//     crossing". Eight: a lever of up to three for the plane's corners, doubled for what
+//     first order leaves out. No more: a plane through a sliver is known only roughly,
+//     and taking points farther out as on it would leave a polygon that crosses the plane
+//     unsplit, painted in the wrong order over pixels the rounding cannot explain.
+//   couldHold: within heightUncertainty, the lever of the point's distance from the
+//     triangle included. Generous, for accepting what was meant: Roberts takes a body as
+//     convex when every vertex could lie on or inside every face plane.
 class RoundedPlane {
  public:
+  static constexpr double kRoundings = 8;
+
   // Each coordinate of a, b and c may be off by up to `rounding`.
   RoundedPlane(const dvec3& a, const dvec3& b, const dvec3& c, double rounding)
-      : a_(a), b_(b), c_(c), normal_(glm::cross(b - a, c - a)), rounding_(rounding) {
-    normalLength_ = glm::length(normal_);
-    center_ = (a + b + c) / 3.0;
-    radius_ = std::max({glm::length(a - center_), glm::length(b - center_), glm::length(c - center_)});
-    sides_ = glm::length(b - a) * glm::length(c - a);
-  }
+      : a_(a), b_(b), c_(c), rounding_(rounding), normalLength_(glm::length(glm::cross(b - a, c - a))) {}
 
-  // Whether v, each of whose coordinates may be off by up to pointRounding, lies on the
-  // plane within heightUncertainty. False for a triangle with no plane.
+  // False for a triangle with no plane.
   bool holds(const dvec3& v, double pointRounding) const {
-    if (!(normalLength_ > 0)) return false;
-    const double height = std::abs(glm::dot(normal_, v - a_)) / normalLength_;
-    // Every corner lies within `reach` of v: each barycentric weight at v's foot is at
-    // most reach^2 / |n|, and |v - a| at most reach.
-    const double reach = glm::length(v - center_) + radius_;
-    const double roughBound = 2 * std::sqrt(3.0) * (pointRounding + rounding_ * 3 * reach * reach / normalLength_) +
-                              8 * kUnitRoundoff * reach * sides_ / normalLength_;
-    if (height > roughBound) return false;
-    return height <= heightUncertainty(a_, b_, c_, v, rounding_, pointRounding);
+    ExactPredicates exact;
+    return holdsHeight(exact.orient3dValue(a_, b_, c_, v), pointRounding);
+  }
+  // The same for a point whose ExactPredicates::orient3dValue against the triangle's
+  // corners the caller has already (a signed height times |(b - a) x (c - a)|).
+  bool holdsHeight(double orient3dValue, double pointRounding) const {
+    return normalLength_ > 0 && std::abs(orient3dValue) <= kRoundings * (rounding_ + pointRounding) * normalLength_;
+  }
+  bool couldHold(const dvec3& v, double pointRounding) const {
+    return normalLength_ > 0 &&
+           std::abs(glm::dot(glm::cross(b_ - a_, c_ - a_), v - a_)) <= heightUncertainty(a_, b_, c_, v, rounding_, pointRounding) * normalLength_;
   }
 
  private:
-  dvec3 a_, b_, c_, normal_, center_;
-  double rounding_, normalLength_, radius_, sides_;
+  dvec3 a_, b_, c_;
+  double rounding_, normalLength_;
 };
 
 }  // namespace hsr

@@ -242,8 +242,10 @@ inline double hitDistance(const PreparedScene& scene, const CameraTransform& cam
 }
 
 // An exact algorithm's depth tolerance: whether two view distances at a pixel center are
-// too close for it to order. The painter's and ray casting's: the coplanar tolerance
-// (1e-10 of the depth; 1e-9 here, for the rounding of this check itself).
+// too close for it to order. The painter's and ray casting's: coplanar up to rounding
+// (the painter's, a few roundings of the placements, renderer/rounding.hpp, far under
+// 1e-12 of the depth in these scenes); 1e-9 here, for the rounding of this check itself
+// (plain double Moller-Trumbore).
 using DepthTie = std::function<bool(double shown, double exact)>;
 inline bool coplanar(double shown, double exact) { return std::abs(shown - exact) <= 1e-9 * std::abs(exact); }
 

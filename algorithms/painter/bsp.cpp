@@ -9,12 +9,12 @@
 // as deep as the scene has triangles.
 //
 // The side tests are exact (renderer/predicates). The one tolerance: a polygon whose
-// triangle lies within what the placements' rounding can move of the plane
-// (PreparedScene::liesOn: a bound relative to the coordinates' magnitude and the
-// placement, renderer/rounding.hpp) is coplanar with it, because faces coplanar in the
-// model are coplanar only up to that rounding, and splitting them by rounding noise would
-// cost slivers. Far from the origin the bound grows with the coordinates (at 1e5 it is
-// about 1e-10), so planes half a micrometre apart there stay apart.
+// every vertex lies on the plane within a few times the rounding of the placements
+// (RoundedPlane::holds, renderer/rounding.hpp: relative to the coordinates' magnitude)
+// is coplanar with it, because faces coplanar in the model are coplanar only up to that
+// rounding, and splitting them by rounding noise would cost slivers. Far from the origin
+// the bound grows with the coordinates (at 1e5 it is about 1e-10), so planes half a
+// micrometre apart there stay apart.
 #include "algorithms/painter/bsp.hpp"
 
 #include <algorithm>
@@ -32,6 +32,7 @@ struct BuildPolygon {
   std::uint32_t triangle;
   std::vector<dvec3> vertices;
   std::vector<Cut> cuts;
+  double rounding;  // its instance's placementRounding
 };
 
 enum class Side { positive, negative, straddles, coplanar };
@@ -65,31 +66,31 @@ class Builder {
   // A triangle's plane, with what its tests need computed once.
   struct SplittingPlane {
     std::uint32_t triangle;
-    dvec3 a, b, c, normal;  // corners, and (b - a) x (c - a) in double precision
-    RoundedPlane rounded;   // for the coplanar test
+    dvec3 a, b, c;         // its corners
+    RoundedPlane rounded;  // for the coplanar test
   };
   SplittingPlane splittingPlane(std::uint32_t triangle) const {
-    const dvec3 &a = corner(triangle, 0), &b = corner(triangle, 1), &c = corner(triangle, 2);
-    return {triangle, a, b, c, glm::cross(b - a, c - a), scene_.planeUpToPlacement(triangle)};
+    return {triangle, corner(triangle, 0), corner(triangle, 1), corner(triangle, 2), scene_.planeUpToPlacement(triangle)};
   }
 
-  // Step 2's test: the exact side of each vertex; a polygon whose triangle is coplanar
-  // with the plane up to the placements' rounding counts as coplanar. Fills sides and
+  // Step 2's test: the exact side of each vertex, from the exact height (its sign, and
+  // its value accurate to a few ulps for placing a split); a polygon whose every vertex
+  // lies on the plane up to the placements' rounding counts as coplanar. Fills sides and
   // heights for a split.
   Side classify(const BuildPolygon& polygon, const SplittingPlane& plane, std::vector<int>* sides = nullptr,
                 std::vector<double>* heights = nullptr) {
     ++classifications;
     if (polygon.triangle == plane.triangle) return Side::coplanar;
-    bool anyPositive = false, anyNegative = false;
+    bool anyPositive = false, anyNegative = false, onThePlane = true;
     for (const dvec3& v : polygon.vertices) {
-      const int s = predicates.orient3d(plane.a, plane.b, plane.c, v);
-      anyPositive |= s > 0;
-      anyNegative |= s < 0;
-      if (sides) sides->push_back(s);
-      if (heights) heights->push_back(glm::dot(plane.normal, v - plane.a));
+      const double height = predicates.orient3dValue(plane.a, plane.b, plane.c, v);
+      anyPositive |= height > 0;
+      anyNegative |= height < 0;
+      onThePlane &= plane.rounded.holdsHeight(height, polygon.rounding);
+      if (sides) sides->push_back(height > 0 ? 1 : height < 0 ? -1 : 0);
+      if (heights) heights->push_back(height);
     }
-    if (!anyPositive && !anyNegative) return Side::coplanar;
-    if (scene_.liesOn(plane.rounded, polygon.triangle)) return Side::coplanar;
+    if (onThePlane) return Side::coplanar;
     if (anyPositive && anyNegative) return Side::straddles;
     return anyPositive ? Side::positive : Side::negative;
   }
@@ -143,7 +144,10 @@ BspTree::BspTree(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
   std::vector<std::uint32_t> all;
   for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) {
     const auto& corners = scene.triangles()[t];
-    builder.polygons.push_back({t, {scene.positions()[corners[0]], scene.positions()[corners[1]], scene.positions()[corners[2]]}, {}});
+    builder.polygons.push_back({t,
+                                {scene.positions()[corners[0]], scene.positions()[corners[1]], scene.positions()[corners[2]]},
+                                {},
+                                scene.instanceOf(t).placementRounding});
     all.push_back(t);
   }
   struct Task {
@@ -197,7 +201,7 @@ BspTree::BspTree(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
             ++builder.splits;
             BuildPolygon& source = builder.polygons[polygon];
             SplitPolygon pieces = splitPolygon(source.vertices, sides, heights);
-            BuildPolygon below{source.triangle, std::move(pieces.negative), source.cuts};
+            BuildPolygon below{source.triangle, std::move(pieces.negative), source.cuts, source.rounding};
             below.cuts.push_back({node.plane, false});
             source.vertices = std::move(pieces.positive);
             source.cuts.push_back({node.plane, true});

@@ -67,12 +67,10 @@ class Newell {
       : scene_(scene), geometry_(geometry), knobs_(knobs), stats_(stats) {
     const std::size_t count = geometry.triangles.size();
     planes_.resize(count);
-    normals_.resize(count);
     winding_.resize(count);
     worldPlanes_.resize(count);
     for (std::uint32_t s = 0; s < count; ++s) {
       for (int k = 0; k < 3; ++k) planes_[s][k] = screenPoint(geometry.corners[s][k]);
-      normals_[s] = glm::cross(planes_[s][1] - planes_[s][0], planes_[s][2] - planes_[s][0]);
       winding_[s] = predicates_.orient2d(planes_[s][0], planes_[s][1], planes_[s][2]);
       Polygon polygon;
       polygon.screenTriangle = s;
@@ -190,13 +188,6 @@ class Newell {
     return predicates_.orient3d(corners[0], corners[1], corners[2], v) * winding_[plane];
   }
 
-  // v.z minus the plane's z at (v.x, v.y), in double precision: for placing split
-  // points, never for a sign that decides anything.
-  double depthAbovePlane(std::uint32_t plane, const dvec3& v) const {
-    const dvec3& n = normals_[plane];
-    return glm::dot(n, v - planes_[plane][0]) / n.z;
-  }
-
   Side side(const Polygon& polygon, std::uint32_t plane) {
     if (winding_[plane] == 0) return Side::coplanar;  // an edge-on plane hides nothing and orders nothing
     // A piece cut by this triangle's plane knows its side.
@@ -229,19 +220,62 @@ class Newell {
     return it->second;
   }
 
-  // Test e, exact: two convex polygons' interiors are disjoint exactly when some edge
-  // of one has every vertex of the other on its outer side or on its line (the
-  // separating axis theorem in the plane).
+  // Test e: two convex polygons' interiors are disjoint exactly when some edge of one
+  // has every vertex of the other on its outer side or on its line (the separating axis
+  // theorem in the plane), decided exactly. An overlap narrower than kSliverPixels
+  // counts as none: it is where rounded split points cross along a cut the two pieces
+  // share (three triangles piercing each other leave pieces that touch along their cuts
+  // and at the point where the three planes meet; their rounded outlines overlap by
+  // slivers about 1e-12 of the image wide, and orders drawn from such slivers close
+  // cycles no split can break). A pixel center in so thin a band is decided by the
+  // pieces' exact cuts, or lies within the rasterizer's snapping of an edge.
+  static constexpr double kSliverPixels = 1e-6;
   bool projectionsOverlap(const Polygon& p, const Polygon& q) {
     const int wp = winding_[p.screenTriangle], wq = winding_[q.screenTriangle];
     if (wp == 0 || wq == 0) return false;  // no area on screen
-    return !separatedByAnEdgeOf(p, wp, q) && !separatedByAnEdgeOf(q, wq, p);
+    if (separatedByAnEdgeOf(p, wp, q) || separatedByAnEdgeOf(q, wq, p)) return false;
+    return overlapWidth(p, q, wq) > kSliverPixels;
   }
+
+  // How wide the overlap of two convex projections is, as twice its area over its
+  // perimeter, in pixels: p clipped by each of q's edges, in double precision.
+  static double overlapWidth(const Polygon& p, const Polygon& q, int qWinding) {
+    std::vector<dvec2> region, clipped;
+    for (const dvec3& v : p.vertices) region.emplace_back(v.x, v.y);
+    for (std::size_t i = 0; i < q.vertices.size() && !region.empty(); ++i) {
+      if (!isEdge(q.vertices[i], q.vertices[(i + 1) % q.vertices.size()])) continue;
+      const dvec2 a(q.vertices[i]), b(q.vertices[(i + 1) % q.vertices.size()]);
+      const auto inside = [&](const dvec2& v) { return qWinding * ((b.x - a.x) * (v.y - a.y) - (b.y - a.y) * (v.x - a.x)); };
+      clipped.clear();
+      for (std::size_t k = 0; k < region.size(); ++k) {
+        const dvec2 &u = region[k], &w = region[(k + 1) % region.size()];
+        const double du = inside(u), dw = inside(w);
+        if (du >= 0) clipped.push_back(u);
+        if ((du >= 0) != (dw >= 0)) clipped.push_back(u + (du / (du - dw)) * (w - u));
+      }
+      region.swap(clipped);
+    }
+    // The area from the first vertex: a shoelace over the coordinates themselves would
+    // cancel to rounding noise for a region far smaller than its distance from the origin.
+    double twiceArea = 0, perimeter = 0;
+    for (std::size_t k = 0; k < region.size(); ++k) {
+      const dvec2 u = region[k] - region[0], w = region[(k + 1) % region.size()] - region[0];
+      twiceArea += u.x * w.y - u.y * w.x;
+      perimeter += glm::length(w - u);
+    }
+    return perimeter > 0 ? std::abs(twiceArea) / perimeter : 0;
+  }
+
+  // An edge shorter than kSliverPixels is no edge: split points made by repeated cuts
+  // near one corner can lie a rounding apart, and the direction between them is noise
+  // that could separate, or clip away, what overlaps. Leaving it out only makes both
+  // tests see more overlap.
+  static bool isEdge(const dvec3& a, const dvec3& b) { return glm::length(dvec2(b - a)) > kSliverPixels; }
 
   bool separatedByAnEdgeOf(const Polygon& p, int winding, const Polygon& q) {
     for (std::size_t i = 0; i < p.vertices.size(); ++i) {
       const dvec3 &a = p.vertices[i], &b = p.vertices[(i + 1) % p.vertices.size()];
-      if (a.x == b.x && a.y == b.y) continue;  // a repeated point is no edge
+      if (!isEdge(a, b)) continue;
       bool allOutside = true;
       for (const dvec3& v : q.vertices)
         if (predicates_.orient2d(a, b, v) * winding > 0) {
@@ -276,9 +310,10 @@ class Newell {
     const Polygon source = pool_[x];
     std::vector<int> sides;
     std::vector<double> heights;
+    const auto& corners = planes_[plane];
     for (const dvec3& v : source.vertices) {
       sides.push_back(depthSide(plane, v));
-      heights.push_back(depthAbovePlane(plane, v));
+      heights.push_back(predicates_.orient3dValue(corners[0], corners[1], corners[2], v) * winding_[plane]);
     }
     SplitPolygon pieces = splitPolygon(source.vertices, sides, heights);  // positive: behind the plane
     Polygon behind, inFront;
@@ -337,7 +372,6 @@ class Newell {
   Stats& stats_;
   ExactPredicates predicates_;
   std::vector<std::array<dvec3, 3>> planes_;  // each screen triangle's corners in (x, y, z)
-  std::vector<dvec3> normals_;                // (b - a) x (c - a) of those corners, in double precision
   std::vector<int> winding_;                  // orient2d of those corners: 0 = no area on screen
   std::map<std::uint32_t, int> eyeSides_;     // by global triangle, computed when first needed
   std::vector<std::optional<RoundedPlane>> worldPlanes_;  // per screen triangle: worldPlane()
