@@ -13,8 +13,6 @@ namespace hsr::roberts {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Insideness and coplanarity are decided to this fraction of a body's size.
-constexpr double kRelativeTolerance = 1e-9;
 
 // A plane n . x = offset; the body lies on the side n . x <= offset.
 struct Plane {
@@ -25,21 +23,42 @@ struct Plane {
 
 double sizeOf(const Aabb& box) { return glm::length(box.hi - box.lo); }
 
-// The body's face planes: its triangles' planes, coplanar ones merged (Roberts' volume
-// matrix, one column per face). `faceOf` gets each triangle's face.
-std::vector<Plane> facePlanes(const PreparedScene& scene, const Instance& body, double tolerance, std::vector<std::uint32_t>* faceOf) {
-  std::vector<Plane> planes;
+// How far each coordinate of the body's vertices may lie from the solid its source meant:
+// its file's decimals and its placement's rounding (Instance).
+double coordinateRounding(const Instance& body) { return body.statedRounding + body.placementRounding; }
+
+// The tolerance of the body's strict insideness tests, in world units: the larger of a
+// billionth of its size (the double-precision arithmetic of its tests, far above their
+// rounding and far below a pixel) and eight times its coordinates' rounding (twice for
+// what first order leaves out, times a lever of up to four for neighbouring faces), so a
+// body that is convex, or touches another, up to the precision of its coordinates is
+// treated as it was meant.
+double toleranceOf(const Instance& body, const Aabb& box) { return std::max(1e-9 * sizeOf(box), 8 * coordinateRounding(body)); }
+
+// The body's faces: its triangles' planes, with the triangles coplanar up to the
+// rounding of their coordinates merged into one (Roberts' volume matrix, one column per
+// face). `faceOf` gets each triangle's face.
+struct Face {
+  Plane plane;
+  RoundedPlane rounded;  // through the face's first triangle
+};
+std::vector<Face> facesOf(const PreparedScene& scene, const Instance& body, std::vector<std::uint32_t>* faceOf) {
+  const double rounding = coordinateRounding(body);
+  std::vector<Face> faces;
   for (std::uint32_t t = body.firstTriangle; t < body.firstTriangle + body.triangleCount; ++t) {
     const dvec3 normal = scene.faceNormal(t);
-    const Plane plane{normal, glm::dot(normal, scene.positions()[scene.triangles()[t][0]])};
-    std::size_t face = 0;
-    while (face < planes.size() &&
-           !(glm::length(planes[face].normal - normal) <= 1e-9 && std::abs(planes[face].offset - plane.offset) <= tolerance))
-      ++face;
-    if (face == planes.size()) planes.push_back(plane);
-    if (faceOf) faceOf->push_back(static_cast<std::uint32_t>(face));
+    const Triangle& corners = scene.triangles()[t];
+    const auto coplanarWith = [&](const Face& face) {
+      return glm::dot(face.plane.normal, normal) > 0 &&
+             std::all_of(corners.begin(), corners.end(), [&](std::uint32_t v) { return face.rounded.couldHold(scene.positions()[v], rounding); });
+    };
+    const auto found = std::find_if(faces.begin(), faces.end(), coplanarWith);
+    if (faceOf) faceOf->push_back(static_cast<std::uint32_t>(found - faces.begin()));
+    if (found != faces.end()) continue;
+    const dvec3 &a = scene.positions()[corners[0]], &b = scene.positions()[corners[1]], &c = scene.positions()[corners[2]];
+    faces.push_back({{normal, glm::dot(normal, a)}, RoundedPlane(a, b, c, rounding)});
   }
-  return planes;
+  return faces;
 }
 
 Aabb boxOf(const PreparedScene& scene, const Instance& body) {
@@ -68,18 +87,24 @@ std::string refusal(const PreparedScene& scene) {
     return "object '" + scene.scene().objects[body.object].name +
            "' is not a closed, consistently oriented surface; Roberts draws convex solids only";
   }
+  // Convex up to the precision of its coordinates: no vertex lies outside a face plane by
+  // more than their rounding can explain (rounding.hpp), so a UV sphere written with six
+  // digits, whose quads are flat only up to those digits, is a convex solid.
   for (const Instance& body : scene.instances()) {
-    const Aabb box = boxOf(scene, body);
-    const double tolerance = kRelativeTolerance * sizeOf(box);
-    double outside = 0;  // the farthest any vertex lies outside any face plane
-    for (const Plane& plane : facePlanes(scene, body, tolerance, nullptr))
+    const double rounding = coordinateRounding(body);
+    double outside = 0;  // the farthest any vertex lies outside a face plane beyond its rounding
+    for (const Face& face : facesOf(scene, body, nullptr))
       for (std::uint32_t t = body.firstTriangle; t < body.firstTriangle + body.triangleCount; ++t)
-        for (std::uint32_t v : scene.triangles()[t]) outside = std::max(outside, plane.height(scene.positions()[v]));
-    if (outside <= tolerance) continue;
-    char amount[32];
-    std::snprintf(amount, sizeof amount, "%.3g", outside);
+        for (const std::uint32_t v : scene.triangles()[t]) {
+          const dvec3& x = scene.positions()[v];
+          if (face.plane.height(x) > 0 && !face.rounded.couldHold(x, rounding)) outside = std::max(outside, face.plane.height(x));
+        }
+    if (outside == 0) continue;
+    char amount[160];
+    std::snprintf(amount, sizeof amount, "%.3g outside one of its face planes, more than its coordinates' rounding (%.3g) explains",
+                  outside, rounding);
     return "object '" + scene.scene().objects[body.object].name + "' is not convex: a vertex lies " + amount +
-           " outside one of its face planes; Roberts draws convex solids only";
+           "; Roberts draws convex solids only";
   }
   return "";
 }
@@ -92,6 +117,7 @@ struct Body {
   std::vector<Plane> worldPlanes;
   std::vector<std::int8_t> frontFace;  // per world plane: does it face the viewer
   std::vector<Plane> screenPlanes;     // the same faces, outward, pulled in by the tolerance
+  double tolerance = 0;                // toleranceOf, in world units
   std::vector<std::uint32_t> faceOfTriangle;
   Aabb worldBox;
   dvec2 lo{kInfinity}, hi{-kInfinity};  // projected box
@@ -169,8 +195,8 @@ class Roberts {
   Body makeBody(const Instance& instance) {
     Body body;
     body.worldBox = boxOf(scene_, instance);
-    const double tolerance = kRelativeTolerance * sizeOf(body.worldBox);
-    body.worldPlanes = facePlanes(scene_, instance, tolerance, &body.faceOfTriangle);
+    body.tolerance = toleranceOf(instance, body.worldBox);
+    for (const Face& face : facesOf(scene_, instance, &body.faceOfTriangle)) body.worldPlanes.push_back(face.plane);
     stats_.add("body faces", static_cast<std::int64_t>(body.worldPlanes.size()));
     // Screen-space planes through each face's largest triangle, turned so the image of
     // the body's centroid (inside a convex body, and the map keeps insides inside) is below.
@@ -202,7 +228,7 @@ class Roberts {
       largestArea[face] = area;
       Plane plane{normal, glm::dot(normal, a)};
       if (plane.height(inside) > 0) plane = {-plane.normal, -plane.offset};
-      plane.offset -= kRelativeTolerance * glm::dot(glm::abs(plane.normal), extent);
+      plane.offset -= body.tolerance / sizeOf(body.worldBox) * glm::dot(glm::abs(plane.normal), extent);
       body.screenPlanes[face] = plane;
       body.frontFace[face] = plane.normal.z > 0;  // the outward normal points toward the viewer
     }
@@ -257,7 +283,7 @@ class Roberts {
       for (std::uint32_t b = a + 1; b < bodies_.size(); ++b) {
         const Body &A = bodies_[a], &B = bodies_[b];
         if (glm::any(glm::lessThan(A.worldBox.hi, B.worldBox.lo)) || glm::any(glm::lessThan(B.worldBox.hi, A.worldBox.lo))) continue;
-        const double tolerance = kRelativeTolerance * std::max(sizeOf(A.worldBox), sizeOf(B.worldBox));
+        const double tolerance = std::max(A.tolerance, B.tolerance);
         for (std::uint32_t f = 0; f < A.worldPlanes.size(); ++f)
           for (std::uint32_t g = 0; g < B.worldPlanes.size(); ++g) {
             const Plane &P = A.worldPlanes[f], &Q = B.worldPlanes[g];

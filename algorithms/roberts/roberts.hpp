@@ -20,9 +20,13 @@
 //   3. Junctions: where two bodies interpenetrate, the lines where a face of one meets a
 //      face of the other are drawn too, and judged like edges (hidden by a body they lie
 //      on when its face there is a back face, else tested against the other bodies).
-// Faces are the bodies' planes: coplanar triangles merged. Strict insideness uses a
-// tolerance of 1e-9 of the body's size, so bodies touching face to face do not hide
-// each other's edges lying on the shared face, and meet in no junction.
+// Faces are the bodies' planes: triangles coplanar up to their coordinates' rounding
+// merged (renderer/rounding.hpp). A body must be convex up to that rounding: the decimals
+// of its file and its placement (Instance), so a sphere exported with six digits, whose
+// quads are flat only to those digits, is accepted. Strict insideness uses a tolerance of
+// the larger of 1e-9 of the body's size and eight times that rounding, so bodies touching
+// face to face do not hide each other's edges lying on the shared face, and meet in no
+// junction.
 //
 // Input: scenes of closed convex polyhedra only (boxes, prisms, pyramids, convex meshes),
 // all beyond the near plane; anything else is refused naming the object.
