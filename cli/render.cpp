@@ -2,11 +2,16 @@
 #include <cstdio>
 
 #include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/effects/effects.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/results.hpp"
+#include "renderer/depth.hpp"
 #include "renderer/error.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/lines.hpp"
@@ -71,6 +76,44 @@ void printPlan(const LoadedScene& scene, const AlgorithmEntry& algorithm, const 
     std::printf("  %-5s %-28s %s\n", pass.runs ? "run" : "skip", pass.pass.c_str(), pass.reason.c_str());
 }
 
+// The nearest and farthest view distances a frame shows (its finite depths), if any.
+std::optional<std::pair<double, double>> visibleDepths(const Frame& frame) {
+  double nearest = std::numeric_limits<double>::infinity(), farthest = 0;
+  for (const float d : frame.depth)
+    if (std::isfinite(d)) nearest = std::min(nearest, double(d)), farthest = std::max(farthest, double(d));
+  if (!(nearest <= farthest)) return std::nullopt;
+  return std::pair(nearest, farthest);
+}
+
+// Each depth format's resolution (depth.hpp) at the nearest and farthest visible depth.
+void printDepthResolutions(const CameraTransform& camera, std::pair<double, double> depths) {
+  std::printf("depth resolution (the smallest separation stored apart) at the nearest (%.4g) and farthest (%.4g) visible depth:\n",
+              depths.first, depths.second);
+  for (std::size_t f = 0; f < depthFormatNames().size(); ++f)
+    std::printf("  %-22s %10.3g %10.3g\n", depthFormatNames()[f].c_str(), depthResolution(DepthFormat(f), camera, depths.first),
+                depthResolution(DepthFormat(f), camera, depths.second));
+}
+
+// One line when the z-buffer's format could not order some fragments: how many, and the
+// format that resolves the finest separation at the farthest visible depth, if finer.
+void warnAboutDepthTies(std::int64_t ties, const std::string& formatName, const CameraTransform& camera, double farthest) {
+  const auto& names = depthFormatNames();
+  const auto current = DepthFormat(std::find(names.begin(), names.end(), formatName) - names.begin());
+  const auto resolution = [&](DepthFormat format) { return depthResolution(format, camera, farthest); };
+  DepthFormat finest = current;
+  for (std::size_t f = 0; f < names.size(); ++f)
+    if (resolution(DepthFormat(f)) < resolution(finest)) finest = DepthFormat(f);
+  const std::string atFarthest = " at the farthest visible depth (" + formatted(farthest) + ")";
+  const std::string advice =
+      finest != current ? std::string(depthFormatName(finest)) + " resolves " + formatted(resolution(finest), "%.3g") + atFarthest +
+                              " where " + formatName + " resolves " + formatted(resolution(current), "%.3g") +
+                              " (--depth-format; --explain lists every format)"
+                        : "no format resolves finer than " + formatName + "'s " + formatted(resolution(current), "%.3g") + atFarthest +
+                              ": the surfaces may be coplanar";
+  std::fprintf(stderr, "hsr: warning: %lld depth ties: fragments of different triangles stored at the same %s depth, where drawing order decided the pixel; %s\n",
+               static_cast<long long>(ties), formatName.c_str(), advice.c_str());
+}
+
 void printDecisions(const Stats& stats, double seconds) {
   std::printf("decided while rendering:\n");
   for (const std::string& decision : effects::decisionsTaken(stats)) std::printf("  %s\n", decision.c_str());
@@ -128,8 +171,15 @@ int render(const RenderOptions& options) {
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
+  const CameraTransform camera(scene.prepared->scene().camera, scene.prepared->width(), scene.prepared->height());
+  const std::optional<std::pair<double, double>> depths = lines ? std::nullopt : visibleDepths(frame);
+  if (stats.counter("depth ties") > 0 && depths)
+    warnAboutDepthTies(stats.counter("depth ties"), knobs.at("depth-format"), camera, depths->second);
   if (options.stats) std::printf("%s", stats.report().c_str());
-  if (options.explain) printDecisions(stats, seconds);
+  if (options.explain) {
+    printDecisions(stats, seconds);
+    if (depths) printDepthResolutions(camera, *depths);
+  }
   return 0;
 }
 

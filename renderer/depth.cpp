@@ -1,5 +1,7 @@
 #include "renderer/depth.hpp"
 
+#include <limits>
+
 namespace hsr {
 
 const std::vector<std::string>& depthFormatNames() {
@@ -27,6 +29,17 @@ DepthEncoding depthEncoding(DepthFormat format, const CameraTransform& camera) {
   // t = d: depth is linear in distance under orthographic projection.
   if (reversed) return {f / (f - n), -1.0 / (f - n)};
   return {-n / (f - n), 1.0 / (f - n)};
+}
+
+double depthResolution(DepthFormat format, const CameraTransform& camera, double distance) {
+  const DepthEncoding encoding = depthEncoding(format, camera);
+  return withDepthFormat(format, [&]<typename Format>() {
+    const auto stored = Format::store(encoding.z(camera.screenAffineDepth(distance)));
+    const auto next = Format::towardFar(stored);
+    if (next == stored) return std::numeric_limits<double>::infinity();
+    const auto decoded = [&](typename Format::Stored s) { return camera.distanceFromScreenAffine(encoding.t(Format::load(s))); };
+    return std::abs(decoded(next) - decoded(stored));
+  });
 }
 
 }  // namespace hsr

@@ -31,13 +31,15 @@ DepthEncoding depthEncoding(DepthFormat format, const CameraTransform& camera);
 // under perspective).
 bool clipsFarPlane(DepthFormat format, Projection projection);
 
-// The stored type, the value a cleared buffer holds (the far end), and the test.
+// The stored type, the value a cleared buffer holds (the far end), the test, and the
+// next value a stored one can take toward the far end.
 struct Float32Depth {
   using Stored = float;
   static constexpr Stored kFar = 1.0f;
   static Stored store(double z) { return static_cast<float>(std::clamp(z, 0.0, 1.0)); }
   static double load(Stored s) { return s; }
   static bool nearer(Stored candidate, Stored current) { return candidate < current; }
+  static Stored towardFar(Stored s) { return std::nextafter(s, kFar); }
 };
 struct ReversedFloat32Depth {
   using Stored = float;
@@ -45,6 +47,7 @@ struct ReversedFloat32Depth {
   static Stored store(double z) { return static_cast<float>(std::clamp(z, 0.0, 1.0)); }
   static double load(Stored s) { return s; }
   static bool nearer(Stored candidate, Stored current) { return candidate > current; }
+  static Stored towardFar(Stored s) { return std::nextafter(s, kFar); }
 };
 template <typename Integer, int Bits>
 struct UnormDepth {
@@ -56,9 +59,16 @@ struct UnormDepth {
   static Stored store(double z) { return static_cast<Stored>(std::clamp(z, 0.0, 1.0) * kSteps + 0.5); }
   static double load(Stored s) { return s / kSteps; }
   static bool nearer(Stored candidate, Stored current) { return candidate < current; }
+  static Stored towardFar(Stored s) { return s == kFar ? s : static_cast<Stored>(s + 1); }
 };
 using Unorm24Depth = UnormDepth<std::uint32_t, 24>;
 using Unorm16Depth = UnormDepth<std::uint16_t, 16>;
+
+// The smallest separation the format resolves at view distance `distance`: how much
+// farther a surface must lie to be stored as another value (the distance of the next
+// value the format can store, toward the far end, less this one's). Infinite at the far
+// end of the format's range.
+double depthResolution(DepthFormat format, const CameraTransform& camera, double distance);
 
 // Calls visit.template operator()<Format>() with the traits type of `format`, so a
 // depth-testing loop is compiled once per format with its comparison inlined.

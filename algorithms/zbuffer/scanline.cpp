@@ -46,9 +46,8 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
         test.activeTriangles += static_cast<std::int64_t>(active.size());
         for (const std::uint32_t i : active) {
           const ScreenTriangle& tri = triangles[i];
-          rasterizeSpan(tri, int(y), tri.minX, tri.maxX + 1, [&](int x) {
-            if (test.nearer(tri, x, int(y), depthRow[std::size_t(x)])) frame.ids[row + std::size_t(x)] = tri.triangle + 1;
-          });
+          rasterizeSpan(tri, int(y), tri.minX, tri.maxX + 1,
+                        [&](int x) { test.test(tri, x, int(y), depthRow[std::size_t(x)], frame.ids[row + std::size_t(x)]); });
         }
         // Step 5: the row is final: decode its depth into the frame before the buffer is reused.
         for (int x = 0; x < frame.width; ++x)
@@ -59,6 +58,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
     for (const auto& test : bandResults) {
       stats.add("fragments tested", test.tested);
       stats.add("fragments written", test.written);
+      stats.add("depth ties", test.ties);
       stats.add("active triangles summed over rows", test.activeTriangles);
     }
     stats.add("depth buffer bytes",

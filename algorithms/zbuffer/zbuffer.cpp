@@ -44,9 +44,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
         const int x0 = std::max(tri.minX, tileX0), x1 = std::min(tri.maxX + 1, tileX1);
         for (int y = std::max(tri.minY, tileY0); y < std::min(tri.maxY + 1, tileY1); ++y) {
           const std::size_t row = pixel(0, y);
-          rasterizeSpan(tri, y, x0, x1, [&](int x) {
-            if (test.nearer(tri, x, y, depth[row + std::size_t(x)])) frame.ids[row + std::size_t(x)] = tri.triangle + 1;
-          });
+          rasterizeSpan(tri, y, x0, x1, [&](int x) { test.test(tri, x, y, depth[row + std::size_t(x)], frame.ids[row + std::size_t(x)]); });
         }
       }
       // Step 3: the frame's depth is what the format stored, decoded to a view distance.
@@ -57,6 +55,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     for (const auto& test : tileResults) {
       stats.add("fragments tested", test.tested);
       stats.add("fragments written", test.written);
+      stats.add("depth ties", test.ties);
     }
     stats.add("depth buffer bytes", static_cast<std::int64_t>(frame.pixelCount() * sizeof(typename Format::Stored)));
   });

@@ -31,6 +31,8 @@ struct Knobs {
 };
 
 // threads: 0 = all cores. The image bits are the same for every thread count.
+// Stats: "fragments tested", "fragments written", "depth ties" (DepthTest), "depth
+// buffer bytes", and the geometry stage's.
 // `visible`: only these triangles (what culling stages kept); nullptr: all of them.
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible = nullptr);
 
@@ -60,19 +62,24 @@ void withDepthTest(DepthFormat format, bool depthTest, Visitor&& visit) {
 }
 
 // The depth test shared by both variants: encodes the fragment's depth in the format
-// and keeps it if nearer. Ties keep the earlier triangle ("less", not "less or equal").
+// and keeps it, with its id, if nearer. Ties keep the earlier triangle ("less", not "less
+// or equal"), and are counted: a fragment of another triangle stored at exactly the
+// depth the pixel holds is a pixel the format cannot order, decided by submission order.
 template <typename Format>
 struct DepthTest {
   DepthEncoding encoding;
-  std::int64_t tested = 0, written = 0, activeTriangles = 0;
+  std::int64_t tested = 0, written = 0, ties = 0, activeTriangles = 0;
 
-  bool nearer(const ScreenTriangle& tri, int x, int y, typename Format::Stored& stored) {
+  void test(const ScreenTriangle& tri, int x, int y, typename Format::Stored& stored, std::uint32_t& id) {
     ++tested;
     const auto z = Format::store(encoding.z(tri.depthAt(x + 0.5, y + 0.5)));
-    if (!Format::nearer(z, stored)) return false;
+    if (!Format::nearer(z, stored)) {
+      ties += z == stored && id != conventions::kBackgroundId && id != tri.triangle + 1;
+      return;
+    }
     stored = z;
+    id = tri.triangle + 1;
     ++written;
-    return true;
   }
 
   // What the buffer stored, decoded back to a distance along the view axis

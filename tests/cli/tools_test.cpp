@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "json_reader.hpp"
+#include "renderer/depth.hpp"
 #include "renderer/frame.hpp"
 #include "test_support.hpp"
 
@@ -206,6 +207,33 @@ TEST(Render, ExplainSaysWhichPassesRunAndWhy) {
   const std::string times = result.output.substr(result.output.find("time per pass"));
   EXPECT_EQ(times.find("shadow maps"), std::string::npos) << "no time for a pass that did not run";
   EXPECT_NE(times.find("shading"), std::string::npos);
+}
+
+// The far_layers hard case: 0.5 micrometres apart at a distance of 3, below float32's
+// step there (about 6e-6) and above reversed float32's (about 2e-7).
+TEST(Render, DepthTiesAreCountedAndWarnedAboutWithAFinerFormat) {
+  const auto folder = freshFolder("depth-ties");
+  std::filesystem::create_directories(folder);
+  const std::string command = std::string(HSR_BINARY) + " render " + kScenes + "hard/far_layers.toml -o " + (folder / "x.png").string();
+  const test::CommandResult tied = test::runCommand(command + " --stats");
+  ASSERT_EQ(tied.exitCode, 0) << tied.output;
+  const std::size_t warning = tied.output.find("hsr: warning: ");
+  ASSERT_NE(warning, std::string::npos) << tied.output;
+  const std::string line = tied.output.substr(warning, tied.output.find('\n', warning) - warning);
+  for (const char* part : {" depth ties: fragments of different triangles stored at the same float32 depth",
+                           "reversed-float32 resolves ", "at the farthest visible depth (3.", " where float32 resolves "})
+    EXPECT_NE(line.find(part), std::string::npos) << part << "\n" << line;
+  EXPECT_TRUE(std::filesystem::exists(folder / "x.png")) << "a warning, not an error: the image is written";
+  const test::CommandResult resolved = test::runCommand(command + " --depth-format reversed-float32 --explain");
+  ASSERT_EQ(resolved.exitCode, 0) << resolved.output;
+  EXPECT_EQ(resolved.output.find("warning"), std::string::npos) << resolved.output;
+  const std::size_t table = resolved.output.find("depth resolution (the smallest separation stored apart) at the nearest (2.");
+  ASSERT_NE(table, std::string::npos) << resolved.output;
+  for (const std::string& format : depthFormatNames()) EXPECT_NE(resolved.output.find("  " + format + " ", table), std::string::npos) << format;
+  // An exact tie (the coplanar case's left pair) no format resolves: the warning says so.
+  const test::CommandResult coplanar = test::runCommand(std::string(HSR_BINARY) + " render " + kScenes +
+                                                        "hard/coplanar.toml --depth-format reversed-float32 -o " + (folder / "c.png").string());
+  EXPECT_NE(coplanar.output.find("no format resolves finer than reversed-float32's"), std::string::npos) << coplanar.output;
 }
 
 TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
