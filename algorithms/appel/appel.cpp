@@ -49,11 +49,19 @@ struct Contour {
 
 // A change of QI along an edge.
 // A change of QI along an edge: by `change`, or, after a degenerate piercing
-// (intersections.hpp), to whatever a fresh count finds.
+// (renderer/intersections.hpp) or where a contour's projection runs along the edge's, to
+// whatever a fresh count finds.
 struct Crossing {
   double u;
   int change;
   bool recount = false;
+};
+
+// Every change along an edge, sorted, and whether the QI at either end rests on a
+// convention (a contour's projection running along the edge's up to that end).
+struct Changes {
+  std::vector<Crossing> crossings;
+  bool conventionalStart = false, conventionalEnd = false;
 };
 
 class QuantitativeInvisibility {
@@ -121,6 +129,7 @@ class QuantitativeInvisibility {
   LineSet run() {
     // Steps 2 and 3, once per connected set of mesh edges.
     baseQi_.assign(scene_.positions().size(), kUnknownQi);
+    conventional_.assign(scene_.positions().size(), 0);
     std::vector<std::vector<LineSegment>> pieces(lines_.edges.size());
     std::vector<std::uint8_t> walked(firstJunction_, 0);
     for (std::uint32_t seed = 0; seed < firstJunction_; ++seed) {
@@ -192,6 +201,7 @@ class QuantitativeInvisibility {
       if (!degenerate || i + 1 == tried.size() || i + 1 == kAttempts) {
         if (degenerate) stats_.add("degenerate start rays");
         baseQi_[vertex] = qi;
+        conventional_[vertex] = degenerate;
         return vertex;
       }
     }
@@ -230,7 +240,9 @@ class QuantitativeInvisibility {
   // side and open on its first, so a projection running exactly along a side shared by two
   // counted faces that lie on either side of it counts one of them; a first side with no
   // such neighbour (a contour, a rim) is closed, as the line reference's triangles are.
-  int vertexHiding(std::uint32_t vertex, std::uint32_t toward) {
+  // `onASide` is set when the projection runs exactly along a side of a face behind which
+  // the edge leaves: there the count is the convention's, and the walk counts afresh.
+  int vertexHiding(std::uint32_t vertex, std::uint32_t toward, bool& onASide) {
     int count = 0;
     const dvec3 &v = position(vertex), &w = position(toward);
     for (const std::uint32_t face : aroundPoint_.around(point_[vertex])) {
@@ -242,6 +254,7 @@ class QuantitativeInvisibility {
       const dvec3 &a = position(t[(k + 1) % 3]), &b = position(t[(k + 2) % 3]);
       if (viewer_.exact().orient3d(v, a, b, w) != -facing_[face]) continue;  // not behind the face's plane
       const int sideOfA = viewer_.side(v, a, w), sideOfB = viewer_.side(v, b, w);
+      onASide = onASide || sideOfA == 0 || sideOfB == 0;
       const int sideOfFace = viewer_.side(v, a, b);
       const MeshEdge& firstSide = adjacency_.edges[adjacency_.edgesOf[3 * face + k]];
       const std::uint32_t across = firstSide.faces[0] == face ? firstSide.faces[1] : firstSide.faces[0];
@@ -260,10 +273,11 @@ class QuantitativeInvisibility {
   // contour's line counts as behind all of its faces (closed, as the line reference's
   // triangles are), and a contour end on the edge's line counts as on its positive side,
   // so a contour chain through that line is crossed once, not twice.
-  std::vector<Crossing> changesAlong(std::uint32_t e) {
+  Changes changesAlong(std::uint32_t e) {
     const FeatureEdge& edge = lines_.edges[e];
     const dvec3 &p = edge.from, &q = edge.to;
-    std::vector<Crossing> found;
+    Changes changes;
+    std::vector<Crossing>& found = changes.crossings;
     grid_->cellsOnSegment(edge.pixelFrom, edge.pixelTo, [&](std::size_t cell) { grid_->itemsIn(cell, [&](std::uint32_t index) {
       if (seen_[index] == e) return;
       seen_[index] = e;
@@ -282,6 +296,20 @@ class QuantitativeInvisibility {
       ++crossingsTested_;
       const dvec3 &r = position(c.from), &s = position(c.to);
       const int sideOfR = viewer_.side(p, q, r), sideOfS = viewer_.side(p, q, s);
+      if (sideOfR == 0 && sideOfS == 0) {
+        // The contour's projection runs along the edge's (both in one sight plane): no
+        // crossing rule applies, and whether the contour's face covers the edge is a
+        // matter of closed triangles. Count afresh where the two overlap.
+        const dvec2 along = edge.pixelTo - edge.pixelFrom;
+        const auto at = [&](const dvec2& x) { return glm::dot(x - edge.pixelFrom, along) / glm::dot(along, along); };
+        const double u0 = std::max(0.0, std::min(at(c.pixelFrom), at(c.pixelTo))), u1 = std::min(1.0, std::max(at(c.pixelFrom), at(c.pixelTo)));
+        if (!(u0 < u1)) return;
+        found.push_back({u0, 0, true});
+        found.push_back({u1, 0, true});
+        changes.conventionalStart |= u0 == 0;
+        changes.conventionalEnd |= u1 == 1;
+        return;
+      }
       if ((sideOfR >= 0) == (sideOfS >= 0)) return;
       const int sideOfP = viewer_.side(r, s, p), sideOfQ = viewer_.side(r, s, q);
       int change = 0;
@@ -312,7 +340,7 @@ class QuantitativeInvisibility {
     }
     std::sort(found.begin(), found.end(), [](const Crossing& a, const Crossing& b) { return a.u < b.u; });
     qiChanges_ += static_cast<std::int64_t>(found.size());
-    return found;
+    return changes;
   }
 
   // Where an edge passes through a counted face (intersections.hpp), that face lies in
@@ -385,11 +413,11 @@ class QuantitativeInvisibility {
 
   // The pieces of edge e between its changes (sorted), with their QIs, filled outward
   // from one piece whose QI is known: the first (`anchor` 0) or the last (`anchor`
-  // kLastPiece) with QI `known`, or, without `known`, the longest, counted afresh.
+  // kLastPiece) with QI *known, or, when `known` is null, the longest, counted afresh.
   // Returns the QIs of the first and the last piece.
   static constexpr std::size_t kLastPiece = std::numeric_limits<std::size_t>::max();
   template <typename Skip>
-  std::pair<int, int> appendPieces(std::uint32_t e, const std::vector<Crossing>& changes, std::size_t anchor, std::optional<int> known,
+  std::pair<int, int> appendPieces(std::uint32_t e, const std::vector<Crossing>& changes, std::size_t anchor, const int* known,
                                    Skip&& skip, std::vector<LineSegment>& pieces) {
     std::vector<double> bounds = {0.0};
     for (const Crossing& crossing : changes) bounds.push_back(crossing.u);
@@ -421,26 +449,34 @@ class QuantitativeInvisibility {
   }
 
   // Walks edge e from `from` (whose QI is known) and returns its other vertex when that
-  // vertex's QI was not known before, else kUnknown.
+  // vertex's QI was not known before, else kUnknown. Where a vertex's count rests on a
+  // convention (a sight line grazing a side, an edge running along one: axis-aligned
+  // views of grids meet it at every vertex), the edge's QI is counted afresh instead of
+  // carried from it, and such a vertex is no evidence of a mismatch.
   std::uint32_t walkEdge(std::uint32_t e, std::uint32_t from, std::vector<LineSegment>& pieces) {
     const FeatureEdge& edge = lines_.edges[e];
     const bool forward = edge.vertexFrom == from;
     const std::uint32_t to = forward ? edge.vertexTo : edge.vertexFrom;
     // The QI just after `from`: its own, plus the faces around it that hide the edge's start.
-    const int leaving = baseQi_[from] + vertexHiding(from, to);
+    const Changes changes = changesAlong(e);
+    bool startOnASide = forward ? changes.conventionalStart : changes.conventionalEnd;
+    const int leaving = baseQi_[from] + vertexHiding(from, to, startOnASide);
+    const bool carried = !startOnASide && !conventional_[from];
     // A recount along the edge must not count the faces the edge lies on.
     const auto onEdge = [&](std::uint32_t face) { return hasSide(face, from, to); };
-    const auto [atStart, atEnd] = appendPieces(e, changesAlong(e), forward ? 0 : kLastPiece, leaving, onEdge, pieces);
+    const auto [atStart, atEnd] = appendPieces(e, changes.crossings, forward ? 0 : kLastPiece, carried ? &leaving : nullptr, onEdge, pieces);
     const int arriving = forward ? atEnd : atStart;
     // The QI just before `to`, less what the faces around `to` add: the QI of `to` itself.
-    const int hiding = vertexHiding(to, from);
+    bool endOnASide = forward ? changes.conventionalEnd : changes.conventionalStart;
+    const int hiding = vertexHiding(to, from, endOnASide);
     vertexCorrections_ += hiding != 0;
     const int base = arriving - hiding;
     if (baseQi_[to] == kUnknownQi) {
       baseQi_[to] = base;
+      conventional_[to] = endOnASide;
       return to;
     }
-    mismatches_ += baseQi_[to] != base;
+    if (!endOnASide && !conventional_[to]) mismatches_ += baseQi_[to] != base;
     return kUnknown;
   }
 
@@ -448,7 +484,7 @@ class QuantitativeInvisibility {
   // of its longest piece is counted by a ray cast, not counting the two faces it lies on,
   // and changes along it as along any edge.
   void drawJunction(std::uint32_t e, const Junction& junction, std::vector<LineSegment>& pieces) {
-    appendPieces(e, changesAlong(e), 0, std::nullopt, [&](std::uint32_t face) { return onJunction(junction, face); }, pieces);
+    appendPieces(e, changesAlong(e).crossings, 0, nullptr, [&](std::uint32_t face) { return onJunction(junction, face); }, pieces);
   }
 
   const PreparedScene& scene_;
@@ -468,6 +504,7 @@ class QuantitativeInvisibility {
   std::uint32_t firstJunction_ = 0;  // lines_.edges from here on are intersection lines
   VertexTriangles aroundPoint_;      // the triangles around each such point
   std::vector<int> baseQi_;  // per vertex: its QI, not counting the faces around it
+  std::vector<std::uint8_t> conventional_;  // per vertex: its QI rests on a convention (walkEdge)
   std::int64_t crossingsTested_ = 0, qiChanges_ = 0, vertexCorrections_ = 0, mismatches_ = 0, negativeQi_ = 0;
 };
 
