@@ -249,17 +249,22 @@ inline double hitDistance(const PreparedScene& scene, const CameraTransform& cam
 using DepthTie = std::function<bool(double shown, double exact)>;
 inline bool coplanar(double shown, double exact) { return std::abs(shown - exact) <= 1e-9 * std::abs(exact); }
 
-// The z-buffer's: the two depths, in the float32 encoding its buffer stores, are within
-// two float32 steps of each other.
-inline DepthTie float32DepthTie(const CameraTransform& camera) {
-  const DepthEncoding encoding = depthEncoding(DepthFormat::float32, camera);
-  return [camera, encoding](double shown, double exact) {
-    const auto stored = [&](double d) { return float(encoding.z(camera.screenAffineDepth(d))); };
-    const float larger = std::max(stored(shown), stored(exact));
-    const float step = std::nextafter(larger, 2.0f) - larger;  // one float32 step at that depth
-    return std::abs(stored(shown) - stored(exact)) <= 2 * step;
+// The z-buffer's, for a depth format: the two depths, stored in the format, are at most
+// two of its steps apart (the fragment's plane and the reference's ray round differently).
+inline DepthTie depthFormatTie(DepthFormat format, const CameraTransform& camera) {
+  const DepthEncoding encoding = depthEncoding(format, camera);
+  return [format, camera, encoding](double shown, double exact) {
+    return withDepthFormat(format, [&]<typename Format>() {
+      auto nearer = Format::store(encoding.z(camera.screenAffineDepth(shown)));
+      auto farther = Format::store(encoding.z(camera.screenAffineDepth(exact)));
+      if (Format::nearer(farther, nearer)) std::swap(nearer, farther);
+      for (int step = 0; step <= 2; ++step, nearer = Format::towardFar(nearer))
+        if (nearer == farther) return true;
+      return false;
+    });
   };
 }
+inline DepthTie float32DepthTie(const CameraTransform& camera) { return depthFormatTie(DepthFormat::float32, camera); }
 
 // An exact algorithm may show another triangle than the reference at a non-ambiguous
 // pixel for one of two documented reasons (each algorithm's README):
@@ -274,15 +279,31 @@ struct WrongPixels {
 
 // Classifies the pixels where `shown` differs from `exact` (ids, 0 = background) and
 // `ambiguous` is 0.
+// `tiedOrder`, when given, excuses a pixel where the two ids' order is a tie for the
+// algorithm's own ordering (the depth sort's keys), as a depth tie. `rendered`, when
+// given, is the scene the frame was drawn from, with `idsPerOriginal` of its triangles
+// in place of each of `scene`'s (a subdivision): snapping moves its triangles' edges too.
 inline WrongPixels classifyDifferences(const PreparedScene& scene, std::span<const std::uint32_t> shown,
                                        std::span<const std::uint32_t> exact, std::span<const std::uint8_t> ambiguous,
-                                       const DepthTie& tied) {
+                                       const DepthTie& tied,
+                                       const std::function<bool(std::uint32_t, std::uint32_t)>& tiedOrder = nullptr,
+                                       const PreparedScene* rendered = nullptr, std::uint32_t idsPerOriginal = 1) {
   const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const auto nearestRenderedEdge = [&](std::initializer_list<std::uint32_t> ids, const dvec2& center) {
+    double nearest = std::numeric_limits<double>::infinity();
+    if (!rendered) return nearest;
+    const CameraTransform renderedCamera(rendered->scene().camera, rendered->width(), rendered->height());
+    for (const std::uint32_t id : ids)
+      for (std::uint32_t k = 0; id != 0 && k < idsPerOriginal; ++k)
+        nearest = std::min(nearest, distanceToProjectedEdges(*rendered, renderedCamera, (id - 1) * idsPerOriginal + k, center));
+    return nearest;
+  };
   WrongPixels result;
   for (std::size_t p = 0; p < shown.size(); ++p) {
     if (ambiguous[p] || shown[p] == exact[p]) continue;
     const dvec2 center(double(p % std::size_t(scene.width())) + 0.5, double(p / std::size_t(scene.width())) + 0.5);
-    if (nearestProjectedEdge(scene, camera, {shown[p], exact[p]}, center) < kSnapDistance) {
+    if (nearestProjectedEdge(scene, camera, {shown[p], exact[p]}, center) < kSnapDistance ||
+        nearestRenderedEdge({shown[p], exact[p]}, center) < kSnapDistance) {
       ++result.snapping;
       continue;
     }
@@ -290,7 +311,8 @@ inline WrongPixels classifyDifferences(const PreparedScene& scene, std::span<con
       const Ray ray = camera.rayThroughPixel(center.x, center.y);
       const double shownDistance = hitDistance(scene, camera, shown[p] - 1, ray);
       const double exactDistance = hitDistance(scene, camera, exact[p] - 1, ray);
-      if (std::isfinite(shownDistance) && std::isfinite(exactDistance) && tied(shownDistance, exactDistance)) {
+      if ((std::isfinite(shownDistance) && std::isfinite(exactDistance) && tied(shownDistance, exactDistance)) ||
+          (tiedOrder && tiedOrder(shown[p], exact[p]))) {
         ++result.depthTie;
         continue;
       }

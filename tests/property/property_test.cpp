@@ -16,6 +16,7 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
 #include "lines/qi_support.hpp"
+#include "metamorphic.hpp"
 #include "property/random_scene.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/reference.hpp"
@@ -145,73 +146,19 @@ TEST(RandomScenes, AppelQuantitativeInvisibilityKeepsItsInvariants) {
   std::printf("%ld drawings, %ld pieces' QI recounted\n", drawings, counted);
 }
 
-// The scene after a change that must not change what is seen, and how its ids map back.
-struct Variation {
-  std::string name;
-  Scene scene;
-  std::uint32_t idsPerOriginal = 1;  // subdivision: 4
-  bool exact = false;                // exact in floating point (scaling by a power of two): the very same image
-};
-
-std::vector<Variation> variations(const Scene& scene) {
-  std::vector<Variation> all;
-  for (const int k : {4, 12, 20}) {
-    const double offset = std::ldexp(1.0, k);
-    all.push_back({"translated by 2^" + std::to_string(k), test::movedAndScaled(scene, 1, dvec3(offset, -offset, offset))});
-  }
-  for (const int k : {-10, 10})
-    all.push_back({"scaled by 2^" + std::to_string(k), test::movedAndScaled(scene, std::ldexp(1.0, k), dvec3(0)), 1, true});
-  all.push_back({"subdivided", test::subdivided(scene), 4});
-  return all;
-}
-
-// Every fourth scene (each costs six more scenes' work).
-TEST(RandomScenes, TranslationScalingAndSubdivisionLeaveTheIdImage) {
-  long checked = 0, identical = 0, labelledPartial = 0;
+// The metamorphic property (tests/metamorphic.hpp) on every fourth scene (each costs six
+// more scenes' work): every surface configuration, line drawing and culling stage.
+TEST(RandomScenes, EveryAlgorithmIsTheSameMovedScaledOrSubdivided) {
+  test::MetamorphicTally tally;
   for (std::uint64_t seed = firstSeed; seed < firstSeed + sceneCount; seed += 4) {
     const Judged judged(seed);
-    std::vector<std::optional<Frame>> unchanged;  // each algorithm's frame of the scene as generated
-    for (const ExactAlgorithm& algorithm : kExact) unchanged.push_back(render(judged.prepared, algorithm));
-    for (const Variation& variation : variations(judged.random.scene)) {
-      const PreparedScene prepared(variation.scene);
-      const auto original = [&](std::vector<std::uint32_t> ids) {
-        for (std::uint32_t& id : ids)
-          if (id != 0) id = (id - 1) / variation.idsPerOriginal + 1;
-        return ids;
-      };
-      // The reference is exact for its input: only rounding of the moved input may move an
-      // edge or tie two depths.
-      Stats stats;
-      const ReferenceImage truth = traceReference(prepared, 1, stats);
-      const std::vector<std::uint32_t> exactIds = original(truth.frame.ids);
-      const test::WrongPixels referenceMoved =
-          test::classifyDifferences(judged.prepared, exactIds, judged.truth.frame.ids, judged.truth.ambiguous, test::coplanar);
-      EXPECT_EQ(referenceMoved.unexplained, 0)
-          << "reference " << variation.name << " on " << judged.where(seed) << ": " << referenceMoved.firstUnexplained;
-      for (std::size_t a = 0; a < std::size(kExact); ++a) {
-        const ExactAlgorithm& algorithm = kExact[a];
-        const std::optional<Frame> frame = render(prepared, algorithm);
-        if (!frame) continue;
-        if (!frame->partial.empty()) {  // wrong, but not silently: the image says so
-          ++labelledPartial;
-          continue;
-        }
-        const std::vector<std::uint32_t> ids = original(frame->ids);
-        const test::WrongPixels wrong = test::classifyDifferences(judged.prepared, ids, judged.truth.frame.ids,
-                                                                  judged.truth.ambiguous, depthTieOf(judged.prepared, algorithm));
-        EXPECT_EQ(wrong.unexplained, 0)
-            << label(algorithm) << " " << variation.name << " on " << judged.where(seed) << ": " << wrong.firstUnexplained;
-        if (variation.exact) {
-          ASSERT_TRUE(unchanged[a].has_value()) << label(algorithm) << " refused the scene as generated but not scaled";
-          EXPECT_EQ(ids, unchanged[a]->ids) << label(algorithm) << " " << variation.name << " on " << judged.where(seed);
-          identical += ids == unchanged[a]->ids;
-        }
-        ++checked;
-      }
-    }
+    const test::Baseline baseline = test::baselineOf(judged.prepared, true);  // triangle soups among them
+    for (const test::Variation& variation : test::variations(judged.random.scene, true))
+      test::expectSameAfter(variation, judged.prepared, judged.truth, baseline, judged.where(seed), tally);
   }
-  std::printf("%ld moved, scaled or subdivided renders checked; %ld scaled ones bit-identical; %ld labelled partial\n", checked,
-              identical, labelledPartial);
+  // The pixels excused must stay few: rounding decides only pixels at edges and ties.
+  EXPECT_LE(tally.excused, tally.compared / 1000) << "more pixels changed than rounding at edges and ties explains";
+  std::printf("%s\n", tally.summary().c_str());
 }
 
 }  // namespace

@@ -149,23 +149,4 @@ inline RandomScene randomScene(std::uint64_t seed) {
   return result;
 }
 
-// The scene with every triangle cut into four at its edges' midpoints; triangle t of the
-// original becomes triangles 4t to 4t + 3 (so ids map back as (id - 1) / 4 + 1).
-inline Scene subdivided(Scene scene) {
-  for (SceneObject& object : scene.objects) {
-    Mesh mesh;
-    for (const Triangle& t : object.mesh->triangles) {
-      const dvec3 a = object.mesh->positions[t[0]], b = object.mesh->positions[t[1]], c = object.mesh->positions[t[2]];
-      const dvec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
-      const auto first = static_cast<std::uint32_t>(mesh.positions.size());
-      mesh.positions.insert(mesh.positions.end(), {a, b, c, ab, bc, ca});
-      for (const Triangle& piece : {Triangle{0, 3, 5}, Triangle{3, 1, 4}, Triangle{5, 4, 2}, Triangle{3, 4, 5}})
-        mesh.triangles.push_back({first + piece[0], first + piece[1], first + piece[2]});
-    }
-    object.mesh = std::make_shared<const Mesh>(std::move(mesh));
-    object.solid = Solid{};  // no longer the primitive the solid describes
-  }
-  return scene;
-}
-
 }  // namespace hsr::test
