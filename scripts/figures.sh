@@ -53,6 +53,13 @@ mkdir -p images/figures/lines
   -o images/figures/lines/junctions-roberts.png
 ./build/hsr render scenes/hard/torus.toml --algo appel --line-style qi --size 480x360 -o images/figures/lines/torus-qi.png
 ./build/hsr render scenes/dragon.toml --algo appel --knob surfaces=any --size 960x540 -o images/figures/lines/dragon-appel.png
+# Appel against Open CASCADE's HLRBRep_PolyAlgo (bench/occt_peer; about two minutes for the
+# dragon): the two drawings overlaid, and Open CASCADE's misses against the exact line
+# reference on the dragon and on the city merged into one mesh.
+./build/bench/occt_peer --out "$study/occt-dragon" > /dev/null
+./build/bench/occt_peer --size 560x530 --out "$study/occt-city" scenes/hard/merged_city.toml > /dev/null
+oiiotool "$study/occt-dragon/overlay.png" --cut 560x530+325+145 "$study/occt-dragon/occt_errors.png" --cut 560x530+325+145 \
+  "$study/occt-city/occt_errors.png" --mosaic:pad=8 3x1 -o images/figures/lines/occt-against-appel.png
 # The floating horizon: the ripple as rows and as a mesh, its lessons as error maps, the
 # sweep at 1280 wide, and gnuplot's hidden3d beside it (bench/gnuplot_peer keeps both).
 mkdir -p images/figures/floating_horizon

@@ -20,6 +20,9 @@ packages=(
   libbenchmark-dev             # bench/
   libosmesa6-dev               # the Mesa peer benchmark (bench/ only)
   libembree-dev                # the Embree peer benchmark (bench/ only)
+  libocct-modeling-algorithms-dev  # the Open CASCADE hidden-line peer (bench/occt_peer only);
+  libocct-visualization-dev        # Debian ships OCCT 7.6's NCollection_AliasedArray.hxx
+                                   # (which Poly_Triangulation.hxx includes) in this package
 )
 
 missing=()
