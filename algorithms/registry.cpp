@@ -13,6 +13,8 @@
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/error.hpp"
+#include "algorithms/floating_horizon/curve_comparison.hpp"
+#include "renderer/line_drawing.hpp"
 #include "renderer/line_reference.hpp"
 #include "renderer/reference.hpp"
 

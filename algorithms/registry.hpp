@@ -11,7 +11,8 @@
 #include <vector>
 
 #include "renderer/frame.hpp"
-#include "renderer/lines.hpp"
+#include "renderer/line_set.hpp"
+#include "renderer/line_errors.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
 #include "renderer/visible_set.hpp"

@@ -57,7 +57,9 @@
 #include "renderer/error.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/line_reference.hpp"
-#include "renderer/lines.hpp"
+#include "renderer/feature_edges.hpp"
+#include "renderer/line_set.hpp"
+#include "renderer/line_errors.hpp"
 #include "renderer/image_grid.hpp"
 #include "renderer/raster.hpp"
 

@@ -14,7 +14,8 @@
 #include "renderer/depth.hpp"
 #include "renderer/error.hpp"
 #include "renderer/frame.hpp"
-#include "renderer/lines.hpp"
+#include "renderer/line_set.hpp"
+#include "renderer/line_drawing.hpp"
 
 namespace hsr::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "renderer/line_reference.hpp"
-#include "renderer/lines.hpp"
+#include "renderer/line_drawing.hpp"
 
 namespace hsr::cli {
 namespace {

@@ -29,7 +29,7 @@
 #include <span>
 #include <vector>
 
-#include "renderer/lines.hpp"
+#include "renderer/feature_edges.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"

@@ -12,6 +12,8 @@
 #include "renderer/error.hpp"
 #include "renderer/parallel.hpp"
 #include "renderer/rounding.hpp"
+#include "renderer/fog.hpp"
+#include "renderer/outline.hpp"
 #include "renderer/shading.hpp"
 
 namespace hsr {
@@ -495,7 +497,8 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
     total.addTo(stats);
     for (const std::uint8_t tied : image.blendTied) image.blendTiedPixels += tied;
   }
-  applyImageEffects(scene, camera, image.frame, threads, stats);
+  if (effects.fog) applyFog(effects.fogSettings, image.frame, threads, stats);
+  if (effects.outline) drawOutline(scene, camera, effects.outlineSettings, effects.fog ? &effects.fogSettings : nullptr, image.frame, stats);
   return image;
 }
 

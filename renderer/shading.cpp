@@ -6,7 +6,6 @@
 
 #include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
-#include "renderer/lines.hpp"
 #include "renderer/parallel.hpp"
 #include "renderer/raster.hpp"
 
@@ -134,105 +133,6 @@ void shadeFrame(const PreparedScene& scene, Frame& frame, const PixelShader& sha
   ShadingCounts total;
   for (const ShadingCounts& row : counts) total += row;
   total.addTo(stats);
-}
-
-double fogClearFraction(const FogSettings& fog, double distance) {
-  if (fog.kind == FogSettings::Kind::exponential) return std::exp(-fog.density * distance);
-  return std::clamp((fog.end - distance) / (fog.end - fog.start), 0.0, 1.0);
-}
-
-namespace {
-
-// Depth cueing: a surface's color blended toward the fog color by its view distance,
-// so that nearer things stand out. The background is already the far end.
-void applyFog(const FogSettings& fog, Frame& frame, int threads, Stats& stats) {
-  PhaseTimer timer(stats, "fog");
-  std::vector<std::int64_t> blends(static_cast<std::size_t>(frame.height), 0);
-  parallelFor(static_cast<std::size_t>(frame.height), threads, [&](std::size_t row, int) {
-    for (int x = 0; x < frame.width; ++x) {
-      const std::size_t pixel = row * std::size_t(frame.width) + std::size_t(x);
-      if (frame.ids[pixel] == conventions::kBackgroundId) continue;
-      const double clear = fogClearFraction(fog, frame.depth[pixel]);
-      std::uint8_t* rgba = &frame.color[4 * pixel];
-      for (int c = 0; c < 3; ++c) rgba[c] = channelByte(clear * rgba[c] / 255.0 + (1 - clear) * fog.color[c]);
-      ++blends[row];
-    }
-  });
-  std::int64_t total = 0;
-  for (std::int64_t count : blends) total += count;
-  stats.add("fog blends", total);
-}
-
-// The part of a world-space segment beyond the near plane (false when none is).
-bool clipToNearPlane(const CameraTransform& camera, dvec3& from, dvec3& to) {
-  const double near = camera.camera().near * (1 + 1e-9);
-  const double dFrom = glm::dot(from - camera.camera().eye, camera.forward());
-  const double dTo = glm::dot(to - camera.camera().eye, camera.forward());
-  if (dFrom < near && dTo < near) return false;
-  if (dFrom < near) from += (near - dFrom) / (dTo - dFrom) * (to - from);
-  if (dTo < near) to += (near - dTo) / (dFrom - dTo) * (from - to);
-  return true;
-}
-
-// Feature edges (renderer/lines: boundaries, silhouettes, creases) drawn over the image
-// where the surface the frame shows does not hide them. A 1.5-pixel line covers pixels
-// on both sides of its edge, and on a crease or a silhouette one side shows the face
-// beyond it, so an edge point counts as seen when it is no farther than the farthest
-// surface within one pixel: edges on visible faces are drawn whole, edges behind a face
-// are not (up to one pixel from that face's own outline). Under fog, a line fades with
-// the distance of its nearest edge point at the pixel, as the surfaces did.
-void drawOutline(const PreparedScene& scene, const CameraTransform& camera, const OutlineSettings& outline, const FogSettings* fog,
-                 Frame& frame, Stats& stats) {
-  PhaseTimer timer(stats, "outline");
-  const std::vector<std::int8_t> facing = viewFacing(scene, camera, stats);
-  const std::vector<FeatureEdge> edges = featureEdges(scene, camera, facing, outline.creaseDegrees, stats);
-  const auto farthestNearby = [&](int x, int y) {
-    float farthest = 0;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = std::clamp(x + dx, 0, frame.width - 1), ny = std::clamp(y + dy, 0, frame.height - 1);
-        farthest = std::max(farthest, frame.depth[std::size_t(ny) * std::size_t(frame.width) + std::size_t(nx)]);
-      }
-    return farthest;
-  };
-  constexpr float kNotDrawn = std::numeric_limits<float>::infinity();
-  std::vector<float> lineDistance(frame.pixelCount(), kNotDrawn);
-  std::int64_t tested = 0;
-  for (const FeatureEdge& mesh : edges) {
-    dvec3 from = mesh.from, to = mesh.to;
-    if (!clipToNearPlane(camera, from, to)) continue;
-    ++tested;
-    const FeatureEdge edge = projectEdge(camera, from, to, mesh.kind);
-    const dvec2 span = edge.pixelTo - edge.pixelFrom;
-    const double lengthSquared = glm::dot(span, span);
-    rasterizeLine(edge.pixelFrom, edge.pixelTo, kLineWidthPixels, frame.width, frame.height, [&](int x, int y) {
-      const dvec2 center(x + 0.5, y + 0.5);
-      const double u = lengthSquared > 0 ? std::clamp(glm::dot(center - edge.pixelFrom, span) / lengthSquared, 0.0, 1.0) : 0.0;
-      const dvec3 point = glm::mix(from, to, edge.edgeParameter(u));
-      const double distance = glm::dot(point - camera.camera().eye, camera.forward());
-      if (distance > farthestNearby(x, y) * (1 + 1e-4)) return;
-      float& nearest = lineDistance[std::size_t(y) * std::size_t(frame.width) + std::size_t(x)];
-      nearest = std::min(nearest, static_cast<float>(distance));
-    });
-  }
-  std::int64_t pixels = 0;
-  for (std::size_t pixel = 0; pixel < lineDistance.size(); ++pixel) {
-    if (lineDistance[pixel] == kNotDrawn) continue;
-    ++pixels;
-    const double clear = fog ? fogClearFraction(*fog, lineDistance[pixel]) : 1.0;
-    for (int c = 0; c < 3; ++c)
-      frame.color[4 * pixel + std::size_t(c)] = channelByte(clear * outline.color[c] + (1 - clear) * (fog ? fog->color[c] : 0.0f));
-  }
-  stats.add("outline edges", tested);
-  stats.add("outline pixels", pixels);
-}
-
-}  // namespace
-
-void applyImageEffects(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats) {
-  const Effects& effects = scene.scene().effects;
-  if (effects.fog) applyFog(effects.fogSettings, frame, threads, stats);
-  if (effects.outline) drawOutline(scene, camera, effects.outlineSettings, effects.fog ? &effects.fogSettings : nullptr, frame, stats);
 }
 
 }  // namespace hsr

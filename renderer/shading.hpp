@@ -1,14 +1,12 @@
-// The shading pass and the image passes after it: each pixel colored from the visible
-// id a surface algorithm left there (deferred shading: one shading invocation per
-// covered pixel, whatever the overdraw), then fog, then outlines. Each runs only when
-// the scene's effects ask for it, and counts what it did, so a test can check that a
-// scene without an effect spends nothing on it:
-//   "shading invocations"  one per shaded pixel (or per blended write, for the painter)
+// Shading: each pixel colored from the visible id a surface algorithm left there
+// (deferred shading: one shading invocation per covered pixel, whatever the overdraw),
+// with the lighting the scene's effects ask for (renderer/fog and renderer/outline are
+// the image passes after it). Each piece of work runs only when the effects ask for it,
+// and is counted, so a test can check that a scene without an effect spends nothing on it:
+//   "shading invocations"  one per shaded pixel (or per blended write, when transparency blends)
 //   "normals computed"     corner normals, only for lambert and phong (renderer/prepare)
 //   "specular terms"       Blinn-Phong highlights evaluated (phong only)
 //   "shadow lookups"       shadow tests (only with shadows), "shadowed lookups" those in shadow
-//   "fog blends"           pixels blended toward the fog color
-//   "outline edges", "outline pixels"  feature edges tested, pixels drawn over the image
 #pragma once
 
 #include "renderer/camera.hpp"
@@ -65,13 +63,6 @@ dvec3 towardLight(const Light& light, const dvec3& point);
 // Phase "shading": every covered pixel of frame.ids shaded, the background filled.
 void shadeFrame(const PreparedScene& scene, Frame& frame, const PixelShader& shader,
                 int threads, Stats& stats);
-
-// The passes after shading, each only when the scene declares it: fog (phase "fog"),
-// then outlines (phase "outline"), each line faded by its own distance.
-void applyImageEffects(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats);
-
-// The fraction of a surface's color left after fog at view distance d (1 = clear).
-double fogClearFraction(const FogSettings& fog, double distance);
 
 // A color channel in [0, 1] as an 8-bit value (clamped, rounded to nearest).
 std::uint8_t channelByte(double value);

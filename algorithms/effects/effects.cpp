@@ -4,12 +4,21 @@
 #include <cstdio>
 #include <utility>
 
+#include "renderer/fog.hpp"
+#include "renderer/outline.hpp"
+
 namespace hsr::effects {
 
 Lighting::Lighting(const PreparedScene& scene, const CameraTransform& camera, int threads, Stats& stats)
     : shadowMaps_(scene.scene().effects.shadows ? std::make_optional<ShadowMaps>(scene, scene.scene().effects.shadow, threads, stats)
                                                 : std::nullopt),
       shader_(scene, camera, stats, shadowMaps_ ? &*shadowMaps_ : nullptr) {}
+
+void applyImageEffects(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats) {
+  const Effects& effects = scene.scene().effects;
+  if (effects.fog) applyFog(effects.fogSettings, frame, threads, stats);
+  if (effects.outline) drawOutline(scene, camera, effects.outlineSettings, effects.fog ? &effects.fogSettings : nullptr, frame, stats);
+}
 
 void finishFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats) {
   const Lighting lighting(scene, camera, threads, stats);

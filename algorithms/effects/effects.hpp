@@ -31,6 +31,10 @@ class Lighting {
   PixelShader shader_;
 };
 
+// The passes after shading, each only when the scene declares it: fog (phase "fog"),
+// then outlines (phase "outline"), each line faded by its own distance.
+void applyImageEffects(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats);
+
 // Shading, then fog and outline, for a frame whose ids and depth a visibility pass filled.
 void finishFrame(const PreparedScene& scene, const CameraTransform& camera, Frame& frame, int threads, Stats& stats);
 

@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/lines.hpp"
+#include "renderer/line_set.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"

@@ -175,7 +175,7 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
     frame.color[4 * pixel + 3] = 255;
   }
   timer.reset();
-  applyImageEffects(scene, camera, frame, threads, stats);
+  effects::applyImageEffects(scene, camera, frame, threads, stats);
   return frame;
 }
 

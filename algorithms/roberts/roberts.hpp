@@ -37,7 +37,8 @@
 #include <cstdint>
 #include <string>
 
-#include "renderer/lines.hpp"
+#include "renderer/feature_edges.hpp"
+#include "renderer/line_set.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
 

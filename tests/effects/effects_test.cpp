@@ -11,6 +11,7 @@
 #include "algorithms/effects/effects.hpp"
 #include "algorithms/effects/shadow_map.hpp"
 #include "algorithms/registry.hpp"
+#include "renderer/fog.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/obj.hpp"
 #include "renderer/reference.hpp"

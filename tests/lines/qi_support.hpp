@@ -7,7 +7,8 @@
 #include <string>
 
 #include "renderer/camera.hpp"
-#include "renderer/lines.hpp"
+#include "renderer/feature_edges.hpp"
+#include "renderer/line_set.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
 

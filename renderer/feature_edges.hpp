@@ -1,6 +1,7 @@
-// Line drawings: the feature edges of a scene for one view, and the LineSet every
-// hidden-line algorithm (Roberts, Appel, the floating horizon) produces and the line
-// reference (renderer/line_reference) judges.
+// The feature edges of a scene for one view: what a line drawing draws (contours,
+// creases and boundaries of the meshes, and the junction lines and curves algorithms
+// compute), each projected to the image; and the exact signs relative to the viewer
+// that every hidden-line decision reduces to.
 //
 // An edge is judged along its projection: a parameter u in [0, 1] runs from the
 // projected first endpoint to the projected second one in pixel coordinates, so a
@@ -16,7 +17,6 @@
 #include <vector>
 
 #include "renderer/camera.hpp"
-#include "renderer/metrics.hpp"
 #include "renderer/predicates.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
@@ -87,84 +87,5 @@ std::vector<FeatureEdge> featureEdges(const PreparedScene& scene, const CameraTr
 // "" when every vertex lies beyond the near plane, which the line algorithms and the
 // line reference assume (they do not clip); otherwise why not, naming the object.
 std::string nearPlaneRefusal(const PreparedScene& scene);
-
-// One piece of an edge's projection, [begin, end] in its parameter u, with how many
-// front-facing surfaces hide it: 0 is visible. An algorithm that only knows "hidden"
-// (Roberts) reports kHidden.
-struct LineSegment {
-  static constexpr int kHidden = -1;
-  std::uint32_t edge;
-  double begin, end;
-  int qi;
-  bool visible() const { return qi == 0; }
-};
-
-// Where an edge of a drawing of curves lies: on curve `curve`, from running coordinate
-// `from` to `to` (from < to; the 3D parameter s is linear in it). Two drawings of the same
-// curves sampled differently are compared at equal coordinates (curveLineError).
-struct CurvePlace {
-  std::uint32_t curve;
-  double from, to;
-};
-
-struct LineSet {
-  int width = 0, height = 0;
-  std::vector<FeatureEdge> edges;
-  // Pieces covering every edge's [0, 1] with no gap, edge by edge, in increasing u.
-  std::vector<LineSegment> segments;
-  // A drawing of curves (the floating horizon's): one per edge. Empty otherwise.
-  std::vector<CurvePlace> curvePlaces;
-  // Why the drawing may be wrong somewhere, when the algorithm knows it may be ("" when
-  // it is exact wherever its method is); hsr render prints it as a warning.
-  std::string partial;
-};
-
-// Per edge, its projected length and its visible sub-intervals merged (the line error's
-// input, renderer/metrics).
-std::vector<EdgeVisibility> edgeVisibility(const LineSet& lines);
-
-// How a drawing shows hidden parts.
-enum class LineStyle {
-  visible,  // visible parts only, solid black
-  hidden,   // and hidden parts dashed grey
-  qi,       // by quantitative invisibility: QI 0 black, 1 grey dashed, 2 and more light grey
-};
-inline constexpr double kLineWidthPixels = 1.5;
-inline constexpr double kDashPixels = 6, kGapPixels = 4;
-
-// SVG in the view's pixel coordinates (y down), one <line> per drawn piece.
-std::string lineSetSvg(const LineSet& lines, LineStyle style);
-// The drawing rasterized (renderer/raster's line rule) over a white background.
-Frame lineSetFrame(const LineSet& lines, LineStyle style);
-
-// The length in pixels of the parts drawn visible that the reference hides and that do
-// not lie on a visible line of the exact drawing (within 1e-6 pixel). Where an edge lies
-// exactly behind a nearer edge (an orthographic view along a face, say), the reference's
-// closed triangles hide it while an algorithm may draw it: that counts in the line error
-// but changes no pixel, and not here. Sampled every half pixel. truth[i] describes lines.edges[i].
-double strayDrawnLength(const LineSet& lines, std::span<const EdgeVisibility> truth);
-
-// Where a drawing is wrong, as an RGBA8 picture: the exactly visible lines light grey,
-// parts drawn but hidden in the reference red, parts visible there but not drawn blue.
-// truth[i] describes lines.edges[i].
-std::vector<std::uint8_t> lineErrorMap(const LineSet& lines, std::span<const EdgeVisibility> truth);
-
-// Appends edge `edge`'s pieces covering [0, 1]: the visible parts (sorted, disjoint) with QI
-// 0, the parts between them kHidden.
-void appendPieces(LineSet& lines, std::uint32_t edge, std::span<const Interval> visible);
-
-// Two drawings of the same curves (both with curvePlaces), sampled differently: the drawn
-// one (an algorithm's) against the exact one. They are compared at equal running
-// coordinates along each curve, every quarter pixel: a point drawn visible is right when
-// the exact drawing shows the curve there within kCurveTolerancePixels of it; a point the
-// exact drawing shows is missed unless the drawn one shows it so. A curve drawn through
-// the wrong place (a spike cut off by coarse sampling) is then wrongly drawn where it is
-// and wrongly hidden where it should be. Lengths in pixels; the picture as lineErrorMap's.
-inline constexpr double kCurveTolerancePixels = 0.5;
-struct CurveComparison {
-  LineError error;
-  std::vector<std::uint8_t> errorMap;
-};
-CurveComparison compareCurveDrawings(const LineSet& drawn, const LineSet& exact, std::span<const EdgeVisibility> exactVisibility);
 
 }  // namespace hsr
