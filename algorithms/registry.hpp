@@ -44,7 +44,7 @@ using KnobValues = std::map<std::string, std::string>;  // every knob of the alg
 using KnobSettings = std::vector<std::pair<std::string, std::string>>;  // NAME=VALUE as the user gave them
 
 // A line drawing judged against the exact one: its line error, and where it is wrong
-// (renderer/lines: lineErrorMap's colours).
+// (renderer/line_errors: lineErrorMap's colours).
 struct LineJudgement {
   LineError error;
   std::vector<std::uint8_t> errorMap;

@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
     hsr::Frame frame(kWidth, kHeight);  // reused, as Mesa reuses its framebuffer: both clear it every frame
     const auto hsrVisibility = [&] {
       hsr::Stats stats;
-      const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(prepared, true, threads, stats);
+      const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(prepared, {}, threads, stats);
       hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats);
     };
     Timing ours, theirs;

@@ -72,7 +72,7 @@ void zbufferDepth(benchmark::State& state) {
   hsr::Frame frame(1920, 1080);
   for (auto _ : state) {
     hsr::Stats stats;
-    const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(prepared, true, 1, stats);
+    const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(prepared, {}, 1, stats);
     hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, 1, frame, stats);
     benchmark::DoNotOptimize(frame.depth.data());
   }

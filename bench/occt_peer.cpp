@@ -274,7 +274,7 @@ int main(int argc, char** argv) try {
   hsr::PreparedScene prepared(scene);
   if (options.width > 0) prepared.setSize(options.width, options.height);
   const int width = prepared.width(), height = prepared.height();
-  const hsr::CameraTransform camera(scene.camera, width, height);
+  const hsr::CameraTransform& camera = prepared.camera();
   if (!camera.perspective()) throw hsr::InputError(options.scene + ": occt_peer maps a perspective camera only");
   std::printf("%s: %zu triangles at %dx%d, crease %g degrees\n", options.scene.c_str(), prepared.triangleCount(), width, height,
               options.crease);

@@ -54,7 +54,7 @@ void bspWalkAndPaint(benchmark::State& state) {
   const hsr::painter::BspTree tree(scene, knobsFor(Variant::bsp), buildStats);
   for (auto _ : state) {
     hsr::Stats stats;
-    const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(scene, true, 1, stats);
+    const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(scene, {}, 1, stats);
     const hsr::Frame frame = hsr::painter::paint(scene, geometry, tree.backToFront(scene, geometry, stats), 1, stats);
     benchmark::DoNotOptimize(frame.ids.data());
   }

@@ -32,7 +32,7 @@ void visibility(benchmark::State& state) {
   hsr::Frame frame(scene.width(), scene.height());  // reused, as a real-time renderer reuses its framebuffer
   const auto once = [&](hsr::Stats& stats) {
     const bool clipFar = hsr::clipsFarPlane(format, scene.scene().camera.projection);
-    const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats);
+    const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, {.clipFar = clipFar}, threads, stats);
     if (variant == hsr::zbuffer::Variant::full)
       hsr::zbuffer::renderFullFrame(geometry, format, threads, frame, stats);
     else

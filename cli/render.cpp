@@ -172,7 +172,7 @@ int render(const RenderOptions& options) {
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
-  const CameraTransform camera(scene.prepared->scene().camera, scene.prepared->width(), scene.prepared->height());
+  const CameraTransform& camera = scene.prepared->camera();
   const std::optional<std::pair<double, double>> depths = lines ? std::nullopt : visibleDepths(frame);
   if (stats.counter("depth ties") > 0 && depths)
     warnAboutDepthTies(stats.counter("depth ties"), knobs.at("depth-format"), camera, depths->second);

@@ -85,7 +85,7 @@ void renderVisibility(const PreparedScene& scene, const culling::Pipeline& pipel
                       Stats& stats) {
   std::optional<VisibleSet> kept;
   if (!pipeline.empty()) kept = culling::runPipeline(scene, pipeline, threads, stats);
-  const ScreenGeometry geometry = buildScreenTriangles(scene, true, threads, stats, false, kept ? &*kept : nullptr);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {.submitted = kept ? &*kept : nullptr}, threads, stats);
   zbuffer::renderFullFrame(geometry, DepthFormat::float32, threads, frame, stats, depthTest);
 }
 

@@ -47,7 +47,7 @@ FrameResult renderFrame(const PreparedScene& scene, const culling::Pipeline& pip
   result.kept = pipeline.empty() ? VisibleSet::everything(scene) : culling::runPipeline(scene, pipeline, threads, stats, previous);
   result.cullMs = since(start);
   start = Clock::now();
-  const ScreenGeometry geometry = buildScreenTriangles(scene, true, threads, stats, false, &result.kept);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {.submitted = &result.kept}, threads, stats);
   zbuffer::renderFullFrame(geometry, DepthFormat::float32, threads, frame, stats);
   result.renderMs = since(start);
   return result;
@@ -220,7 +220,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
   }
   // Time per query, against the conservative 256x128 map of this view, for 10 to 10^6
   // random rectangles (each 1 to 40 texels a side).
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   culling::occlusion::Settings settings;
   const culling::occlusion::MapView view(camera, 256, 128);
   Stats stats;

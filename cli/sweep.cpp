@@ -248,7 +248,7 @@ std::pair<double, double> powerFit(const std::vector<double>& sizes, const std::
 std::vector<dmat4> tiledCopies(const PreparedScene& scene, int n) {
   Aabb bounds;
   for (const dvec3& p : scene.positions()) bounds.grow(p);
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   const dvec3 extent = bounds.hi - bounds.lo;
   const double step = std::max({extent.x, extent.y, extent.z}) / n;
   std::vector<dmat4> copies;

@@ -1,4 +1,4 @@
-// The suite's conventions, in one place. tests/conventions_test.cpp renders known
+// The suite's conventions, in one place. tests/renderer/conventions_test.cpp renders known
 // triangles to prove each statement below; change one and a test must change with it.
 #pragma once
 
@@ -16,6 +16,8 @@ namespace hsr::conventions {
 // Images: row 0 is the top row, x grows to the right. Pixel (i, j) covers
 // [i, i+1) x [j, j+1) in pixel coordinates and is sampled at its center (i + 0.5, j + 0.5).
 inline constexpr double kPixelCenterOffset = 0.5;
+// The pixel coordinate of the center of pixel column or row i.
+inline constexpr double pixelCenter(int i) { return i + kPixelCenterOffset; }
 
 // Rasterization snaps vertex positions to fixed point with this many sub-pixel bits
 // (1/256 pixel), so coverage is decided with exact integer arithmetic.

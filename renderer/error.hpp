@@ -1,4 +1,4 @@
-// Two kinds of failure, two mechanisms (see ../shared/STYLE.md, after pbrt):
+// Two kinds of failure, two mechanisms (after pbrt):
 //  - InputError: the user's input is wrong. The message is one line saying what,
 //    where (file, line, key) and what was expected; the CLI prints it and exits 2.
 //  - HSR_CHECK: a programmer's invariant. Failing it is a bug in hsr, never in the input.

@@ -229,7 +229,7 @@ std::vector<EdgeVisibility> traceLineReference(const PreparedScene& scene, std::
                                                Stats& stats) {
   const Bvh& bvh = scene.triangleBvh(stats);
   PhaseTimer timer(stats, "line reference");
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   std::vector<dvec2> pixel(scene.positions().size());
   std::vector<double> distance(scene.positions().size());
   for (std::size_t v = 0; v < pixel.size(); ++v) {

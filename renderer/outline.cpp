@@ -1,3 +1,4 @@
+#include "renderer/conventions.hpp"
 #include "renderer/outline.hpp"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ void drawOutline(const PreparedScene& scene, const CameraTransform& camera, cons
     const dvec2 span = edge.pixelTo - edge.pixelFrom;
     const double lengthSquared = glm::dot(span, span);
     rasterizeLine(edge.pixelFrom, edge.pixelTo, kLineWidthPixels, frame.width, frame.height, [&](int x, int y) {
-      const dvec2 center(x + 0.5, y + 0.5);
+      const dvec2 center(conventions::pixelCenter(x), conventions::pixelCenter(y));
       const double u = lengthSquared > 0 ? std::clamp(glm::dot(center - edge.pixelFrom, span) / lengthSquared, 0.0, 1.0) : 0.0;
       const dvec3 point = glm::mix(from, to, edge.edgeParameter(u));
       const double distance = glm::dot(point - camera.camera().eye, camera.forward());

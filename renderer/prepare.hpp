@@ -9,6 +9,7 @@
 
 #include "renderer/adjacency.hpp"
 #include "renderer/bvh.hpp"
+#include "renderer/camera.hpp"
 #include "renderer/intersections.hpp"
 #include "renderer/rounding.hpp"
 #include "renderer/scene.hpp"
@@ -53,8 +54,10 @@ class PreparedScene {
   PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies, const dmat4& objectMotion = dmat4(1.0));
 
   const Scene& scene() const { return *scene_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return camera_.width(); }
+  int height() const { return camera_.height(); }
+  // The scene's camera at the image size: the view every algorithm renders.
+  const CameraTransform& camera() const { return camera_; }
   // Render at another resolution than the scene file asks for (--size).
   void setSize(int width, int height);
 
@@ -121,7 +124,7 @@ class PreparedScene {
 
  private:
   const Scene* scene_;
-  int width_, height_;
+  CameraTransform camera_;
   std::vector<dvec3> positions_;
   std::vector<Triangle> triangles_;
   std::vector<Instance> instances_;

@@ -408,7 +408,7 @@ bool ExactShadows::shadowed(std::size_t light, const dvec3& point, std::uint32_t
 
 ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats) {
   const SurfaceReference reference(scene, stats);
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   PhaseTimer timer(stats, "reference");
   ReferenceImage image;
   image.frame = Frame(scene.width(), scene.height());
@@ -425,7 +425,7 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
     std::int64_t rowExact = 0, rowAmbiguous = 0;
     for (int x = 0; x < scene.width(); ++x) {
       const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
-      const ReferenceHit hit = reference.trace(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5), rowCounters);
+      const ReferenceHit hit = reference.trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(int(row))), rowCounters);
       image.frame.ids[pixel] = hit.id;
       image.frame.depth[pixel] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
                                                                        : static_cast<float>(hit.distance);
@@ -458,7 +458,7 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
 
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats) {
   ReferenceImage image = traceReference(scene, threads, stats);
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   const Effects& effects = scene.scene().effects;
   std::optional<ExactShadows> shadows;
   if (effects.shadows) shadows.emplace(scene, stats);
@@ -478,7 +478,7 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
       SurfaceReference::Counters rayCounters;
       for (int x = 0; x < scene.width(); ++x) {
         const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
-        const auto layers = reference.traceAll(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5), rayCounters);
+        const auto layers = reference.traceAll(camera, camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(int(row))), rayCounters);
         // The last layer is the opaque surface everything else is seen over, if any.
         std::size_t layer = layers.hits.size();
         const bool opaqueLast = layer > 0 && scene.instanceOf(layers.hits[layer - 1].id - 1).opacity >= 1;

@@ -62,7 +62,7 @@ struct Light {
 };
 
 // Effects a scene declares; the renderer runs the passes these need and no others
-// (renderer/effects: the plan, and why each pass runs or does not).
+// (the pipeline: the plan, and why each pass runs or does not).
 enum class Shading {
   none,     // each object's own color: no normals, no lights
   flat,     // ambient + diffuse with the face normal: one color per triangle under a directional light

@@ -77,15 +77,14 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> vertexPieces(const Prepared
 
 }  // namespace
 
-ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
-                                    bool keepCorners, const VisibleSet* submitted) {
-  return buildScreenTriangles(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), clipFar, threads,
-                              stats, keepCorners, submitted);
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const GeometryOptions& options, int threads, Stats& stats) {
+  return buildScreenTriangles(scene, scene.camera(), options, threads, stats);
 }
 
-ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, bool clipFar, int threads,
-                                    Stats& stats, bool keepCorners, const VisibleSet* submitted) {
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, const GeometryOptions& options,
+                                    int threads, Stats& stats) {
   PhaseTimer timer(stats, "geometry");
+  const auto [clipFar, keepCorners, submitted] = options;
   ScreenGeometry geometry{view, {}, {}};
   const CameraTransform& camera = geometry.camera;
   const ClipVolume volume(camera, clipFar);

@@ -26,16 +26,27 @@ struct ScreenGeometry {
   std::vector<std::array<dvec3, 3>> corners;
 };
 
+// What the geometry stage is asked for.
+struct GeometryOptions {
+  // Clip at the far plane as well as the near one: every depth format but the reversed
+  // float with an infinite far plane needs it.
+  bool clipFar = true;
+  // Keep each screen triangle's unsnapped corners (ScreenGeometry::corners): the
+  // painter's geometric tests need them, the z-buffer does not.
+  bool keepCorners = false;
+  // Only these triangles (what culling stages kept); nullptr: all of them.
+  const VisibleSet* submitted = nullptr;
+};
+
 // Counts in stats: "triangles in", "triangles outside view" (rejected whole),
 // "triangles clipped", "triangles between pixel centers" (zero area or no center
 // inside), "screen triangles" (what the rasterizer receives), "vertices transformed".
 // With a VisibleSet only its triangles go in, and only the vertices of objects that
 // still have a triangle in it are transformed: what a culling stage saves.
-ScreenGeometry buildScreenTriangles(const PreparedScene& scene, bool clipFar, int threads, Stats& stats,
-                                    bool keepCorners = false, const VisibleSet* submitted = nullptr);
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const GeometryOptions& options, int threads, Stats& stats);
 // The same from another viewpoint than the scene's camera (a light's, for a shadow map),
 // into an image of the view's size.
-ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, bool clipFar, int threads,
-                                    Stats& stats, bool keepCorners = false, const VisibleSet* submitted = nullptr);
+ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, const GeometryOptions& options,
+                                    int threads, Stats& stats);
 
 }  // namespace hsr

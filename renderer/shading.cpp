@@ -30,7 +30,7 @@ dvec3 barycentricAlongRay(const PreparedScene& scene, std::uint32_t triangle, co
 
 SurfacePoint surfacePoint(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, int x, int y,
                           const std::vector<std::array<dvec3, 3>>* cornerNormals) {
-  const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5);
+  const Ray ray = camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(y));
   const dvec3 bary = barycentricAlongRay(scene, triangle, ray);
   const Triangle& t = scene.triangles()[triangle];
   SurfacePoint point;

@@ -17,7 +17,7 @@ struct Coverage {
 // Only triangles whose global index is in [firstTriangle, endTriangle) are counted.
 inline Coverage rasterCoverage(const PreparedScene& scene, std::uint32_t firstTriangle, std::uint32_t endTriangle) {
   Stats stats;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, true, 1, stats);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {}, 1, stats);
   Coverage coverage{scene.width(), scene.height(), {}, {}};
   coverage.front.assign(std::size_t(scene.width()) * std::size_t(scene.height()), 0);
   coverage.back = coverage.front;

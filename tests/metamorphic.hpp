@@ -149,7 +149,7 @@ inline std::optional<LineSet> draw(const PreparedScene& scene, const char* algor
 
 inline DepthTie depthTieOf(const PreparedScene& scene, const Configuration& configuration) {
   if (!configuration.format) return coplanar;
-  return depthFormatTie(*configuration.format, CameraTransform(scene.scene().camera, scene.width(), scene.height()));
+  return depthFormatTie(*configuration.format, scene.camera());
 }
 
 // The depth sort's own ties: two triangles whose keys (of any of their screen pieces: a
@@ -160,7 +160,7 @@ inline std::function<bool(std::uint32_t, std::uint32_t)> sortKeyTie(const Prepar
   if (!configuration.ordersWholeTriangles) return nullptr;
   const std::string key = configuration.knobs.back().second;
   Stats stats;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, true, 1, stats, true);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {.keepCorners = true}, 1, stats);
   auto keys = std::make_shared<std::vector<std::vector<double>>>(scene.triangleCount());
   for (std::size_t s = 0; s < geometry.triangles.size(); ++s) {
     double d[3];
@@ -190,7 +190,7 @@ inline EdgeOnFaces edgeOnFaces(const PreparedScene& original, const PreparedScen
   EdgeOnFaces edgeOn;
   Stats stats;
   for (const PreparedScene* scene : {&original, &moved}) {
-    const std::vector<std::int8_t> facing = viewFacing(*scene, CameraTransform(scene->scene().camera, scene->width(), scene->height()), stats);
+    const std::vector<std::int8_t> facing = viewFacing(*scene, scene->camera(), stats);
     for (std::uint32_t t = 0; t < facing.size(); ++t)
       if (facing[t] == 0) {
         edgeOn.triangles.push_back(t);
@@ -207,7 +207,7 @@ inline EdgeOnFaces edgeOnFaces(const PreparedScene& original, const PreparedScen
 // ends within 1e-6 pixel of the line the triangle's projection collapses to (through its
 // two projected corners farthest apart).
 inline bool alongEdgeOnFace(const FeatureEdge& junction, const PreparedScene& scene, const std::vector<std::uint32_t>& triangles) {
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   for (const std::uint32_t t : triangles) {
     std::array<dvec2, 3> corners;
     bool inFront = true;

@@ -288,11 +288,11 @@ inline WrongPixels classifyDifferences(const PreparedScene& scene, std::span<con
                                        const DepthTie& tied,
                                        const std::function<bool(std::uint32_t, std::uint32_t)>& tiedOrder = nullptr,
                                        const PreparedScene* rendered = nullptr, std::uint32_t idsPerOriginal = 1) {
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   const auto nearestRenderedEdge = [&](std::initializer_list<std::uint32_t> ids, const dvec2& center) {
     double nearest = std::numeric_limits<double>::infinity();
     if (!rendered) return nearest;
-    const CameraTransform renderedCamera(rendered->scene().camera, rendered->width(), rendered->height());
+    const CameraTransform& renderedCamera = rendered->camera();
     for (const std::uint32_t id : ids)
       for (std::uint32_t k = 0; id != 0 && k < idsPerOriginal; ++k)
         nearest = std::min(nearest, distanceToProjectedEdges(*rendered, renderedCamera, (id - 1) * idsPerOriginal + k, center));
@@ -336,7 +336,7 @@ inline WrongPixels classifyWrongPixels(const PreparedScene& scene, const Frame& 
 // and four points 0.01 pixel away all hit the same triangle. On a clear pixel the
 // rasterizer must agree exactly.
 inline Agreement agreementWithRays(const PreparedScene& scene, const Frame& frame) {
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   std::vector<std::uint32_t> inFront;
   for (std::uint32_t t = 0; t < scene.triangleCount(); ++t)
     if (!projectedOutline(scene, camera, t).empty()) inFront.push_back(t);

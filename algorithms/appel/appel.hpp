@@ -32,7 +32,7 @@
 // through a side or corner of a face, or ends on its plane, the QI after that point is
 // counted afresh by a ray cast; a count that still does not close labels the drawing
 // partial (LineSet::partial).
-// Output: a LineSet of the feature edges (renderer/lines) with each piece's QI.
+// Output: a LineSet of the feature edges (renderer/feature_edges) with each piece's QI.
 #pragma once
 
 #include <string>

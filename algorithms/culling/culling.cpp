@@ -128,7 +128,7 @@ std::string describePipeline(const Pipeline& pipeline) {
 
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
                        const PreviousFrame* previous) {
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   VisibleSet set = VisibleSet::everything(scene);
   for (const StageChoice& choice : pipeline) set = choice.stage->run(choice, {scene, camera, set, threads, stats, previous});
   stats.add("culling: triangles kept", static_cast<std::int64_t>(set.triangles.size()));

@@ -68,7 +68,7 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
       // apart so that the camera's pass reads the same with and without shadows.
       Stats mapStats;
       Frame map(settings.resolution, settings.resolution);
-      const ScreenGeometry geometry = buildScreenTriangles(scene, view, true, threads, mapStats, false, &casters);
+      const ScreenGeometry geometry = buildScreenTriangles(scene, view, {.submitted = &casters}, threads, mapStats);
       zbuffer::renderFullFrame(geometry, DepthFormat::float32, threads, map, mapStats);
       stats.add("shadow maps rendered");
       stats.add("shadow map texels", static_cast<std::int64_t>(map.pixelCount()));

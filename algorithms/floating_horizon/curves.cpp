@@ -36,7 +36,7 @@ std::string refusal(const PreparedScene& scene) {
            std::to_string(instances.size()) + " object copies" +
            (instances.size() == 1 ? " and it is not a height field" : "");
   const Solid& solid = scene.scene().objects[instances[0].object].solid;
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   const ObjectView view = objectView(camera, instances[0].worldFromObject);
   // A screen column must not depend on the height: then each column is a vertical plane
   // through the surface, the premise of the horizon arrays.

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "algorithms/effects/effects.hpp"
+#include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
 #include "renderer/parallel.hpp"
 #include "renderer/shading.hpp"
@@ -119,7 +120,7 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
       // A piece's pixels are its triangle's pixels whose point (where the pixel's ray
       // meets the triangle's plane) lies on the kept side of every cut.
       const auto insideCuts = [&](int x, int y) {
-        const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5);
+        const Ray ray = camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(y));
         const double along = glm::dot(own.normal, own.corner - ray.origin) / glm::dot(own.normal, ray.direction);
         const dvec3 point = ray.origin + along * ray.direction;
         for (std::uint32_t k = 0; k < piece.cutCount; ++k) {
@@ -135,7 +136,7 @@ Frame paint(const PreparedScene& scene, const ScreenGeometry& geometry, const Pa
         rasterizeSpan(tri, y, spanBegin, spanEnd, [&](int x) {
           if (piece.cutCount != 0 && !insideCuts(x, y)) return;
           const std::size_t pixel = std::size_t(y) * std::size_t(frame.width) + std::size_t(x);
-          const float depth = static_cast<float>(camera.distanceFromScreenAffine(tri.depthAt(x + 0.5, y + 0.5)));
+          const float depth = static_cast<float>(camera.distanceFromScreenAffine(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
           // Over opaque surfaces already drawn, only what lies in front of them shows, and
           // the pixel's id is the nearest surface, whatever order the colors blend in.
           if (base && !(depth < base->frame.depth[pixel])) return;

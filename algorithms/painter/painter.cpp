@@ -44,7 +44,7 @@ Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& st
   // Step 1: the screen triangles, clipped at the near and far planes as the reference
   // sees the scene. Sort and Newell order them by their corners.
   const bool needsCorners = knobs.variant != Variant::bsp;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, true, threads, stats, needsCorners, visible);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {.keepCorners = needsCorners, .submitted = visible}, threads, stats);
   // Step 2: back to front.
   PaintOrder order;
   switch (knobs.variant) {

@@ -51,7 +51,7 @@ typename Tracer::Counters castRays(const Tracer& tracer, const CameraTransform& 
   parallelFor(rows, threads, [&](std::size_t row, int) {
     Counters counters;
     for (int x = 0; x < frame.width; ++x) {
-      const PixelRay pixel(camera, camera.rayThroughPixel(x + 0.5, double(row) + 0.5));
+      const PixelRay pixel(camera, camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(int(row))));
       const Hit hit = tracer.trace(pixel, counters);
       const std::size_t index = row * std::size_t(frame.width) + std::size_t(x);
       frame.ids[index] = hit.id;

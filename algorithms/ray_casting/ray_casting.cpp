@@ -193,7 +193,7 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
 Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
   if (const std::string reason = refusal(scene, knobs); !reason.empty()) throw InputError(reason);
   Frame frame(scene.width(), scene.height());
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   stats.add("primary rays", static_cast<std::int64_t>(frame.pixelCount()));
   switch (knobs.variant) {
     case Variant::naive: {
@@ -220,7 +220,7 @@ Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads
 
 Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
   Frame frame = castVisibility(scene, knobs, threads, stats);
-  effects::finishFrame(scene, CameraTransform(scene.scene().camera, scene.width(), scene.height()), frame, threads, stats);
+  effects::finishFrame(scene, scene.camera(), frame, threads, stats);
   return frame;
 }
 

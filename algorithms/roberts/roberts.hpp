@@ -30,7 +30,7 @@
 //
 // Input: scenes of closed convex polyhedra only (boxes, prisms, pyramids, convex meshes),
 // all beyond the near plane; anything else is refused naming the object.
-// Output: a LineSet of the feature edges (renderer/lines) plus the junction lines, each
+// Output: a LineSet of the feature edges (renderer/feature_edges) plus the junction lines, each
 // piece visible (QI 0) or hidden (LineSegment::kHidden: Roberts does not count faces).
 #pragma once
 

@@ -68,7 +68,7 @@ Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& st
   // ones are blended over them afterwards, back to front.
   const bool transparency = scene.scene().effects.transparency;
   const std::optional<VisibleSet> opaque = transparency ? std::make_optional(trianglesByOpacity(scene, visible, true)) : std::nullopt;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, clipFar, threads, stats, false, opaque ? &*opaque : visible);
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {.clipFar = clipFar, .submitted = opaque ? &*opaque : visible}, threads, stats);
   if (knobs.variant == Variant::full)
     renderFullFrame(geometry, knobs.depthFormat, threads, frame, stats, knobs.depthTest);
   else
@@ -85,7 +85,7 @@ Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& st
   const effects::Lighting lighting(scene, geometry.camera, threads, stats);
   shadeFrame(scene, frame, lighting.shader(), threads, stats);
   const VisibleSet transparent = trianglesByOpacity(scene, visible, false);
-  const ScreenGeometry glass = buildScreenTriangles(scene, true, threads, stats, true, &transparent);
+  const ScreenGeometry glass = buildScreenTriangles(scene, {.keepCorners = true, .submitted = &transparent}, threads, stats);
   const painter::PaintOrder order = painter::sortOrder(glass, painter::SortKey::centroid, stats);
   const painter::OpaqueBase base{frame, lighting.shader()};
   return painter::paint(scene, glass, order, threads, stats, &base);

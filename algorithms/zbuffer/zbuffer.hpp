@@ -8,6 +8,7 @@
 
 #include <limits>
 
+#include "renderer/conventions.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/prepare.hpp"
@@ -72,7 +73,7 @@ struct DepthTest {
 
   void test(const ScreenTriangle& tri, int x, int y, typename Format::Stored& stored, std::uint32_t& id) {
     ++tested;
-    const auto z = Format::store(encoding.z(tri.depthAt(x + 0.5, y + 0.5)));
+    const auto z = Format::store(encoding.z(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
     if (!Format::nearer(z, stored)) {
       ties += z == stored && id != conventions::kBackgroundId && id != tri.triangle + 1;
       return;

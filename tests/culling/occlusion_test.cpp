@@ -91,7 +91,7 @@ void expectConservativeMap(const std::string& scene, int mapWidth, int mapHeight
   loaded.prepared.setSize(4 * mapWidth, 4 * mapHeight);
   Stats stats;
   const ReferenceImage truth = traceReference(loaded.prepared, 2, stats);
-  const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+  const CameraTransform& camera = loaded.prepared.camera();
   Settings settings;
   settings.mapWidth = mapWidth, settings.mapHeight = mapHeight;
   const MapView view(camera, mapWidth, mapHeight);
@@ -230,7 +230,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, OcclusionShippedScene, testing::ValuesIn(test::
 TEST(Occlusion, AFractionOfOccludersIsTheLargestByTheChosenMeasure) {
   test::LoadedScene city(test::sourcePath("scenes/city.toml"), 480);
   const PreparedScene& scene = city.prepared;
-  const CameraTransform camera(city.scene.camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   const VisibleSet all = VisibleSet::everything(scene);
   for (const auto& [measure, name] : {std::pair(Occluders::volume, "volume"), std::pair(Occluders::solidAngle, "solid-angle")}) {
     Settings settings;

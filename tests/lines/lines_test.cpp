@@ -115,7 +115,7 @@ double visibleJunctionLength(const LineSet& lines) {
 }
 
 // Roberts intersects the bodies' face planes; Appel finds where edges pass through faces
-// (algorithms/appel/intersections.hpp). Both draw the same junction lines, exactly.
+// (renderer/intersections.hpp). Both draw the same junction lines, exactly.
 TEST(LineHardCases, InterpenetratingBoxesGetJunctionLines) {
   const test::LoadedScene loaded(test::sourcePath("scenes/hard/box_junctions.toml"));
   Stats robertsStats, appelStats;
@@ -185,7 +185,7 @@ TEST(LineHardCases, TranslationAndScaleLeaveTheDrawing) {
 
 TEST(LineInfrastructure, FeatureEdgesOfACube) {
   const test::LoadedScene loaded(test::sourcePath("scenes/cube.toml"));
-  const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+  const CameraTransform& camera = loaded.prepared.camera();
   Stats stats;
   const std::vector<std::int8_t> facing = viewFacing(loaded.prepared, camera, stats);
   const std::vector<FeatureEdge> edges = featureEdges(loaded.prepared, camera, facing, 30, stats);
@@ -199,7 +199,7 @@ TEST(LineInfrastructure, FeatureEdgesOfACube) {
 
 TEST(LineInfrastructure, EdgeParameterMapsScreenToSpaceUnderPerspective) {
   const test::LoadedScene loaded(test::sourcePath("scenes/blocks.toml"));
-  const CameraTransform camera(loaded.scene.camera, loaded.prepared.width(), loaded.prepared.height());
+  const CameraTransform& camera = loaded.prepared.camera();
   const FeatureEdge edge = projectEdge(camera, {-2, 0, 1.5}, {2, 0, -1.5}, EdgeKind::crease);
   for (const double u : {0.0, 0.1, 0.5, 0.77, 1.0}) {
     const double s = edge.edgeParameter(u);

@@ -52,7 +52,7 @@ struct QiCheck {
 //   - inside a piece at least two pixels long, the QI is the count of front faces in
 //     front of its middle (frontFacesInFront).
 inline QiCheck checkQiInvariants(const PreparedScene& scene, const LineSet& lines, const Stats& stats) {
-  const CameraTransform camera(scene.scene().camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   QiCheck check;
   const auto violated = [&](const std::string& what) {
     if (check.violations++ == 0) check.firstViolation = what;

@@ -57,9 +57,9 @@ TEST(Numerics, FarLayersKeepTheirHalfMicrometreFromTheFileToThePixel) {
   const Frame resolved = render(scene, "zbuffer", {{"depth-format", "reversed-float32"}}, reversed);
   EXPECT_GT(float32.counter("depth ties"), 1000);
   EXPECT_EQ(reversed.counter("depth ties"), 0);
-  const test::WrongPixels wrong = test::classifyWrongPixels(scene, resolved, truth, test::depthFormatTie(DepthFormat::reversedFloat32, CameraTransform(loaded.scene.camera, scene.width(), scene.height())));
+  const test::WrongPixels wrong = test::classifyWrongPixels(scene, resolved, truth, test::depthFormatTie(DepthFormat::reversedFloat32, scene.camera()));
   EXPECT_EQ(wrong.unexplained + wrong.depthTie, 0);
-  const CameraTransform camera(loaded.scene.camera, scene.width(), scene.height());
+  const CameraTransform& camera = scene.camera();
   EXPECT_GT(depthResolution(DepthFormat::float32, camera, 3.0), 5e-7);
   EXPECT_LT(depthResolution(DepthFormat::reversedFloat32, camera, 3.0), 5e-7);
   std::printf("far_layers: %ld + %ld pixels; float32 %lld depth ties, reversed-float32 %lld\n", frontPixels, backPixels,

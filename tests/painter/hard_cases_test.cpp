@@ -90,7 +90,7 @@ TEST(PainterHardCases, NearDegenerateSplitsLeaveNoCracksAndNoNaN) {
   const PreparedScene& prepared = loaded.prepared;
   // Each screen triangle's pixels, counted with the rasterizer alone.
   Stats geometryStats;
-  const ScreenGeometry geometry = buildScreenTriangles(prepared, true, 1, geometryStats);
+  const ScreenGeometry geometry = buildScreenTriangles(prepared, {}, 1, geometryStats);
   long covered = 0;
   for (const ScreenTriangle& tri : geometry.triangles)
     for (int y = tri.minY; y <= tri.maxY; ++y) rasterizeSpan(tri, y, tri.minX, tri.maxX + 1, [&](int) { ++covered; });

@@ -70,7 +70,7 @@ TEST(PainterBsp, OneTreeServesEveryEye) {
     scene.camera.eye = eye;
     const PreparedScene prepared(scene);
     Stats stats;
-    const ScreenGeometry geometry = buildScreenTriangles(prepared, true, 2, stats);
+    const ScreenGeometry geometry = buildScreenTriangles(prepared, {}, 2, stats);
     const Frame frame = painter::paint(prepared, geometry, tree.backToFront(prepared, geometry, stats), 2, stats);
     EXPECT_EQ(stats.counter("bsp splits"), 0) << "walking the tree builds nothing";
     const ReferenceImage truth = traceReference(prepared, 2, stats);

@@ -55,7 +55,7 @@ std::optional<Frame> render(const PreparedScene& scene, const ExactAlgorithm& al
 
 test::DepthTie depthTieOf(const PreparedScene& scene, const ExactAlgorithm& algorithm) {
   if (!algorithm.float32Depth) return test::coplanar;
-  return test::float32DepthTie(CameraTransform(scene.scene().camera, scene.width(), scene.height()));
+  return test::float32DepthTie(scene.camera());
 }
 
 struct Judged {

@@ -52,7 +52,7 @@ double depthInside(const std::vector<dvec2>& hull, const dvec2& p) {
 TEST(RayCastingHardCase, NoRayPassesBetweenTrianglesThatShareAnEdge) {
   const Scene scene = loadScene(test::sourcePath("scenes/hard/watertight.toml"));
   const PreparedScene prepared(scene);
-  const CameraTransform camera(scene.camera, prepared.width(), prepared.height());
+  const CameraTransform& camera = prepared.camera();
   for (const Variant which : {Variant::bvh, Variant::naive}) {
     const Frame frame = renderRayCasting(prepared, rayCastingKnobs(which));
     for (const Instance& instance : prepared.instances()) {

@@ -51,7 +51,7 @@ TEST(Conventions, CounterClockwiseIsFrontFacing) {
                               {triangleMesh({{0, 0, 0}, {10, 0, 0}, {0, 10, 0},     // counter-clockwise seen from +z
                                              {0, 0, 0}, {0, 10, 0}, {10, 0, 0}})}); // clockwise
   Stats stats;
-  const ScreenGeometry geometry = buildScreenTriangles(PreparedScene(scene), true, 1, stats);
+  const ScreenGeometry geometry = buildScreenTriangles(PreparedScene(scene), {}, 1, stats);
   ASSERT_EQ(geometry.triangles.size(), 2u);
   EXPECT_TRUE(geometry.triangles[0].frontFacing);
   EXPECT_FALSE(geometry.triangles[1].frontFacing);

@@ -27,7 +27,7 @@ TEST(ZBufferAgainstReference, EveryWrongPixelIsExplainedBySnappingOrDepthResolut
     const ReferenceImage truth = renderReference(prepared, 0, stats);
     const Frame frame = test::renderZBuffer(prepared, zbuffer::Variant::full, DepthFormat::float32, 0);
     const SurfaceError error = surfaceError(frame, truth);
-    const CameraTransform camera(scene.camera, prepared.width(), prepared.height());
+    const CameraTransform& camera = prepared.camera();
     const test::WrongPixels explained = test::classifyWrongPixels(prepared, frame, truth, test::float32DepthTie(camera));
     EXPECT_EQ(explained.unexplained, 0) << entry.path();
     EXPECT_EQ(explained.total(), error.wrongPixels);
