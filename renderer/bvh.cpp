@@ -16,14 +16,23 @@ double Aabb::halfArea() const {
 
 namespace {
 
+// The largest float at most x, and the smallest at least x. Beyond the float range (no
+// scene reaches it, but adversarial tests do) they are the largest float or an infinity,
+// never an overflowing conversion.
+float floatBelow(double x) {
+  constexpr float kMax = std::numeric_limits<float>::max(), kInfinity = std::numeric_limits<float>::infinity();
+  if (x >= double(kMax)) return kMax;
+  if (x < -double(kMax)) return -kInfinity;
+  const float f = static_cast<float>(x);
+  return double(f) > x ? std::nextafter(f, -kInfinity) : f;
+}
+float floatAbove(double x) { return -floatBelow(-x); }
+
 // Rounds a double box outward to floats, so the float box contains the double one.
 void storeBounds(const Aabb& box, BvhNode& node) {
   for (int axis = 0; axis < 3; ++axis) {
-    float lo = static_cast<float>(box.lo[axis]), hi = static_cast<float>(box.hi[axis]);
-    if (double(lo) > box.lo[axis]) lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
-    if (double(hi) < box.hi[axis]) hi = std::nextafter(hi, std::numeric_limits<float>::infinity());
-    node.bounds[0][axis] = lo;
-    node.bounds[1][axis] = hi;
+    node.bounds[0][axis] = floatBelow(box.lo[axis]);
+    node.bounds[1][axis] = floatAbove(box.hi[axis]);
   }
 }
 
@@ -91,7 +100,11 @@ class Builder {
     dvec3 lo, scale;  // bin = floor((c - lo) * scale), clamped
     explicit Binning(const Aabb& centroidBounds) : lo(centroidBounds.lo) {
       const dvec3 extent = centroidBounds.hi - centroidBounds.lo;
-      for (int axis = 0; axis < 3; ++axis) scale[axis] = extent[axis] > 0 ? Bvh::kBins / extent[axis] : 0;
+      // An extent too small for kBins / extent to be finite (subnormal: the fuzzer found
+      // one) is no extent: the division would overflow, and 0 * infinity would make a bin
+      // of NaN. The bound keeps a factor 2 from the overflow so rounding cannot reach it.
+      constexpr double kSmallestExtent = 2 * Bvh::kBins / std::numeric_limits<double>::max();
+      for (int axis = 0; axis < 3; ++axis) scale[axis] = extent[axis] > kSmallestExtent ? Bvh::kBins / extent[axis] : 0;
     }
     int bin(const dvec3& centroid, int axis) const {
       return std::clamp(static_cast<int>((centroid[axis] - lo[axis]) * scale[axis]), 0, Bvh::kBins - 1);

@@ -116,13 +116,16 @@ class Bvh {
 // covers the rounding of the subtraction and the multiplication.
 struct RayBoxTest {
   dvec3 origin, inverseDirection;
-  int nearSide[3];  // per axis, the corner (0 low, 1 high) whose slab plane the ray meets first
+  int nearSide[3];     // per axis, the corner (0 low, 1 high) whose slab plane the ray meets first
+  bool parallel[3];    // per axis, the ray runs parallel to the slab's planes (a zero component)
 
-  // A direction component of 0 gives an infinite inverse; a slab whose plane holds the
-  // origin then yields NaN, which the comparisons below ignore, so the ray counts as
-  // inside that (closed) slab, as it is.
-  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : origin(rayOrigin), inverseDirection(1.0 / direction) {
-    for (int axis = 0; axis < 3; ++axis) nearSide[axis] = std::signbit(inverseDirection[axis]) ? 1 : 0;
+  // Along an axis the ray does not move on, it is inside the (closed) slab for every t
+  // or for none: that axis is tested by the origin alone, with no division by zero.
+  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : origin(rayOrigin), inverseDirection(inverseOf(direction)) {
+    for (int axis = 0; axis < 3; ++axis) {
+      parallel[axis] = direction[axis] == 0;
+      nearSide[axis] = std::signbit(direction[axis]) ? 1 : 0;
+    }
   }
 
   // The entry parameter of the ray into the node's box when the box is met within
@@ -131,9 +134,13 @@ struct RayBoxTest {
     constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
     double tEnter = 0, tExit = tMax;
     for (int axis = 0; axis < 3; ++axis) {
+      if (parallel[axis]) {
+        if (origin[axis] < double(node.bounds[0][axis]) || origin[axis] > double(node.bounds[1][axis]))
+          return std::numeric_limits<double>::infinity();
+        continue;
+      }
       const double tNear = (double(node.bounds[nearSide[axis]][axis]) - origin[axis]) * inverseDirection[axis];
       const double tFar = (double(node.bounds[1 - nearSide[axis]][axis]) - origin[axis]) * inverseDirection[axis];
-      // Written so that a NaN (see the constructor) leaves tEnter and tExit as they are.
       tEnter = tNear > tEnter ? tNear : tEnter;
       tExit = tFar * widen < tExit ? tFar * widen : tExit;
     }
@@ -145,8 +152,16 @@ struct RayBoxTest {
   std::array<double, 2> childEntries(const BvhNode* children, double tMax) const {
     using Pair = double __attribute__((vector_size(16)));
     constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
+    constexpr double miss = std::numeric_limits<double>::infinity();
     Pair tEnter = {0, 0}, tExit = {tMax, tMax};
+    bool inside[2] = {true, true};
     for (int axis = 0; axis < 3; ++axis) {
+      if (parallel[axis]) {
+        for (int child = 0; child < 2; ++child)
+          inside[child] = inside[child] && origin[axis] >= double(children[child].bounds[0][axis]) &&
+                          origin[axis] <= double(children[child].bounds[1][axis]);
+        continue;
+      }
       const int near = nearSide[axis], far = 1 - near;
       const Pair nearPlane = {children[0].bounds[near][axis], children[1].bounds[near][axis]};
       const Pair farPlane = {children[0].bounds[far][axis], children[1].bounds[far][axis]};
@@ -155,8 +170,7 @@ struct RayBoxTest {
       tEnter = tNear > tEnter ? tNear : tEnter;
       tExit = tFar < tExit ? tFar : tExit;
     }
-    constexpr double miss = std::numeric_limits<double>::infinity();
-    return {tEnter[0] <= tExit[0] ? tEnter[0] : miss, tEnter[1] <= tExit[1] ? tEnter[1] : miss};
+    return {inside[0] && tEnter[0] <= tExit[0] ? tEnter[0] : miss, inside[1] && tEnter[1] <= tExit[1] ? tEnter[1] : miss};
   }
 };
 

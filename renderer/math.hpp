@@ -2,7 +2,9 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/glm.hpp>
 
@@ -26,6 +28,15 @@ inline constexpr double kMaxCoordinate = 1e12;
 inline std::int64_t orient2d(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by,
                              std::int64_t cx, std::int64_t cy) {
   return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+
+// 1 / d per axis, and +-infinity (by d's sign) for a zero component without dividing by
+// zero: the reciprocal ray tests use, with floating-point exceptions trapped or not.
+inline dvec3 inverseOf(const dvec3& d) {
+  dvec3 inverse;
+  for (int axis = 0; axis < 3; ++axis)
+    inverse[axis] = d[axis] != 0 ? 1.0 / d[axis] : std::copysign(std::numeric_limits<double>::infinity(), d[axis]);
+  return inverse;
 }
 
 }  // namespace hsr

@@ -79,13 +79,17 @@ WoopTerms<Number> woopTerms(const ShearedRay<Number>& ray, const dvec3& a, const
 // shear, a subtraction) is within 4u of its magnitude bound m = |x| + |s||z|; each
 // edge function adds two products and a subtraction. The constants below round those
 // counts up generously: a loose bound costs a rare extra exact test, a tight one is a bug.
+// The error bounds of the edge functions u, v, w and of det; and the hit parameter
+// t = scaledT / det with its bound tBound, computed only where |det| is surely above 0 (a
+// ray surely not parallel to the triangle). Elsewhere no hit can be certain: t is 0 and
+// tBound infinite, and nothing divides by zero.
 struct WoopBounds {
-  double u, v, w, det, t;
+  double u, v, w, det;
+  double t = 0, tBound = 0;
 };
 
-// t = terms.scaledT / terms.det, as the caller computed it.
 WoopBounds woopBounds(const ShearedRay<double>& ray, const dvec3& a, const dvec3& b, const dvec3& c,
-                      const WoopTerms<double>& terms, double t) {
+                      const WoopTerms<double>& terms) {
   struct Magnitude {
     double x, y, z;
   };
@@ -106,8 +110,13 @@ WoopBounds woopBounds(const ShearedRay<double>& ray, const dvec3& a, const dvec3
   const double scaledT = edge * ((absU + bounds.u) * A.z + (absV + bounds.v) * B.z + (absW + bounds.w) * C.z) +
                          bounds.u * A.z + bounds.v * B.z + bounds.w * C.z;
   const double absDet = std::abs(terms.det);
-  bounds.t = absDet > bounds.det ? (scaledT + std::abs(t) * bounds.det) / (absDet - bounds.det) + sum * std::abs(t)
-                                 : kInfinity;
+  if (!(absDet > bounds.det)) {
+    bounds.tBound = kInfinity;
+    return bounds;
+  }
+  const double t = terms.scaledT / terms.det;
+  bounds.t = t;
+  bounds.tBound = (scaledT + std::abs(t) * bounds.det) / (absDet - bounds.det) + sum * std::abs(t);
   return bounds;
 }
 
@@ -205,15 +214,15 @@ struct BoundedHit {
 BoundedHit boundedHit(RayQuery& query, const PreparedScene::LeafTriangle& tri, double beyond, SurfaceReference::Counters& counters) {
   ++counters.triangleTests;
   const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
-  const double t = terms.scaledT / terms.det;
-  const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms, t);
+  const WoopBounds bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms);
+  const double t = bounds.t;
   Certainty hit = insideWithBounds(terms, bounds);
   if (hit == Certainty::no) return {};
   if (hit == Certainty::yes) {
-    if (t - bounds.t > beyond) return {};
-    hit = query.inRange(t, bounds.t);
+    if (t - bounds.tBound > beyond) return {};
+    hit = query.inRange(t, bounds.tBound);
     if (hit == Certainty::no) return {};
-    if (hit == Certainty::yes) return {t, bounds.t, true, false};
+    if (hit == Certainty::yes) return {t, bounds.tBound, true, false};
   }
   // A center on an edge, a grazing ray, or a hit on the near or far plane.
   ++counters.exactTriangleTests;
@@ -361,12 +370,12 @@ bool SurfaceReference::blocked(const Ray& segment, double tMin, std::uint32_t ex
   const auto meets = [&](const PackedTriangle& tri) {
     ++counters.triangleTests;
     const WoopTerms<double> terms = woopTerms(shear, tri.a, tri.b, tri.c);
-    const double t = terms.scaledT / terms.det;
-    const WoopBounds bounds = woopBounds(shear, tri.a, tri.b, tri.c, terms, t);
+    const WoopBounds bounds = woopBounds(shear, tri.a, tri.b, tri.c, terms);
+    const double t = bounds.t;
     const Certainty hit = insideWithBounds(terms, bounds);
     if (hit == Certainty::no) return false;
-    if (hit == Certainty::yes && t - bounds.t > tMin && t + bounds.t <= 1) return true;
-    if (hit == Certainty::yes && (t + bounds.t <= tMin || t - bounds.t > 1)) return false;
+    if (hit == Certainty::yes && t - bounds.tBound > tMin && t + bounds.tBound <= 1) return true;
+    if (hit == Certainty::yes && (t + bounds.tBound <= tMin || t - bounds.tBound > 1)) return false;
     ++counters.exactTriangleTests;
     if (!exactShear) exactShear.emplace(segment);
     const WoopTerms<mpq_class> exact = woopTerms(*exactShear, tri.a, tri.b, tri.c);

@@ -30,7 +30,8 @@ bool triangleTouchesCube(const dvec3& a, const dvec3& b, const dvec3& c, double 
 
 // The squared distance from p to the triangle's closest point (Ericson, Real-Time
 // Collision Detection, 5.1.5): find the Voronoi region of p among the triangle's
-// vertices, edges and face, and project onto that feature.
+// vertices, edges and face, and project onto that feature. The triangle must have area:
+// the edge projections divide by an edge's squared length.
 double squaredDistanceToTriangle(const dvec3& p, const dvec3& a, const dvec3& b, const dvec3& c) {
   const auto squared = [](const dvec3& v) { return glm::dot(v, v); };
   const dvec3 ab = b - a, ac = c - a, ap = p - a;
@@ -86,13 +87,21 @@ OccupancyGrid::OccupancyGrid(const Mesh& mesh, int voxelsAlongLongestSide) {
         }
   }
   std::sort(touches.begin(), touches.end());
+  // A triangle without area still walls its voxels in, but it covers no pixel, so it is
+  // never the triangle a ray sees: only triangles with area are listed for the search.
+  std::vector<bool> hasArea(mesh.triangles.size());
+  for (std::uint32_t triangle = 0; triangle < mesh.triangles.size(); ++triangle) {
+    const Triangle& t = mesh.triangles[triangle];
+    const dvec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    hasArea[triangle] = glm::cross(b - a, c - a) != dvec3(0);
+  }
   for (const auto& [voxel, triangle] : touches) {
     if (surfaceVoxels_.empty() || surfaceVoxels_.back() != voxel) {
       surfaceVoxels_.push_back(voxel);
       firstTriangle_.push_back(std::uint32_t(triangles_.size()));
       state_[voxel] = kSurface;
     }
-    triangles_.push_back(triangle);
+    if (hasArea[triangle]) triangles_.push_back(triangle);
   }
   firstTriangle_.push_back(std::uint32_t(triangles_.size()));
 
