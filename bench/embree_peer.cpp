@@ -119,16 +119,18 @@ int main(int argc, char** argv) {
     const double hsrBuild = millisecondsOf([&] { prepared.triangleBvh(buildStats); });
 
     const hsr::ray_casting::Knobs knobs;  // the bvh variant
-    hsr::Frame ours;
+    // Both write into buffers allocated once.
+    hsr::Visibility visibility{hsr::Frame(kWidth, kHeight), std::nullopt};
+    const hsr::Frame& ours = visibility.frame;
     std::vector<std::uint32_t> theirs(std::size_t(kWidth) * kHeight);
     hsr::Stats warmUp;
-    ours = hsr::ray_casting::castVisibility(prepared, knobs, threads, warmUp);
+    hsr::ray_casting::visibility({prepared, camera, nullptr, threads, warmUp}, knobs, visibility);
     embree.trace(camera, threads, theirs);
     Timing oursMs, theirsMs;
     for (int run = 0; run < runs; ++run) {  // interleaved, so both see the same machine load
       oursMs.milliseconds.push_back(millisecondsOf([&] {
         hsr::Stats stats;
-        ours = hsr::ray_casting::castVisibility(prepared, knobs, threads, stats);
+        hsr::ray_casting::visibility({prepared, camera, nullptr, threads, stats}, knobs, visibility);
       }));
       theirsMs.milliseconds.push_back(millisecondsOf([&] { embree.trace(camera, threads, theirs); }));
     }

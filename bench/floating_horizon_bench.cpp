@@ -16,14 +16,14 @@ const hsr::PreparedScene& ripple() { return *hsr::bench::sceneNamed("ripple").pr
 // samples and columns as a percentage of the image width, as the knobs take them.
 void floatingHorizon(benchmark::State& state) {
   hsr::floating_horizon::Knobs knobs;
-  knobs.samples = std::max(2, static_cast<int>(state.range(0) * ripple().width() / 100));
-  knobs.columns = std::max(1, static_cast<int>(state.range(1) * ripple().width() / 100));
+  knobs.samples = {double(std::max(2, static_cast<int>(state.range(0) * ripple().width() / 100)))};
+  knobs.columns = {double(std::max(1, static_cast<int>(state.range(1) * ripple().width() / 100)))};
   knobs.mesh = state.range(2) != 0;
   for (auto _ : state) {
     hsr::Stats stats;
     benchmark::DoNotOptimize(hsr::floating_horizon::run(ripple(), knobs, stats).segments.data());
   }
-  state.SetLabel("samples " + std::to_string(knobs.samples) + ", columns " + std::to_string(knobs.columns) +
+  state.SetLabel("samples " + std::to_string(int(knobs.samples.value)) + ", columns " + std::to_string(int(knobs.columns.value)) +
                  (knobs.mesh ? ", mesh" : ", rows"));
 }
 

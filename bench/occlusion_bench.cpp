@@ -24,7 +24,7 @@ struct City {
   hsr::Scene scene = hsr::loadScene(std::string(HSR_SOURCE_DIR) + "/scenes/city.toml");
   hsr::PreparedScene prepared{scene};
   hsr::CameraTransform camera{scene.camera, 1920, 1080};
-  std::vector<std::uint32_t> everyObject = chooseOccluders(prepared, camera, Settings{}, hsr::VisibleSet::everything(prepared));
+  std::vector<std::uint32_t> everyObject = chooseOccluders(prepared, camera, Knobs{}, hsr::VisibleSet::everything(prepared));
 };
 
 const City& city() {
@@ -34,7 +34,7 @@ const City& city() {
 
 void occluders(benchmark::State& state, Rule rule, int width, int height) {
   const City& c = city();
-  Settings settings;
+  Knobs settings;
   settings.rule = rule;
   const MapView view(c.camera, width, height);
   hsr::Stats stats;
@@ -51,7 +51,7 @@ void occludees(benchmark::State& state, bool withPyramid) {
   const City& c = city();
   const MapView view(c.camera, 256, 128);
   hsr::Stats stats;
-  const DepthMap map = occluderDepthMap(c.prepared, view, Settings{}, c.everyObject, stats);
+  const DepthMap map = occluderDepthMap(c.prepared, view, Knobs{}, c.everyObject, stats);
   const Pyramid pyramid(map);
   std::vector<BoxFootprint> boxes;
   for (const hsr::Instance& instance : c.prepared.instances()) boxes.push_back(footprint(view, cornersOf(instance.box)));

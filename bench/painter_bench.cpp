@@ -31,7 +31,7 @@ void orderAndPaint(benchmark::State& state) {
   const hsr::painter::Knobs knobs = knobsFor(static_cast<Variant>(state.range(0)));
   for (auto _ : state) {
     hsr::Stats stats;
-    benchmark::DoNotOptimize(hsr::painter::run(scene, knobs, 1, stats).ids.data());
+    benchmark::DoNotOptimize(hsr::bench::render(scene, "painter", hsr::painter::knobTable().valuesOf(knobs), 1, stats).ids.data());
   }
   state.SetLabel(knobs.variant == Variant::sort ? "counters sort" : "counters newell");
 }
@@ -54,11 +54,13 @@ void bspWalkAndPaint(benchmark::State& state) {
   const hsr::painter::BspTree tree(scene, knobsFor(Variant::bsp), buildStats);
   for (auto _ : state) {
     hsr::Stats stats;
-    const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(scene, {}, 1, stats);
-    const hsr::Frame frame = hsr::painter::paint(scene, geometry, tree.backToFront(scene, geometry, stats), 1, stats);
+    hsr::PaintedPieces painted{hsr::buildScreenTriangles(scene, {}, 1, stats), {}};
+    painted.order = tree.backToFront(scene, painted.geometry, stats);
+    hsr::Frame frame(scene.width(), scene.height());
+    hsr::painter::paint(scene, painted, 1, frame, stats);
     benchmark::DoNotOptimize(frame.ids.data());
   }
-  state.SetLabel("counters bsp walk + paint (once per view)");
+  state.SetLabel("counters bsp walk + paint (once per view; visibility only)");
 }
 
 // n strips, each a long thin triangle pair across the whole view, at angles spread
@@ -95,7 +97,7 @@ void newellWorstCase(benchmark::State& state) {
   hsr::Stats last;
   for (auto _ : state) {
     hsr::Stats stats;
-    benchmark::DoNotOptimize(hsr::painter::run(*strips.prepared, knobsFor(Variant::newell), 1, stats).ids.data());
+    benchmark::DoNotOptimize(hsr::bench::render(*strips.prepared, "painter", hsr::painter::knobTable().valuesOf(knobsFor(Variant::newell)), 1, stats).ids.data());
     last = stats;
   }
   state.counters["pairs tested"] = double(last.counter("newell pairs tested"));

@@ -24,11 +24,13 @@ void primaryRays(benchmark::State& state) {
   hsr::ray_casting::Knobs knobs;
   knobs.variant = static_cast<hsr::ray_casting::Variant>(state.range(1));
   const int threads = static_cast<int>(state.range(2));
+  hsr::Visibility visibility{hsr::Frame(scene.width(), scene.height()), std::nullopt};
   hsr::Stats warmUp;
-  hsr::ray_casting::castVisibility(scene, knobs, threads, warmUp);
+  hsr::ray_casting::visibility({scene, scene.camera(), nullptr, threads, warmUp}, knobs, visibility);
   for (auto _ : state) {
     hsr::Stats stats;
-    benchmark::DoNotOptimize(hsr::ray_casting::castVisibility(scene, knobs, threads, stats).ids.data());
+    hsr::ray_casting::visibility({scene, scene.camera(), nullptr, threads, stats}, knobs, visibility);
+    benchmark::DoNotOptimize(visibility.frame.ids.data());
   }
   state.SetLabel(std::string(kScenes[state.range(0)]) + (state.range(1) == 0 ? " bvh" : " march (defaults)") +
                  " threads=" + std::to_string(threads));

@@ -56,10 +56,10 @@ void shaded(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
   const int threads = static_cast<int>(state.range(1));
   hsr::Stats warmUp;
-  hsr::zbuffer::run(scene, {}, threads, warmUp);  // also builds the normals, once
+  hsr::bench::render(scene, "zbuffer", hsr::zbuffer::knobTable().valuesOf({}), threads, warmUp);  // also builds the normals, once
   for (auto _ : state) {
     hsr::Stats stats;
-    benchmark::DoNotOptimize(hsr::zbuffer::run(scene, {}, threads, stats).color.data());
+    benchmark::DoNotOptimize(hsr::bench::render(scene, "zbuffer", hsr::zbuffer::knobTable().valuesOf({}), threads, stats).color.data());
   }
   state.SetLabel(std::string(kScenes[state.range(0)]) + " full float32 lambert threads=" + std::to_string(threads));
   state.counters["triangles/s"] = benchmark::Counter(double(scene.triangleCount()), benchmark::Counter::kIsIterationInvariantRate);

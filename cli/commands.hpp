@@ -1,6 +1,7 @@
-// The hsr subcommands. Each validates all of its input before doing any work, throws
-// InputError for bad input (main prints it as one line and exits 2), and writes its
-// output files only when all of them are complete.
+// The hsr subcommands of the command line itself: render, list and diff (compare, sweep
+// and study are the studies', studies/studies.hpp). Each validates all of its input
+// before doing any work, throws InputError for bad input (main prints it as one line and
+// exits 2), and writes its output files only when all of them are complete.
 #pragma once
 
 #include <filesystem>
@@ -23,44 +24,6 @@ struct RenderOptions {
 };
 int render(const RenderOptions& options);
 int list();
-
-struct CompareOptions {
-  std::vector<std::string> scenes;  // none: the built-in default study
-  std::string algorithms;           // "a,b:knob=v,..." ; empty: every surface algorithm
-  int repeat = 3;
-  int threads = 0;
-  std::string size;
-  std::string out = "out/compare";
-};
-int compare(const CompareOptions& options);
-
-struct SweepOptions {
-  std::string scene;
-  std::string algorithm = "zbuffer";
-  std::string variant;             // fixed for every configuration
-  std::vector<std::string> knobs;  // NAME=v1,v2,...; NAME "size" sweeps the resolution
-  std::string scale;               // "", "triangles" or "pixels"
-  int repeat = 3;
-  int threads = 0;
-  std::string size;
-  std::string out = "out/sweep";
-};
-int sweep(const SweepOptions& options);
-
-struct StudyOptions {
-  std::string name;    // "culling-combos", one of the occlusion studies, "effects" or "shadow-map"
-  std::string scenes;  // a subset of the study's scenes, "cube,counters"; empty: all four
-  int frames = 0;      // 0: the study's own default
-  int errorFrames = 4; // frames whose images are compared with the exact reference
-  int threads = 1;
-  std::string size;
-  std::string out;     // "": out/study/NAME
-};
-int study(const StudyOptions& options);
-// The occlusion studies (study_occlusion.cpp), into `folder`.
-int occlusionStudy(const StudyOptions& options, const std::filesystem::path& folder);
-// The effects studies (study_effects.cpp), into `folder`.
-int effectsStudy(const StudyOptions& options, const std::filesystem::path& folder);
 
 struct DiffOptions {
   std::string first, second;

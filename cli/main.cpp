@@ -5,7 +5,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
-#include "cli/common.hpp"
+#include "studies/common.hpp"
+#include "studies/studies.hpp"
 #include "renderer/error.hpp"
 #include "renderer/memory.hpp"
 
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
   renderCommand->add_flag("--explain", render.explain,
                           "print the passes the scene's effects call for and why, then what was decided and the time of each pass");
 
-  hsr::cli::CompareOptions compare;
+  hsr::studies::CompareOptions compare;
   CLI::App* compareCommand = app.add_subcommand(
       "compare", "every algorithm against the exact reference: time, error, memory, counters, contact sheet");
   compareCommand->add_option("scenes", compare.scenes, "scene files; none: the default study of the shipped scenes");
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   compareCommand->add_option("--out", compare.out, "folder for contact_sheet.png, results.csv, results.json")
       ->capture_default_str();
 
-  hsr::cli::SweepOptions sweep;
+  hsr::studies::SweepOptions sweep;
   CLI::App* sweepCommand = app.add_subcommand("sweep", "an algorithm's accuracy against time over its knobs, plotted");
   sweepCommand->add_option("scene", sweep.scene, "scene file (TOML)")->required();
   sweepCommand->add_option("--algo", sweep.algorithm, "algorithm (see `hsr list`)")->capture_default_str();
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
   threadsOption(sweepCommand, sweep.threads);
   sweepCommand->add_option("--out", sweep.out, "folder for the CSV, JSON and plots")->capture_default_str();
 
-  hsr::cli::StudyOptions study;
+  hsr::studies::StudyOptions study;
   CLI::App* studyCommand = app.add_subcommand(
       "study", "an experiment, reproduced: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects, shadow-map");
   studyCommand->add_option("name", study.name,
@@ -93,19 +94,19 @@ int main(int argc, char** argv) {
     // Help is not an error; a usage mistake is one line and exit 2 like any bad input.
     if (error.get_exit_code() == 0) return app.exit(error);
     std::fprintf(stderr, "hsr: error: %s (see --help)\n", error.what());
-    return hsr::cli::kBadInput;
+    return hsr::studies::kBadInput;
   }
 
   try {
     if (*renderCommand) return hsr::cli::render(render);
-    if (*compareCommand) return hsr::cli::compare(compare);
-    if (*sweepCommand) return hsr::cli::sweep(sweep);
-    if (*studyCommand) return hsr::cli::study(study);
+    if (*compareCommand) return hsr::studies::compare(compare);
+    if (*sweepCommand) return hsr::studies::sweep(sweep);
+    if (*studyCommand) return hsr::studies::study(study);
     if (*diffCommand) return hsr::cli::diff(diff);
     if (*listCommand) return hsr::cli::list();
   } catch (const hsr::InputError& error) {
     std::fprintf(stderr, "hsr: error: %s\n", error.what());
-    return hsr::cli::kBadInput;
+    return hsr::studies::kBadInput;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "hsr: error: %s\n", error.what());
     return 1;

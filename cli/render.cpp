@@ -7,25 +7,29 @@
 #include <optional>
 
 #include "algorithms/culling/culling.hpp"
-#include "algorithms/effects/effects.hpp"
+#include "algorithms/registry.hpp"
 #include "cli/commands.hpp"
-#include "cli/common.hpp"
-#include "cli/results.hpp"
+#include "pipeline/pipeline.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/error.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/line_drawing.hpp"
+#include "studies/common.hpp"
+#include "studies/results.hpp"
 
 namespace hsr::cli {
 namespace {
+
+using studies::formatted;
+using studies::LoadedScene;
 
 LineStyle lineStyleOf(const std::string& name, bool lineAlgorithm) {
   if (name.empty()) return LineStyle::visible;
   if (!lineAlgorithm) {
     std::string names;
     for (const AlgorithmEntry& entry : algorithms())
-      if (entry.kind == "line") names += (names.empty() ? "" : ", ") + entry.name;
+      if (entry.kind == AlgorithmKind::line) names += (names.empty() ? "" : ", ") + entry.name;
     throw InputError("--line-style " + name + ": applies only to line algorithms (" + names + ")");
   }
   if (name == "visible") return LineStyle::visible;
@@ -38,7 +42,7 @@ LineStyle lineStyleOf(const std::string& name, bool lineAlgorithm) {
 std::string cullableAlgorithms() {
   std::string names;
   for (const AlgorithmEntry& entry : algorithms())
-    if (entry.renderVisible) names += (names.empty() ? "" : " or ") + entry.name;
+    if (entry.takesTriangleSubsets) names += (names.empty() ? "" : " or ") + entry.name;
   return names;
 }
 
@@ -46,7 +50,7 @@ std::string cullableAlgorithms() {
 culling::Pipeline cullingPipelineOf(const std::string& text, const AlgorithmEntry& algorithm) {
   if (text.empty()) return {};
   culling::Pipeline pipeline = culling::parsePipeline(text, "--cull");
-  if (!algorithm.renderVisible)
+  if (!algorithm.takesTriangleSubsets)
     throw InputError("--cull: " + algorithm.name + " does not draw from a culled set of triangles; expected --algo " +
                      cullableAlgorithms());
   return pipeline;
@@ -67,14 +71,18 @@ void printKnobs(const std::vector<KnobSpec>& knobs, const std::string& prefix) {
     std::string applies;
     for (const auto& variant : knob.variants) applies += (applies.empty() ? ", variant " : " or ") + variant;
     std::printf("    %s%s=%s   (default %s%s)\n      %s\n", prefix.c_str(), knob.name.c_str(), choices.c_str(),
-                knob.choices.front().c_str(), applies.c_str(), knob.help.c_str());
+                knob.defaultValue.c_str(), applies.c_str(), knob.help.c_str());
   }
 }
 
-void printPlan(const LoadedScene& scene, const AlgorithmEntry& algorithm, const KnobValues& knobs, const std::string& culling) {
-  std::printf("passes for %s with %s (%s):\n", scene.name.c_str(), algorithm.name.c_str(), describeKnobs(algorithm, knobs).c_str());
-  for (const effects::PlannedPass& pass : effects::planPasses(*scene.prepared, algorithm, culling))
+void printPlan(const LoadedScene& scene, const pipeline::Configuration& configuration) {
+  std::printf("passes for %s with %s (%s):\n", scene.name.c_str(), configuration.algorithm->name.c_str(),
+              configuration.knobs.described().c_str());
+  for (const pipeline::PlannedPass& pass : pipeline::plan(*scene.prepared, configuration)) {
     std::printf("  %-5s %-28s %s\n", pass.runs ? "run" : "skip", pass.pass.c_str(), pass.reason.c_str());
+    for (const pipeline::PlannedPass& work : pass.work)
+      std::printf("  %-5s   %-26s %s\n", pass.runs && work.runs ? "run" : "skip", work.pass.c_str(), work.reason.c_str());
+  }
 }
 
 // The nearest and farthest view distances a frame shows (its finite depths), if any.
@@ -117,9 +125,9 @@ void warnAboutDepthTies(std::int64_t ties, const std::string& formatName, const 
 
 void printDecisions(const Stats& stats, double seconds) {
   std::printf("decided while rendering:\n");
-  for (const std::string& decision : effects::decisionsTaken(stats)) std::printf("  %s\n", decision.c_str());
+  for (const std::string& decision : pipeline::decisionsTaken(stats)) std::printf("  %s\n", decision.c_str());
   std::printf("time per pass (%.1f ms in all):\n", seconds * 1e3);
-  for (const effects::PassTime& pass : effects::passTimes(stats, seconds))
+  for (const pipeline::PassTime& pass : pipeline::passTimes(stats))
     std::printf("  %-14s %8.2f ms\n", pass.pass.c_str(), pass.seconds * 1e3);
 }
 
@@ -131,12 +139,12 @@ int render(const RenderOptions& options) {
   if (!options.variant.empty()) settings.emplace_back("variant", options.variant);
   if (!options.depthFormat.empty()) settings.emplace_back("depth-format", options.depthFormat);
   for (const std::string& knob : options.knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
-  const KnobValues knobs = resolveKnobs(algorithm, settings);
+  pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
 
-  const bool lines = algorithm.kind == "line";
+  const bool lines = algorithm.kind == AlgorithmKind::line;
   const std::filesystem::path output = options.output;
   const LineStyle style = lineStyleOf(options.lineStyle, lines);
-  const culling::Pipeline pipeline = cullingPipelineOf(options.cull, algorithm);
+  configuration.culling = cullingPipelineOf(options.cull, algorithm);
   if (output.extension() == ".svg" && !lines)
     throw InputError("-o " + options.output + ": SVG is for line drawings, and " + algorithm.name +
                      " draws surfaces; expected a .png file");
@@ -144,42 +152,31 @@ int render(const RenderOptions& options) {
     throw InputError(std::string(options.depth.empty() ? "--ids" : "--depth") + ": " + algorithm.name +
                      " draws lines, which have no depth or id image");
 
-  const LoadedScene scene = loadPrepared(options.scene, options.size);
-  checkRenders(algorithm, knobs, scene.name, *scene.prepared);
-  if (options.explain) printPlan(scene, algorithm, knobs, options.cull);
+  const LoadedScene scene = studies::loadPrepared(options.scene, options.size);
+  studies::checkRenders(configuration, scene.name, *scene.prepared);
+  if (options.explain) printPlan(scene, configuration);
   const auto start = std::chrono::steady_clock::now();
   Stats stats;
-  OutputFiles outputs;
-  Frame frame;
-  std::string partial;  // why the image or drawing may be wrong somewhere, as the algorithm says
-  if (lines) {
-    const LineSet drawing = algorithm.drawLines(*scene.prepared, knobs, options.threads, stats);
-    if (output.extension() == ".svg") outputs.addText(output, lineSetSvg(drawing, style));
-    else outputs.addColorPng(output, lineSetFrame(drawing, style));
-    partial = drawing.partial;
-  } else {
-    if (pipeline.empty()) {
-      frame = algorithm.render(*scene.prepared, knobs, options.threads, stats);
-    } else {
-      const VisibleSet visible = culling::runPipeline(*scene.prepared, pipeline, options.threads, stats);
-      frame = algorithm.renderVisible(*scene.prepared, knobs, visible, options.threads, stats);
-    }
-    outputs.addColorPng(output, frame);
-    partial = frame.partial;
-  }
+  const pipeline::Rendered rendered = pipeline::render(*scene.prepared, configuration, options.threads, stats);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Frame& frame = rendered.frame;
+  OutputFiles outputs;
+  if (lines && output.extension() == ".svg") outputs.addText(output, lineSetSvg(rendered.drawing, style));
+  else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
+  else outputs.addColorPng(output, frame);
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
+  // Why the image or drawing may be wrong somewhere, as the algorithm says.
+  const std::string& partial = lines ? rendered.drawing.partial : frame.partial;
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
-  const CameraTransform& camera = scene.prepared->camera();
   const std::optional<std::pair<double, double>> depths = lines ? std::nullopt : visibleDepths(frame);
   if (stats.counter("depth ties") > 0 && depths)
-    warnAboutDepthTies(stats.counter("depth ties"), knobs.at("depth-format"), camera, depths->second);
+    warnAboutDepthTies(stats.counter("depth ties"), configuration.knobs.at("depth-format"), scene.prepared->camera(), depths->second);
   if (options.stats) std::printf("%s", stats.report().c_str());
   if (options.explain) {
     printDecisions(stats, seconds);
-    if (depths) printDepthResolutions(camera, *depths);
+    if (depths) printDepthResolutions(scene.prepared->camera(), *depths);
   }
   return 0;
 }
@@ -187,21 +184,22 @@ int render(const RenderOptions& options) {
 int list() {
   std::printf("algorithms:\n");
   for (const auto& algorithm : algorithms()) {
-    std::printf("  %-12s %-9s %s\n", algorithm.name.c_str(), algorithm.kind.c_str(), algorithm.summary.c_str());
+    std::printf("  %-12s %-9s %s\n", algorithm.name.c_str(), algorithmKindName(algorithm.kind), algorithm.summary.c_str());
     printKnobs(algorithm.knobs, "--knob ");
   }
   std::printf("culling stages (hsr render --cull STAGE[:VARIANT][:KNOB=VALUE...],...; before %s):\n", cullableAlgorithms().c_str());
   for (const auto& stage : culling::stages()) {
     std::printf("  %-12s %s\n", stage.name.c_str(), stage.summary.c_str());
-    for (const auto& [variant, help] : stage.variants)
-      std::printf("    %s:%-16s %s%s\n", stage.name.c_str(), variant.c_str(), help.c_str(),
-                  variant == stage.variants.front().first ? " (default)" : "");
-    printKnobs(stage.knobs, ":");
+    const KnobSpec& variants = stage.variantKnob();
+    for (std::size_t v = 0; v < variants.choices.size(); ++v)
+      std::printf("    %s:%-16s %s%s\n", stage.name.c_str(), variants.choices[v].c_str(), variants.choiceHelp[v].c_str(),
+                  variants.choices[v] == variants.defaultValue ? " (default)" : "");
+    printKnobs({stage.knobs.begin() + 1, stage.knobs.end()}, ":");
   }
   std::printf("effects (a scene's effects list: one shading, then any of the others):\n");
   for (const EffectName& effect : effectNames()) std::printf("  %-12s %s\n", effect.name, effect.summary);
   std::printf("scenes (in %s):\n", HSR_SCENES_DIR);
-  for (const auto& scene : shippedScenes()) std::printf("  %s\n", scene.string().c_str());
+  for (const auto& scene : studies::shippedScenes()) std::printf("  %s\n", scene.string().c_str());
   return 0;
 }
 

@@ -32,7 +32,7 @@ void setBounds(std::span<const dvec3> vertices, Instance& instance) {
 PreparedScene::PreparedScene(const Scene& scene) : PreparedScene(scene, {dmat4(1.0)}) {}
 
 PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies, const dmat4& objectMotion)
-    : scene_(&scene), camera_(scene.camera, scene.width, scene.height) {
+    : scene_(&scene), width_(scene.width), height_(scene.height) {
   // Flatten every copy of every object into world space, in id order. Transforms are
   // composed in double so a model far from the origin keeps its float precision.
   for (const dmat4& sceneCopy : sceneCopies) {
@@ -79,7 +79,8 @@ PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& scene
 
 void PreparedScene::setSize(int width, int height) {
   checkImageSize(width, height, "--size");
-  camera_ = CameraTransform(scene_->camera, width, height);
+  width_ = width;
+  height_ = height;
 }
 
 const Instance& PreparedScene::instanceOf(std::uint32_t triangle) const {

@@ -54,10 +54,11 @@ class PreparedScene {
   PreparedScene(const Scene& scene, const std::vector<dmat4>& sceneCopies, const dmat4& objectMotion = dmat4(1.0));
 
   const Scene& scene() const { return *scene_; }
-  int width() const { return camera_.width(); }
-  int height() const { return camera_.height(); }
-  // The scene's camera at the image size: the view every algorithm renders.
-  const CameraTransform& camera() const { return camera_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The scene's camera at the image size: the view every algorithm renders. Made afresh
+  // from the Scene's camera, which a walkthrough moves from frame to frame.
+  CameraTransform camera() const { return CameraTransform(scene_->camera, width_, height_); }
   // Render at another resolution than the scene file asks for (--size).
   void setSize(int width, int height);
 
@@ -124,7 +125,7 @@ class PreparedScene {
 
  private:
   const Scene* scene_;
-  CameraTransform camera_;
+  int width_, height_;
   std::vector<dvec3> positions_;
   std::vector<Triangle> triangles_;
   std::vector<Instance> instances_;

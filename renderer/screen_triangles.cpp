@@ -84,7 +84,8 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const GeometryOp
 ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, const GeometryOptions& options,
                                     int threads, Stats& stats) {
   PhaseTimer timer(stats, "geometry");
-  const auto [clipFar, keepCorners, submitted] = options;
+  const bool clipFar = options.clipFar, keepCorners = options.keepCorners;
+  const VisibleSet* const submitted = options.submitted;
   ScreenGeometry geometry{view, {}, {}};
   const CameraTransform& camera = geometry.camera;
   const ClipVolume volume(camera, clipFar);

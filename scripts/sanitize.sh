@@ -7,9 +7,7 @@
 # half of this run), which run the same code the hard cases do and run in the suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-cmake --preset sanitize >/dev/null
-cmake --build build-sanitize -j"$(nproc)"
+bash scripts/build.sh sanitize "$@"
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir build-sanitize --output-on-failure -j2 -L 'unit|hardcase' -E 'Golden|OnEveryShippedScene'
+ctest --preset sanitize

@@ -134,10 +134,10 @@ std::string label(const char* algorithm, const Knobs& knobs) {
 // Renders with the registry's entry, or returns nothing when the algorithm refuses.
 inline std::optional<Frame> render(const PreparedScene& scene, const char* algorithm, const KnobSettings& settings) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm);
-  const KnobValues knobs = resolveKnobs(entry, settings);
-  if (!entry.refusal(scene, knobs).empty()) return std::nullopt;
+  const pipeline::Configuration configuration = pipeline::configurationOf(entry, settings);
+  if (!pipeline::refusal(scene, configuration).empty()) return std::nullopt;
   Stats stats;
-  return entry.render(scene, knobs, 1, stats);
+  return pipeline::render(scene, configuration, 1, stats).frame;
 }
 inline std::optional<LineSet> draw(const PreparedScene& scene, const char* algorithm, const KnobSettings& settings) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm);
@@ -335,7 +335,7 @@ inline void expectSameAfter(const Variation& variation, const PreparedScene& ori
   const std::vector<std::uint8_t> visible = visibleTriangles(movedTruth, prepared.triangleCount());
   for (const culling::StageEntry& stage : culling::stages()) {
     if (stage.name == "backface") continue;  // right only for closed solids seen from outside: tests/culling
-    for (const auto& [cullVariant, summary] : stage.variants) {
+    for (const std::string& cullVariant : stage.variantKnob().choices) {
       const culling::Pipeline pipeline = culling::parsePipeline(stage.name + ":" + cullVariant);
       if (pipeline.front().wrong()) continue;
       Stats cullStats;

@@ -16,8 +16,10 @@
 #include <vector>
 
 #include "algorithms/painter/painter.hpp"
+#include "algorithms/registry.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "pipeline/pipeline.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/prepare.hpp"
@@ -119,10 +121,86 @@ inline Scene movedAndScaled(Scene scene, double scale, const dvec3& offset) {
   return scene;
 }
 
+// The cases a per-pixel or per-triangle check fails on, reported as one failure: the
+// first kShown described, the rest counted. A broken algorithm fails on thousands of
+// pixels at once; one line each would bury the first, most telling one.
+class CaseFailures {
+ public:
+  static constexpr std::size_t kShown = 20;
+  explicit CaseFailures(std::string check) : check_(std::move(check)) {}
+  // Records a failing case; describe() is called only for the first kShown.
+  template <typename Describe>
+  void fail(Describe&& describe) {
+    if (count_++ < kShown) shown_.push_back(describe());
+  }
+  template <typename Describe>
+  void expect(bool holds, Describe&& describe) {
+    if (!holds) fail(describe);
+  }
+  std::size_t count() const { return count_; }
+  std::string report() const {
+    std::string text = std::to_string(count_) + " case" + (count_ == 1 ? "" : "s") + " fail: " + check_;
+    for (const std::string& line : shown_) text += "\n  " + line;
+    if (count_ > shown_.size()) text += "\n  ... and " + std::to_string(count_ - shown_.size()) + " more";
+    return text;
+  }
+
+ private:
+  std::string check_;
+  std::size_t count_ = 0;
+  std::vector<std::string> shown_;
+};
+#define EXPECT_NO_FAILED_CASES(failures) EXPECT_EQ((failures).count(), 0u) << (failures).report()
+
+// A triangle as a reader would find it: "triangle 17 of object 'bunny'" (with its copy
+// when the object has several).
+inline std::string describeTriangle(const PreparedScene& scene, std::uint32_t triangle) {
+  const Instance& instance = scene.instanceOf(triangle);
+  const SceneObject& object = scene.scene().objects[instance.object];
+  std::string text = "triangle " + std::to_string(triangle - instance.firstTriangle) + " of object " +
+                     (object.name.empty() ? std::to_string(instance.object) + " (unnamed)" : "'" + object.name + "'");
+  if (object.instancing.copyCount() > 1) text += " (copy " + std::to_string(instance.copy) + ")";
+  return text;
+}
+// A pixel by its coordinates: "pixel (12, 40)".
+inline std::string describePixel(const Frame& frame, std::size_t pixel) {
+  return "pixel (" + std::to_string(pixel % std::size_t(frame.width)) + ", " + std::to_string(pixel / std::size_t(frame.width)) + ")";
+}
+
+// An algorithm's knobs given as its own struct, for the registry and the pipeline.
+inline const AlgorithmEntry& algorithmOf(const zbuffer::Knobs&) { return findAlgorithm("zbuffer"); }
+inline const AlgorithmEntry& algorithmOf(const ray_casting::Knobs&) { return findAlgorithm("ray_casting"); }
+inline const AlgorithmEntry& algorithmOf(const painter::Knobs&) { return findAlgorithm("painter"); }
+inline KnobValues valuesOf(const zbuffer::Knobs& knobs) { return zbuffer::knobTable().valuesOf(knobs); }
+inline KnobValues valuesOf(const ray_casting::Knobs& knobs) { return ray_casting::knobTable().valuesOf(knobs); }
+inline KnobValues valuesOf(const painter::Knobs& knobs) { return painter::knobTable().valuesOf(knobs); }
+
+// The whole render of a surface algorithm (pipeline/pipeline.hpp): visibility, then the
+// passes the scene's effects call for.
+template <typename Knobs>
+Frame render(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
+  return pipeline::render(scene, {&algorithmOf(knobs), valuesOf(knobs)}, threads, stats).frame;
+}
+
+// The algorithm's visibility pass alone, over `triangles` (what culling stages kept; all
+// when null): the frame's ids and depth.
+template <typename Knobs>
+Frame visibilityOf(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* triangles = nullptr) {
+  Visibility visibility{Frame(scene.width(), scene.height()), std::nullopt};
+  algorithmOf(knobs).visibility({scene, scene.camera(), triangles, threads, stats}, valuesOf(knobs), visibility);
+  return std::move(visibility.frame);
+}
+
+// Why the pipeline refuses the algorithm with these knobs on the scene ("" when it does not).
+template <typename Knobs>
+std::string refusalOf(const PreparedScene& scene, const Knobs& knobs) {
+  return pipeline::refusal(scene, {&algorithmOf(knobs), valuesOf(knobs)});
+}
+
 inline Frame renderZBuffer(const PreparedScene& scene, zbuffer::Variant variant = zbuffer::Variant::full,
                            DepthFormat format = DepthFormat::float32, int threads = 1) {
   Stats stats;
-  return zbuffer::run(scene, {variant, format}, threads, stats);
+  return render(scene, zbuffer::Knobs{variant, format}, threads, stats);
 }
 
 inline ray_casting::Knobs rayCastingKnobs(ray_casting::Variant variant) {
@@ -133,7 +211,7 @@ inline ray_casting::Knobs rayCastingKnobs(ray_casting::Variant variant) {
 
 inline Frame renderRayCasting(const PreparedScene& scene, const ray_casting::Knobs& knobs, int threads = 2) {
   Stats stats;
-  return ray_casting::run(scene, knobs, threads, stats);
+  return render(scene, knobs, threads, stats);
 }
 
 inline painter::Knobs painterKnobs(painter::Variant variant) {
@@ -144,7 +222,7 @@ inline painter::Knobs painterKnobs(painter::Variant variant) {
 
 inline Frame renderPainter(const PreparedScene& scene, const painter::Knobs& knobs, int threads = 2) {
   Stats stats;
-  return painter::run(scene, knobs, threads, stats);
+  return render(scene, knobs, threads, stats);
 }
 
 // Nearest hit of a ray among all triangles with a view distance in [near, far]

@@ -68,7 +68,7 @@ class QuantitativeInvisibility {
  public:
   QuantitativeInvisibility(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
       : scene_(scene),
-        camera_(scene.scene().camera, scene.width(), scene.height()),
+        camera_(scene.camera()),
         viewer_(camera_),
         stats_(stats),
         adjacency_(scene.edgeAdjacency(stats)),
@@ -301,6 +301,7 @@ class QuantitativeInvisibility {
         // crossing rule applies, and whether the contour's face covers the edge is a
         // matter of closed triangles. Count afresh where the two overlap.
         const dvec2 along = edge.pixelTo - edge.pixelFrom;
+        if (glm::dot(along, along) == 0) return;  // an edge seen end-on has no length to recount
         const auto at = [&](const dvec2& x) { return glm::dot(x - edge.pixelFrom, along) / glm::dot(along, along); };
         const double u0 = std::max(0.0, std::min(at(c.pixelFrom), at(c.pixelTo))), u1 = std::min(1.0, std::max(at(c.pixelFrom), at(c.pixelTo)));
         if (!(u0 < u1)) return;
@@ -513,6 +514,20 @@ class QuantitativeInvisibility {
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
   PhaseTimer timer(stats, "appel");
   return QuantitativeInvisibility(scene, knobs, stats).run();
+}
+
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "appel";
+  entry.kind = AlgorithmKind::line;
+  entry.summary = "quantitative invisibility: walk the edges of closed meshes, counting the faces in front (Appel 1967)";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"feature edges", "contour edges", "crossings tested", "QI changes", "start-vertex ray casts",
+                       "QI mismatches"};
+  setRefusal(entry, refusal);
+  setDrawing(entry, run);
+  entry.judgeLines = judgedByLineReference;
+  return entry;
 }
 
 }  // namespace hsr::appel

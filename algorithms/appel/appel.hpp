@@ -37,6 +37,8 @@
 
 #include <string>
 
+#include "algorithms/algorithm.hpp"
+#include "algorithms/knobs.hpp"
 #include "renderer/feature_edges.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/prepare.hpp"
@@ -56,6 +58,19 @@ struct Knobs {
   double creaseDegrees = kDefaultCreaseDegrees;  // feature edges: creases sharper than this
 };
 
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table =
+      KnobTable<Knobs>()
+          .choice("surfaces", &Knobs::surfaces, {{Surfaces::closed, "closed"}, {Surfaces::any, "any"}},
+                  "closed: count front faces (Appel's QI; needs closed, consistently oriented meshes); any: count every face, "
+                  "so open, non-manifold and double-sided meshes are drawn too (wrong where surfaces pass through or lie on "
+                  "each other)")
+          .number("cell", &Knobs::cellPixels, {1, 65536}, {"4", "64", "256"},
+                  "side in pixels of the image-plane grid that lists the contour edges each edge may cross")
+          .number("crease", &Knobs::creaseDegrees, {0, 180}, {"0", "10", "60"}, kCreaseKnobHelp);
+  return table;
+}
+
 // Why Appel's algorithm cannot draw this scene, or "" when it can.
 std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 
@@ -65,5 +80,8 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 // "degenerate start rays", "degenerate recounts", "negative QI", and the surface
 // intersections' counters on first use.
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats);
+
+// The registry's entry (algorithms/algorithm.hpp).
+AlgorithmEntry entry();
 
 }  // namespace hsr::appel

@@ -65,4 +65,13 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
   return out;
 }
 
+StageEntry stage() {
+  StageEntry entry = stageEntry("backface", "drop triangles facing away from the eye (right for closed surfaces only)", knobTable());
+  entry.mayDropVisible = [](const KnobValues& knobs) { return knobs.as<Knobs>().variant == Variant::viewDirection; };
+  entry.run = [](const KnobValues& knobs, const StageInput& input) {
+    return cull(input.scene, input.camera, knobs.as<Knobs>().variant, input.in, input.threads, input.stats);
+  };
+  return entry;
+}
+
 }  // namespace hsr::culling::backface

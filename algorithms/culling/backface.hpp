@@ -23,6 +23,7 @@
 //                   forward vector at once. Kept to show why.
 #pragma once
 
+#include "algorithms/culling/culling.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
@@ -37,5 +38,22 @@ enum class Variant { object, screen, viewDirection };
 // "backface: triangles culled".
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
                 int threads, Stats& stats);
+
+struct Knobs {
+  Variant variant = Variant::object;
+};
+
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table = KnobTable<Knobs>().variants(
+      &Knobs::variant,
+      {{Variant::object, "object", "the eye against the triangle's plane, an exact sign"},
+       {Variant::screen, "screen", "the sign of the projected area, after clipping at the near plane"},
+       {Variant::viewDirection, "view-direction", "the normal against the view direction only: wrong under perspective, kept to show why"}},
+      "which facing test");
+  return table;
+}
+
+// The stage's entry in culling::stages().
+StageEntry stage();
 
 }  // namespace hsr::culling::backface

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/registry.hpp"
+#include "algorithms/knobs.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/parallel.hpp"
@@ -46,35 +46,45 @@ struct StageInput {
   const PreviousFrame* previous;  // nullptr: none (the first frame, or a single image)
 };
 
-struct StageChoice;
-
+// A stage as the pipeline and `hsr list` see it. Each stage file declares its own
+// (backface::stage(), frustum::stage(), occlusion::stage()) with its knob table: the
+// "variant" knob first, each variant with a line of help, then the knobs given as
+// :KNOB=VALUE after it.
 struct StageEntry {
   std::string name;
   std::string summary;
-  // The variants, the default first, each with a line of help.
-  std::vector<std::pair<std::string, std::string>> variants;
-  // Variants that can drop visible triangles, kept to show why or for their speed.
-  std::vector<std::string> wrongVariants;
-  std::function<VisibleSet(const StageChoice&, const StageInput&)> run;
-  // Knobs beyond the variant (NAME=VALUE after it), and which of their settings can drop
-  // visible triangles.
-  std::vector<KnobSpec> knobs = {};
-  std::function<bool(const KnobValues&)> knobsMayDropVisible = [](const KnobValues&) { return false; };
+  std::vector<KnobSpec> knobs;
+  std::function<KnobValues(const KnobSettings&, const std::string& where)> resolve;
+  // Whether these settings can drop visible triangles (a variant kept to show why, or a
+  // knob traded for speed).
+  std::function<bool(const KnobValues&)> mayDropVisible = nullptr;
   // Why these settings do not go together, or "" when they do.
-  std::function<std::string(const std::string& variant, const KnobValues&)> conflict = [](const std::string&, const KnobValues&) {
-    return std::string();
-  };
+  std::function<std::string(const KnobValues&)> conflict = [](const KnobValues&) { return std::string(); };
+  std::function<VisibleSet(const KnobValues&, const StageInput&)> run = nullptr;
+
+  const KnobSpec& variantKnob() const { return knobs.front(); }
 };
+
+// A stage's entry with its knob table hooked up.
+template <typename Knobs>
+StageEntry stageEntry(std::string name, std::string summary, const KnobTable<Knobs>& table) {
+  StageEntry stage{std::move(name), std::move(summary), table.specs(), nullptr};
+  stage.resolve = [table, owner = "culling stage " + stage.name](const KnobSettings& settings, const std::string& where) {
+    return table.resolve(owner, settings, where);
+  };
+  return stage;
+}
 
 const std::vector<StageEntry>& stages();
 
 // One stage of a pipeline with its variant and knobs chosen.
 struct StageChoice {
   const StageEntry* stage;
-  std::string variant;
-  KnobValues knobs;  // every knob of the stage, validated
-  bool wrong() const;
-  // "occlusion:depth-map:raster=center": the knobs that differ from their defaults.
+  KnobValues knobs;  // every knob of the stage, the variant's among them, validated
+  bool wrong() const { return stage->mayDropVisible(knobs); }
+  const std::string& variant() const { return knobs.at("variant"); }
+  // "occlusion:depth-map:raster=center": the variant, and the knobs that differ from
+  // their defaults.
   std::string name() const;
 };
 using Pipeline = std::vector<StageChoice>;

@@ -174,4 +174,13 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
   return out;
 }
 
+StageEntry stage() {
+  StageEntry entry = stageEntry("frustum", "drop objects or triangles wholly outside the view volume", knobTable());
+  entry.mayDropVisible = [](const KnobValues& knobs) { return knobs.as<Knobs>().variant == Variant::anyVertex; };
+  entry.run = [](const KnobValues& knobs, const StageInput& input) {
+    return cull(input.scene, input.camera, knobs.as<Knobs>().variant, input.in, input.threads, input.stats);
+  };
+  return entry;
+}
+
 }  // namespace hsr::culling::frustum

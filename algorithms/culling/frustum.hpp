@@ -21,6 +21,7 @@
 // triangle the reference sees (a false cull is a bug).
 #pragma once
 
+#include "algorithms/culling/culling.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
@@ -36,5 +37,24 @@ enum class Variant { sphere, aabb, bvh, triangle, anyVertex };
 // "frustum: bvh nodes visited", "frustum: triangles tested", "frustum: triangles culled".
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
                 int threads, Stats& stats);
+
+struct Knobs {
+  Variant variant = Variant::sphere;
+};
+
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table = KnobTable<Knobs>().variants(
+      &Knobs::variant,
+      {{Variant::sphere, "sphere", "per object: its bounding sphere against the six planes"},
+       {Variant::aabb, "aabb", "per object: its box, by center and extent, against the six planes"},
+       {Variant::bvh, "bvh", "per object, hierarchically: boxes down the object BVH, with plane masking"},
+       {Variant::triangle, "triangle", "per triangle: outside when all three corners are outside one plane"},
+       {Variant::anyVertex, "any-vertex", "per triangle: kept only if a corner is inside; wrong for big triangles, kept to show why"}},
+      "which volume is tested");
+  return table;
+}
+
+// The stage's entry in culling::stages().
+StageEntry stage();
 
 }  // namespace hsr::culling::frustum

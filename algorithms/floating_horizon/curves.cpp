@@ -52,7 +52,7 @@ std::string refusal(const PreparedScene& scene) {
 SurfaceView::SurfaceView(const PreparedScene& scene)
     : solid_(&scene.scene().objects[scene.instances().at(0).object].solid),
       worldFromObject_(scene.instances()[0].worldFromObject),
-      camera_(scene.scene().camera, scene.width(), scene.height()) {}
+      camera_(scene.camera()) {}
 
 dvec3 SurfaceView::world(const dvec2& ground, double height) const {
   return dvec3(worldFromObject_ * dvec4(ground.x, height, ground.y, 1.0));

@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 
+#include "algorithms/floating_horizon/curve_comparison.hpp"
 #include "algorithms/floating_horizon/curves.hpp"
 
 namespace hsr::floating_horizon {
@@ -123,10 +124,16 @@ struct Sample {
   bool defined;   // f is defined there (and it lies beyond the near plane)
 };
 
+// A count given as a number, or as a percentage of the image width.
+int countOf(const KnobNumber& knob, int width, int minimum) {
+  return std::max(minimum, static_cast<int>(std::lround(knob.percent ? knob.value / 100 * width : knob.value)));
+}
+
 class FloatingHorizon {
  public:
   FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
-      : view_(scene), knobs_(knobs), stats_(stats), layout_(view_.layout(knobs.mesh)) {
+      : view_(scene), knobs_(knobs), stats_(stats), layout_(view_.layout(knobs.mesh)),
+        columns_(countOf(knobs.columns, scene.width(), 1)), samples_(countOf(knobs.samples, scene.width(), 2)) {
     lines_.width = scene.width();
     lines_.height = scene.height();
   }
@@ -137,8 +144,8 @@ class FloatingHorizon {
     stats_.add("curves", static_cast<std::int64_t>(layout_.curveCount()));
     // Step 2: the samples; a mesh's curves also pass through every crossing with the other family.
     const dvec2 half = view_.halfFootprint();
-    const std::vector<double> alongRows = coordinatesAcross(half[1 - rows.fixedAxis], knobs_.samples, cross.positions);
-    const std::vector<double> alongCross = coordinatesAcross(half[rows.fixedAxis], knobs_.samples, rows.positions);
+    const std::vector<double> alongRows = coordinatesAcross(half[1 - rows.fixedAxis], samples_, cross.positions);
+    const std::vector<double> alongCross = coordinatesAcross(half[rows.fixedAxis], samples_, rows.positions);
     std::vector<std::vector<Sample>> rowSamples, crossSamples;
     for (const double position : rows.positions) rowSamples.push_back(sample(rows, position, alongRows));
     for (const double position : cross.positions) crossSamples.push_back(sample(cross, position, alongCross));
@@ -147,7 +154,7 @@ class FloatingHorizon {
       for (const std::vector<Sample>& curve : *family)
         for (const Sample& s : curve)
           if (s.defined) drawnFrom = std::min(drawnFrom, s.pixel.x), drawnTo = std::max(drawnTo, s.pixel.x);
-    horizons_.emplace(knobs_.columns, double(lines_.width), drawnFrom, drawnTo, knobs_.lowerHorizon);
+    horizons_.emplace(columns_, double(lines_.width), drawnFrom, drawnTo, knobs_.lowerHorizon);
     stats_.add("horizon columns", static_cast<std::int64_t>(horizons_->columnCount()));
 
     // Step 1: the order. Each row is drawn after the cross pieces between it and the row
@@ -228,6 +235,7 @@ class FloatingHorizon {
   const Knobs& knobs_;
   Stats& stats_;
   CurveLayout layout_;
+  int columns_, samples_;
   std::optional<Horizons> horizons_;  // once the drawing's extent is known
   LineSet lines_;
   std::int64_t crossings_ = 0;
@@ -238,6 +246,25 @@ class FloatingHorizon {
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
   const PhaseTimer timer(stats, "floating horizon");
   return FloatingHorizon(scene, knobs, stats).run();
+}
+
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "floating_horizon";
+  entry.kind = AlgorithmKind::line;
+  entry.summary = "curves of a height field front to back against upper and lower horizons (Williamson 1972, Wright 1973)";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"curves", "samples", "horizon crossings", "breaks", "segments dropped"};
+  entry.studyConfigurations = {{}, {{"interpolate", "off"}, {"samples", "5%"}}, {{"samples", "5%"}}, {{"lower", "off"}},
+                               {{"columns", "25%"}}};
+  setRefusal(entry, refusal);
+  setDrawing(entry, run);
+  entry.judgeLines = [](const PreparedScene& scene, const KnobValues& values, const LineSet& lines, int threads, Stats& stats) {
+    const ExactDrawing exact = exactDrawing(scene, values.as<Knobs>().mesh, threads, stats);
+    CurveComparison comparison = compareCurveDrawings(lines, exact.lines, exact.visibility);
+    return LineJudgement{comparison.error, std::move(comparison.errorMap)};
+  };
+  return entry;
 }
 
 }  // namespace hsr::floating_horizon

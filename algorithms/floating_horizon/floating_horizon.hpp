@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/algorithm.hpp"
+#include "algorithms/knobs.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/prepare.hpp"
@@ -41,12 +43,27 @@
 namespace hsr::floating_horizon {
 
 struct Knobs {
-  int columns = 640;         // horizon resolution: screen columns the horizons are kept for
-  int samples = 640;         // points sampled along each curve (at least 2)
+  // Horizon resolution: screen columns the horizons are kept for; and points sampled
+  // along each curve (at least 2). Each a count, or a percentage of the image width.
+  KnobNumber columns{100, true};
+  KnobNumber samples{100, true};
   bool interpolate = true;   // compute where a segment crosses a horizon (off: drop the segment)
   bool lowerHorizon = true;  // keep the lower horizon too (off: only points above the upper one are seen)
   bool mesh = false;         // draw the curves of constant x as well
 };
+
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table =
+      KnobTable<Knobs>()
+          .number("columns", &Knobs::columns, {1, 65536, true, true}, {"25%", "50%", "200%"},
+                  "horizon resolution: screen columns the horizons are kept for (P%: of the image width)")
+          .number("samples", &Knobs::samples, {2, 1048576, true, true}, {"5%", "25%", "200%"},
+                  "points sampled along each curve (P%: of the image width)")
+          .onOff("interpolate", &Knobs::interpolate, "on: compute where a segment crosses a horizon; off: drop segments whose samples disagree")
+          .onOff("lower", &Knobs::lowerHorizon, "on: keep the lower horizon too, so curves seen below everything drawn are visible; off: upper only")
+          .onOff("mesh", &Knobs::mesh, "on: draw the curves of constant x as well as of constant z");
+  return table;
+}
 
 // Why the floating horizon cannot draw this scene, or "" when it can.
 std::string refusal(const PreparedScene& scene);
@@ -66,5 +83,9 @@ struct ExactDrawing {
   std::vector<EdgeVisibility> visibility;  // per edge of lines
 };
 ExactDrawing exactDrawing(const PreparedScene& scene, bool mesh, int threads, Stats& stats);
+
+// The registry's entry (algorithms/algorithm.hpp): judged against the exact drawing of
+// the same curves (curve_comparison.hpp).
+AlgorithmEntry entry();
 
 }  // namespace hsr::floating_horizon

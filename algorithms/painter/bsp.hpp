@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "algorithms/painter/paint.hpp"
+#include "algorithms/painter/order.hpp"
 
 namespace hsr::painter {
 

@@ -34,7 +34,7 @@
 #include <map>
 #include <optional>
 
-#include "algorithms/painter/paint.hpp"
+#include "algorithms/painter/order.hpp"
 
 namespace hsr::painter {
 namespace {

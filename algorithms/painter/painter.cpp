@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "algorithms/painter/bsp.hpp"
-#include "algorithms/painter/paint.hpp"
+#include "algorithms/painter/order.hpp"
+#include "renderer/conventions.hpp"
+#include "renderer/pieces.hpp"
+#include "renderer/tiles.hpp"
 
 namespace hsr::painter {
 
@@ -40,22 +44,68 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
   return "";
 }
 
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible) {
+PaintedPieces order(const VisibilityRequest& request, const Knobs& knobs) {
+  const PreparedScene& scene = request.scene;
   // Step 1: the screen triangles, clipped at the near and far planes as the reference
   // sees the scene. Sort and Newell order them by their corners.
-  const bool needsCorners = knobs.variant != Variant::bsp;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, {.keepCorners = needsCorners, .submitted = visible}, threads, stats);
+  PaintedPieces painted{buildScreenTriangles(scene, request.view, {.keepCorners = knobs.variant != Variant::bsp, .submitted = request.triangles},
+                                             request.threads, request.stats),
+                        {}};
   // Step 2: back to front.
-  PaintOrder order;
   switch (knobs.variant) {
-    case Variant::sort: order = sortOrder(geometry, knobs.key, stats); break;
-    case Variant::newell: order = newellOrder(scene, geometry, knobs, stats); break;
-    case Variant::bsp: order = BspTree(scene, knobs, stats).backToFront(scene, geometry, stats); break;
+    case Variant::sort: painted.order = sortOrder(painted.geometry, knobs.key, request.stats); break;
+    case Variant::newell: painted.order = newellOrder(scene, painted.geometry, knobs, request.stats); break;
+    case Variant::bsp: painted.order = BspTree(scene, knobs, request.stats).backToFront(scene, painted.geometry, request.stats); break;
   }
-  // Step 3: paint.
-  Frame frame = paint(scene, geometry, order, threads, stats);
-  frame.partial = order.partial;
-  return frame;
+  return painted;
+}
+
+void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats) {
+  // With no depth test, a pixel shows whatever was drawn there last.
+  PhaseTimer timer(stats, "painting");
+  const TileGrid tiles(frame.width, frame.height);
+  std::vector<std::int64_t> writes(tiles.count(), 0);
+  const std::int64_t cutTests = paintInOrder(
+      scene, painted, tiles, threads,
+      [&](std::size_t, const TileGrid::Rect& rect) {
+        for (int y = rect.y0; y < rect.y1; ++y) {
+          const std::size_t first = std::size_t(y) * std::size_t(frame.width) + std::size_t(rect.x0), count = std::size_t(rect.x1 - rect.x0);
+          std::fill_n(frame.ids.begin() + std::ptrdiff_t(first), count, conventions::kBackgroundId);
+          std::fill_n(frame.depth.begin() + std::ptrdiff_t(first), count, std::numeric_limits<float>::infinity());
+        }
+      },
+      [&](std::size_t tile, const PieceFragment& fragment) {
+        ++writes[tile];
+        frame.ids[fragment.pixel] = fragment.triangle + 1;
+        frame.depth[fragment.pixel] = fragment.depth;
+      });
+  std::int64_t written = 0;
+  for (const std::int64_t count : writes) written += count;
+  stats.add("pieces painted", static_cast<std::int64_t>(painted.order.pieces.size()));
+  stats.add("fragments written", written);
+  stats.add("cut tests", cutTests);
+}
+
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
+  visibility.painted = order(request, knobs);
+  // Step 3: paint the pieces in order, each over what is already there.
+  paint(request.scene, *visibility.painted, request.threads, visibility.frame, request.stats);
+  visibility.frame.partial = visibility.painted->order.partial;
+}
+
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "painter";
+  entry.summary = "far to near with no depth buffer: depth sort, Newell-Newell-Sancha with splitting, or a BSP tree";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"pieces painted", "fragments written", "newell pairs tested", "newell reorders", "newell splits",
+                       "bsp nodes", "bsp depth", "bsp splits"};
+  entry.studyConfigurations = {{}, {{"variant", "newell"}}, {{"variant", "sort"}}, {{"variant", "sort"}, {"key", "nearest"}}};
+  setRefusal(entry, refusal);
+  entry.takesTriangleSubsets = true;
+  setVisibility(entry, visibility);
+  setOrder(entry, order);
+  return entry;
 }
 
 }  // namespace hsr::painter

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "algorithms/painter/paint.hpp"
+#include "algorithms/painter/order.hpp"
 
 namespace hsr::painter {
 

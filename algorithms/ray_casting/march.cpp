@@ -261,15 +261,15 @@ class Marcher {
 
 }  // namespace
 
-double marchStepLength(const PreparedScene& scene, const Step& step) {
-  if (!step.percentOfScene) return step.value;
+double marchStepLength(const PreparedScene& scene, const KnobNumber& step) {
+  if (!step.percent) return step.value;
   const Aabb bounds = sceneBounds(scene);
   const double diagonal = bounds.empty() ? 0.0 : glm::length(bounds.hi - bounds.lo);
   // A scene of one point has no size; any positive step serves.
   return diagonal > 0 ? diagonal * step.value / 100 : step.value / 100;
 }
 
-double marchSamplesPerRay(const PreparedScene& scene, const Step& step) {
+double marchSamplesPerRay(const PreparedScene& scene, const KnobNumber& step) {
   const double length = marchStepLength(scene, step);
   const Aabb bounds = marchBounds(scene, length);
   return bounds.empty() ? 0.0 : glm::length(bounds.hi - bounds.lo) / length + 1;

@@ -7,10 +7,10 @@
 namespace hsr::ray_casting {
 
 // The march's step in world units for this scene.
-double marchStepLength(const PreparedScene& scene, const Step& step);
+double marchStepLength(const PreparedScene& scene, const KnobNumber& step);
 
 // The most samples one ray can take: the march box's diagonal over the step, plus one.
-double marchSamplesPerRay(const PreparedScene& scene, const Step& step);
+double marchSamplesPerRay(const PreparedScene& scene, const KnobNumber& step);
 
 // Fills frame.ids and frame.depth; leaves frame.color alone.
 void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform& camera, int threads, Frame& frame,

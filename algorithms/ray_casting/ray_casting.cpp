@@ -6,12 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "algorithms/effects/effects.hpp"
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/march.hpp"
 #include "renderer/bvh.hpp"
 #include "renderer/error.hpp"
-#include "renderer/shading.hpp"
 
 namespace hsr::ray_casting {
 namespace {
@@ -92,7 +90,7 @@ class NaiveTracer {
   NaiveTracer(const PreparedScene& scene, Stats& stats) : triangles_(scene.leafTriangles(stats)) {}
 
   Hit trace(const PixelRay& pixel, Counters& counters) const {
-    const WatertightRay ray(pixel.ray, 1.0 / pixel.ray.direction);
+    const WatertightRay ray(pixel.ray, inverseOf(pixel.ray.direction));
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
     for (const PackedTriangle& triangle : triangles_) offer(ray, triangle, pixel, nearest);
     counters.triangleTests += static_cast<std::int64_t>(triangles_.size());
@@ -190,38 +188,47 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
   return text;
 }
 
-Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
+  const PreparedScene& scene = request.scene;
   if (const std::string reason = refusal(scene, knobs); !reason.empty()) throw InputError(reason);
-  Frame frame(scene.width(), scene.height());
-  const CameraTransform& camera = scene.camera();
+  HSR_CHECK(!request.triangles && "ray casting traces every triangle");
+  Frame& frame = visibility.frame;
+  const CameraTransform& camera = request.view;
+  Stats& stats = request.stats;
   stats.add("primary rays", static_cast<std::int64_t>(frame.pixelCount()));
   switch (knobs.variant) {
     case Variant::naive: {
       const NaiveTracer tracer(scene, stats);
       PhaseTimer timer(stats, "ray casting");
-      const auto counters = castRays(tracer, camera, threads, frame);
+      const auto counters = castRays(tracer, camera, request.threads, frame);
       stats.add("ray-triangle tests", counters.triangleTests);
       break;
     }
     case Variant::bvh: {
       const BvhTracer tracer(scene, stats);
       PhaseTimer timer(stats, "ray casting");
-      const auto counters = castRays(tracer, camera, threads, frame);
+      const auto counters = castRays(tracer, camera, request.threads, frame);
       stats.add("bvh nodes visited", counters.nodesVisited);
       stats.add("ray-triangle tests", counters.triangleTests);
       break;
     }
     case Variant::march:
-      march(scene, knobs, camera, threads, frame, stats);
+      march(scene, knobs, camera, request.threads, frame, stats);
       break;
   }
-  return frame;
 }
 
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats) {
-  Frame frame = castVisibility(scene, knobs, threads, stats);
-  effects::finishFrame(scene, scene.camera(), frame, threads, stats);
-  return frame;
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "ray_casting";
+  entry.summary = "a ray per pixel center, nearest surface wins (Appel 1968): through a BVH, naive, or marched in steps";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"primary rays", "bvh nodes visited", "ray-triangle tests", "march samples", "inside tests",
+                       "nearest-triangle voxels searched"};
+  entry.studyConfigurations = {{}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
+  setRefusal(entry, refusal);
+  setVisibility(entry, visibility);
+  return entry;
 }
 
 }  // namespace hsr::ray_casting

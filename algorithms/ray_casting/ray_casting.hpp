@@ -9,14 +9,15 @@
 //   bvh    the nearest hit through a bounding volume hierarchy (renderer/bvh): ordered
 //          traversal, nearer child first, stopping at boxes beyond the nearest hit.
 //
-// Inputs: a PreparedScene, the knobs. Output: a Frame with, per pixel, the visible
-// triangle's id + 1 (0 = background), its distance along the view axis, and the color
-// the scene's effects give it (renderer/shading), as every surface algorithm writes it.
+// Inputs: a PreparedScene, a view, the knobs. Output: per pixel, the visible triangle's
+// id + 1 (0 = background) and its distance along the view axis.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "algorithms/algorithm.hpp"
+#include "algorithms/knobs.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
@@ -25,12 +26,6 @@ namespace hsr::ray_casting {
 
 enum class Variant { bvh, naive, march };
 
-// The march's step: a length in world units, or a percentage of the diagonal of the
-// scene's bounding box.
-struct Step {
-  double value = 0.5;
-  bool percentOfScene = true;
-};
 
 inline constexpr int kMaxGrid = 256;  // voxels per side of an occupancy grid: 16 M voxels at most
 
@@ -39,9 +34,10 @@ struct Knobs {
   // naive and march: refuse when the work a run may do exceeds this: pixels x triangles
   // ray-triangle tests (naive), or pixels x the most samples a ray can take (march).
   double budget = 1e9;
-  // march: sample spacing, voxels along each object's longest side for the occupancy
-  // grid of meshes, and bisection steps back to the surface once inside.
-  Step step;
+  // march: sample spacing (a length in world units, or a percentage of the diagonal of
+  // the scene's bounding box), voxels along each object's longest side for the
+  // occupancy grid of meshes, and bisection steps back to the surface once inside.
+  KnobNumber step{0.5, true};
   int grid = 64;
   int refine = 0;
 };
@@ -49,11 +45,31 @@ struct Knobs {
 // Why the knobs cannot render this scene ("" when they can): naive or march over budget.
 std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 
-// threads: 0 = all cores. The image bits are the same for every thread count.
-// Throws InputError when refusal() is not empty.
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table =
+      KnobTable<Knobs>()
+          .choice("variant", &Knobs::variant, {{Variant::bvh, "bvh"}, {Variant::naive, "naive"}, {Variant::march, "march"}},
+                  "bvh: nearest hit through the BVH; naive: every ray against every triangle; march: fixed steps with inside tests")
+          .number("budget", &Knobs::budget, {1, 1e15}, {"1e10", "1e11"},
+                  "naive and march refuse a run of more ray-triangle tests (naive) or samples (march) than this")
+          .onlyFor({"naive", "march"})
+          .number("step", &Knobs::step, {1e-6, 1e6, false, true}, {"2%", "1%", "0.25%", "0.1%"},
+                  "march: the distance between samples, in world units, or P% of the scene's bounding-box diagonal")
+          .onlyFor({"march"})
+          .number("grid", &Knobs::grid, {1, kMaxGrid}, {"16", "32", "128", "256"},
+                  "march: occupancy-grid voxels along each mesh's longest side")
+          .onlyFor({"march"})
+          .number("refine", &Knobs::refine, {0, 52}, {"2", "4", "8"}, "march: bisection steps back to the surface once a sample is inside")
+          .onlyFor({"march"});
+  return table;
+}
 
-// run's visibility pass alone: ids and depth; the color is left black.
-Frame castVisibility(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats);
+// The visibility pass into visibility.frame (ids and depth), from request.view, over
+// every triangle. threads: 0 = all cores; the same bits for every count. Throws
+// InputError when refusal() is not empty.
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility);
+
+// The registry's entry (algorithms/algorithm.hpp).
+AlgorithmEntry entry();
 
 }  // namespace hsr::ray_casting

@@ -127,7 +127,7 @@ struct Body {
 class Roberts {
  public:
   Roberts(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
-      : scene_(scene), knobs_(knobs), camera_(scene.scene().camera, scene.width(), scene.height()), stats_(stats) {}
+      : scene_(scene), knobs_(knobs), camera_(scene.camera()), stats_(stats) {}
 
   LineSet run() {
     const std::vector<std::int8_t> facing = viewFacing(scene_, camera_, stats_);
@@ -382,6 +382,19 @@ class Roberts {
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
   PhaseTimer timer(stats, "roberts");
   return Roberts(scene, knobs, stats).run();
+}
+
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "roberts";
+  entry.kind = AlgorithmKind::line;
+  entry.summary = "every edge against every convex body by linear inequalities along the sight lines (Roberts 1963)";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"feature edges", "junction lines", "back-face edges", "edge-body pairs", "body tests", "hidden intervals"};
+  setRefusal(entry, refusal);
+  setDrawing(entry, run);
+  entry.judgeLines = judgedByLineReference;
+  return entry;
 }
 
 }  // namespace hsr::roberts

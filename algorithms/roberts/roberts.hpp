@@ -37,6 +37,8 @@
 #include <cstdint>
 #include <string>
 
+#include "algorithms/algorithm.hpp"
+#include "algorithms/knobs.hpp"
 #include "renderer/feature_edges.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/prepare.hpp"
@@ -50,6 +52,15 @@ struct Knobs {
   double creaseDegrees = kDefaultCreaseDegrees;  // feature edges: creases sharper than this
 };
 
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table =
+      KnobTable<Knobs>()
+          .onOff("grid", &Knobs::grid, "on: only the bodies listed in the screen-grid cells an edge crosses are tested; off: every body")
+          .number("cell", &Knobs::cellPixels, {1, 65536}, {"8", "128", "512"}, "side in pixels of the screen grid's cells")
+          .number("crease", &Knobs::creaseDegrees, {0, 180}, {"0", "10", "60"}, kCreaseKnobHelp);
+  return table;
+}
+
 // Roberts' bodies are polyhedra of a few faces; merging a body's coplanar triangles and
 // checking its convexity take time quadratic in its triangles, so larger bodies are refused.
 inline constexpr std::uint32_t kMaxBodyTriangles = 8192;
@@ -61,5 +72,8 @@ std::string refusal(const PreparedScene& scene);
 // "edge-body pairs" (considered), "minimax rejections", "body tests" (linear programs
 // solved), "hidden intervals", "junction lines".
 LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats);
+
+// The registry's entry (algorithms/algorithm.hpp).
+AlgorithmEntry entry();
 
 }  // namespace hsr::roberts

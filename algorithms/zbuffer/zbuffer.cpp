@@ -4,10 +4,8 @@
 #include <algorithm>
 #include <memory>
 
-#include "algorithms/effects/effects.hpp"
-#include "algorithms/painter/paint.hpp"
 #include "renderer/parallel.hpp"
-#include "renderer/shading.hpp"
+#include "renderer/screen_triangles.hpp"
 #include "renderer/tiles.hpp"
 
 namespace hsr::zbuffer {
@@ -61,34 +59,26 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
   });
 }
 
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible) {
-  Frame frame(scene.width(), scene.height());
-  const bool clipFar = clipsFarPlane(knobs.depthFormat, scene.scene().camera.projection);
-  // With transparency, the depth buffer holds the opaque surfaces only; the transparent
-  // ones are blended over them afterwards, back to front.
-  const bool transparency = scene.scene().effects.transparency;
-  const std::optional<VisibleSet> opaque = transparency ? std::make_optional(trianglesByOpacity(scene, visible, true)) : std::nullopt;
-  const ScreenGeometry geometry = buildScreenTriangles(scene, {.clipFar = clipFar, .submitted = opaque ? &*opaque : visible}, threads, stats);
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
+  const bool clipFar = clipsFarPlane(knobs.depthFormat, request.view.camera().projection);
+  const ScreenGeometry geometry =
+      buildScreenTriangles(request.scene, request.view, {.clipFar = clipFar, .submitted = request.triangles}, request.threads, request.stats);
   if (knobs.variant == Variant::full)
-    renderFullFrame(geometry, knobs.depthFormat, threads, frame, stats, knobs.depthTest);
+    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest);
   else
-    renderScanline(geometry, knobs.depthFormat, threads, frame, stats, knobs.depthTest);
-  if (!transparency) {
-    effects::finishFrame(scene, geometry.camera, frame, threads, stats);
-    return frame;
-  }
-  // The sorted pass: the transparent triangles in the painter's depth-sort order (by
-  // centroid, farthest first), each pixel blended over the opaque image where it lies in
-  // front of the opaque depth. Transparent surfaces that overlap in depth cyclically or
-  // interpenetrate blend in the wrong order somewhere: only the painter's newell and
-  // bsp variants split them.
-  const effects::Lighting lighting(scene, geometry.camera, threads, stats);
-  shadeFrame(scene, frame, lighting.shader(), threads, stats);
-  const VisibleSet transparent = trianglesByOpacity(scene, visible, false);
-  const ScreenGeometry glass = buildScreenTriangles(scene, {.keepCorners = true, .submitted = &transparent}, threads, stats);
-  const painter::PaintOrder order = painter::sortOrder(glass, painter::SortKey::centroid, stats);
-  const painter::OpaqueBase base{frame, lighting.shader()};
-  return painter::paint(scene, glass, order, threads, stats, &base);
+    renderScanline(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest);
+}
+
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "zbuffer";
+  entry.summary = "per-pixel depth test (Catmull 1974): full-frame or one-scanline buffer";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
+  entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
+  entry.takesTriangleSubsets = true;
+  setVisibility(entry, visibility);
+  return entry;
 }
 
 }  // namespace hsr::zbuffer

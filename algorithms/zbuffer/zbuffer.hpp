@@ -1,13 +1,15 @@
 // The z-buffer (Catmull 1974; Straßer 1974): keep, for every pixel, the depth of the
 // nearest surface drawn so far, and draw a new fragment only if it is nearer.
 //
-// Inputs: a PreparedScene (world-space triangles with ids, image size), the knobs.
-// Output: a Frame with, per pixel, the visible triangle's id + 1 (0 = background), its
-// depth as the chosen format stored it (decoded to view distance), and the shaded color.
+// Inputs: a PreparedScene (world-space triangles with ids), a view, the knobs.
+// Output: per pixel, the visible triangle's id + 1 (0 = background) and its depth as
+// the chosen format stored it (decoded to view distance).
 #pragma once
 
 #include <limits>
 
+#include "algorithms/algorithm.hpp"
+#include "algorithms/knobs.hpp"
 #include "renderer/conventions.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/frame.hpp"
@@ -31,11 +33,29 @@ struct Knobs {
   bool depthTest = true;
 };
 
-// threads: 0 = all cores. The image bits are the same for every thread count.
-// Stats: "fragments tested", "fragments written", "depth ties" (DepthTest), "depth
-// buffer bytes", and the geometry stage's.
-// `visible`: only these triangles (what culling stages kept); nullptr: all of them.
-Frame run(const PreparedScene& scene, const Knobs& knobs, int threads, Stats& stats, const VisibleSet* visible = nullptr);
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table = [] {
+    std::vector<std::pair<DepthFormat, std::string>> formats;
+    for (std::size_t f = 0; f < depthFormatNames().size(); ++f) formats.emplace_back(DepthFormat(f), depthFormatNames()[f]);
+    return KnobTable<Knobs>()
+        .choice("variant", &Knobs::variant, {{Variant::full, "full"}, {Variant::scanline, "scanline"}},
+                "full: whole-image depth buffer, tile-parallel; scanline: one row of depth, active-triangle list")
+        .choice("depth-format", &Knobs::depthFormat, formats, "what the depth buffer stores (conventions.hpp)")
+        .onOff("depth-test", &Knobs::depthTest,
+               "off: no depth test, every fragment is drawn and the last triangle drawn at a pixel wins (wrong wherever "
+               "surfaces overlap; kept to show what the depth buffer buys)");
+  }();
+  return table;
+}
+
+// The visibility pass: the geometry stage, then the chosen variant, into visibility.frame
+// (ids and depth). threads: 0 = all cores; the same bits for every count. Stats:
+// "fragments tested", "fragments written", "depth ties" (DepthTest), "depth buffer
+// bytes", and the geometry stage's.
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility);
+
+// The registry's entry (algorithms/algorithm.hpp).
+AlgorithmEntry entry();
 
 // The variants' visibility passes: they overwrite every pixel of frame.ids and
 // frame.depth (a Frame of the scene's size may be reused) and leave frame.color alone.

@@ -163,7 +163,7 @@ INSTANTIATE_TEST_SUITE_P(
              write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") +
                  " --algo ray_casting -o OUT",
              "ray_casting cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back "
-             "to front; ray casting keeps only the nearest (use --algo painter or zbuffer)"},
+             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter)"},
         Case{"painter-knob-of-another-variant", kCube + " --algo painter --knob key=nearest -o OUT",
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",

@@ -200,7 +200,7 @@ TEST(Render, ExplainSaysWhichPassesRunAndWhy) {
                                                       "cube.toml --explain --size 64x48 -o " + (folder / "cube.png").string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   for (const char* line : {"passes for", "run   visibility: zbuffer", "skip  shadow maps", "effects does not list shadows",
-                           "run   corner normals               lambert interpolates them", "decided while rendering:",
+                           "run     corner normals             lambert interpolates them", "decided while rendering:",
                            "normals: 36 corner normals computed", "clipping: no triangle crosses the near plane",
                            "time per pass", "visibility", "shading"})
     EXPECT_NE(result.output.find(line), std::string::npos) << line << "\n" << result.output;

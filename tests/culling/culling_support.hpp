@@ -31,7 +31,7 @@ inline std::vector<std::uint8_t> keptMask(const VisibleSet& set, std::size_t tri
 
 inline Frame renderKept(const PreparedScene& scene, const VisibleSet& kept, zbuffer::Knobs knobs = {}) {
   Stats stats;
-  return zbuffer::run(scene, knobs, 1, stats, &kept);
+  return test::visibilityOf(scene, knobs, 1, stats, &kept);
 }
 
 // A scene with its exact reference and the triangles the reference shows.

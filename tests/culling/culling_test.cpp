@@ -48,6 +48,8 @@ TEST(FrustumPlanes, GribbHartmannPlanesAgreeWithTheClipVolume) {
     const auto planes = transform.frustumPlanes();
     constexpr std::uint32_t kViewVolume = kNearPlane | kFarPlane | kViewLeft | kViewRight | kViewBottom | kViewTop;
     int inside = 0;
+    test::CaseFailures disagreements(std::string("the frustum planes and the clip volume disagree on a point, ") +
+                                     (projection == Projection::perspective ? "perspective" : "orthographic"));
     for (int i = 0; i < 20000; ++i) {
       const dvec3 p(coordinate(random), coordinate(random), coordinate(random));
       double nearest = std::numeric_limits<double>::infinity();
@@ -58,9 +60,14 @@ TEST(FrustumPlanes, GribbHartmannPlanesAgreeWithTheClipVolume) {
       }
       if (nearest < 1e-9) continue;  // on a plane: either answer is within rounding
       const bool insideClip = (volume.outside(transform.clipFromWorld(p)) & kViewVolume) == 0;
-      EXPECT_EQ(insidePlanes, insideClip) << "projection " << int(projection) << " point " << p.x << " " << p.y << " " << p.z;
+      disagreements.expect(insidePlanes == insideClip, [&] {
+        char text[96];
+        std::snprintf(text, sizeof text, "(%g, %g, %g): %s the planes", p.x, p.y, p.z, insidePlanes ? "inside" : "outside");
+        return std::string(text);
+      });
       inside += insideClip;
     }
+    EXPECT_NO_FAILED_CASES(disagreements);
     EXPECT_GT(inside, 200);  // the sample reaches into the volume, not only around it
     for (const Plane& plane : planes) EXPECT_NEAR(glm::length(plane.normal), 1.0, 1e-12);
   }
@@ -87,7 +94,9 @@ TEST(Backface, ObjectAndScreenCullTheSameSetOnEveryClosedSolid) {
                                                             {"sphere", makeSphere(0.7, 24, 12)},
                                                             {"cylinder", makeCylinder(0.5, 1.2, 20)},
                                                             {"cone", makeCone(0.6, 1.0, 16)}};
-  for (const auto& [name, mesh] : solids) {
+  test::CaseFailures disagreements("backface:object and backface:screen disagree on a triangle not seen edge-on");
+  for (const auto& [solidName, mesh] : solids) {
+    const std::string& name = solidName;  // a structured binding cannot be captured (clang 14)
     for (const Projection projection : {Projection::perspective, Projection::orthographic}) {
       for (const dvec3& eye : eyesAround()) {
         Camera camera;
@@ -111,8 +120,12 @@ TEST(Backface, ObjectAndScreenCullTheSameSetOnEveryClosedSolid) {
           const dvec3 &a = prepared.positions()[tri[0]], &b = prepared.positions()[tri[1]], &c = prepared.positions()[tri[2]];
           const dvec3 normal = glm::cross(b - a, c - a);
           const dvec3 towardsEye = projection == Projection::perspective ? eye - a : eye;
-          EXPECT_LE(std::abs(glm::dot(normal, towardsEye)), 1e-9 * glm::length(normal) * glm::length(towardsEye))
-              << name << " triangle " << t << " eye " << eye.x << " " << eye.y << " " << eye.z << " projection " << int(projection);
+          disagreements.expect(std::abs(glm::dot(normal, towardsEye)) <= 1e-9 * glm::length(normal) * glm::length(towardsEye), [&] {
+            char eyeText[96];
+            std::snprintf(eyeText, sizeof eyeText, " from (%g, %g, %g), %s", eye.x, eye.y, eye.z,
+                          projection == Projection::perspective ? "perspective" : "orthographic");
+            return name + ": " + test::describeTriangle(prepared, t) + eyeText;
+          });
         }
         // Seen from outside, a closed solid shows some of its triangles, never all.
         EXPECT_GT(culled, 0) << name;
@@ -120,6 +133,7 @@ TEST(Backface, ObjectAndScreenCullTheSameSetOnEveryClosedSolid) {
       }
     }
   }
+  EXPECT_NO_FAILED_CASES(disagreements);
 }
 
 TEST(Backface, ViewDirectionCullsVisibleSidesOfOffCenterCubes) {
@@ -167,7 +181,7 @@ TEST(Backface, HalvesTheWorkOnAClosedSolidAndDepthTestingIsThenUnneeded) {
   for (std::size_t i = 0; i < painted.ids.size(); ++i) differing += painted.ids[i] != zbuffer.ids[i];
   EXPECT_GT(differing, 1000);
   Stats noTest;
-  zbuffer::run(scene, noDepthTest, 1, noTest);
+  test::render(scene, noDepthTest, 1, noTest);
   EXPECT_EQ(noTest.counter("fragments written"), noTest.counter("fragments tested"));
 }
 
@@ -205,8 +219,8 @@ TEST(Frustum, ObjectsOutOfViewCostNoVertexWork) {
   const PreparedScene& scene = loaded.prepared;
   Stats culled, unculled;
   const VisibleSet kept = cull(scene, "frustum:sphere", culled);
-  const Frame frame = zbuffer::run(scene, {}, 2, culled, &kept);
-  const Frame reference = zbuffer::run(scene, {}, 2, unculled);
+  const Frame frame = test::visibilityOf(scene, zbuffer::Knobs{}, 2, culled, &kept);
+  const Frame reference = test::visibilityOf(scene, zbuffer::Knobs{}, 2, unculled);
   EXPECT_EQ(culled.counter("frustum: objects tested"), 4);
   EXPECT_EQ(culled.counter("frustum: objects culled"), 3);
   EXPECT_EQ(culled.counter("vertices transformed"), unculled.counter("vertices transformed") / 4);
@@ -258,15 +272,21 @@ TEST_P(ShippedScene, CorrectStagesDropNothingVisibleAndChangeNoPixel) {
   for (const std::string variant : {"object", "screen"}) {
     const VisibleSet kept = cull(scene, "backface:" + variant);
     const auto keptTriangles = keptMask(kept, scene.triangleCount());
+    test::CaseFailures culled("backface:" + variant + " dropped a visible triangle whose front the reference shows");
     for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) {
       const bool falseCull = visible[t] && !keptTriangles[t];
-      EXPECT_TRUE(!falseCull || showsBackFace(scene, t + 1, predicates)) << variant << " triangle " << t;
+      culled.expect(!falseCull || showsBackFace(scene, t + 1, predicates), [&] { return test::describeTriangle(scene, t); });
     }
+    EXPECT_NO_FAILED_CASES(culled);
     const Frame frame = renderKept(scene, kept);
+    test::CaseFailures changedPixels("backface:" + variant + " changed a pixel that did not show a back face");
     for (std::size_t i = 0; i < frame.ids.size(); ++i) {
       const bool changed = frame.ids[i] != unculled.ids[i];
-      EXPECT_TRUE(!changed || showsBackFace(scene, unculled.ids[i], predicates)) << variant << " pixel " << i;
+      changedPixels.expect(!changed || showsBackFace(scene, unculled.ids[i], predicates), [&] {
+        return test::describePixel(frame, i) + ": " + test::describeTriangle(scene, unculled.ids[i] - 1);
+      });
     }
+    EXPECT_NO_FAILED_CASES(changedPixels);
   }
 }
 

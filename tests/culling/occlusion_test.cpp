@@ -92,7 +92,7 @@ void expectConservativeMap(const std::string& scene, int mapWidth, int mapHeight
   Stats stats;
   const ReferenceImage truth = traceReference(loaded.prepared, 2, stats);
   const CameraTransform& camera = loaded.prepared.camera();
-  Settings settings;
+  Knobs settings;
   settings.mapWidth = mapWidth, settings.mapHeight = mapHeight;
   const MapView view(camera, mapWidth, mapHeight);
   const VisibleSet all = VisibleSet::everything(loaded.prepared);
@@ -233,8 +233,8 @@ TEST(Occlusion, AFractionOfOccludersIsTheLargestByTheChosenMeasure) {
   const CameraTransform& camera = scene.camera();
   const VisibleSet all = VisibleSet::everything(scene);
   for (const auto& [measure, name] : {std::pair(Occluders::volume, "volume"), std::pair(Occluders::solidAngle, "solid-angle")}) {
-    Settings settings;
-    settings.occluders = measure, settings.fraction = 0.05;
+    Knobs settings;
+    settings.occluders = measure, settings.fraction = {5, true};
     const std::vector<std::uint32_t> chosen = chooseOccluders(scene, camera, settings, all);
     EXPECT_EQ(chosen.size(), std::size_t(std::ceil(0.05 * 8334))) << name;
     // Every chosen object measures at least as much as every other one.

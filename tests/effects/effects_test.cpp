@@ -8,8 +8,10 @@
 #include <fstream>
 #include <set>
 
-#include "algorithms/effects/effects.hpp"
-#include "algorithms/effects/shadow_map.hpp"
+#include "algorithms/culling/culling.hpp"
+#include "pipeline/pipeline.hpp"
+#include "pipeline/shadow_maps.hpp"
+#include "studies/effect_ladder.hpp"
 #include "algorithms/registry.hpp"
 #include "renderer/fog.hpp"
 #include "renderer/metrics.hpp"
@@ -25,27 +27,28 @@ const char* const kShowcase = "scenes/effects.toml";
 Frame renderWith(const std::string& algorithm, const PreparedScene& scene, Stats& stats, const KnobSettings& knobs = {},
                  int threads = 2) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm);
-  return entry.render(scene, resolveKnobs(entry, knobs), threads, stats);
+  return pipeline::render(scene, pipeline::configurationOf(entry, knobs), threads, stats).frame;
 }
 
-// The counters and phases each effect may add or change; anything else changing between
-// two steps of the ladder is a pass that ran without being asked for.
+// The counters and phases each effect may add or change (a pipeline pass times itself as
+// "pass: NAME"); anything else changing between two steps of the ladder is a pass that ran
+// without being asked for.
 const std::map<std::string, std::set<std::string>>& ownedWork() {
   static const std::map<std::string, std::set<std::string>> owned = {
       {"flat", {}},
       {"lambert", {"normals computed", "normals"}},
       {"phong", {"specular terms"}},
       {"+ shadows", {"shadow maps rendered", "shadow map texels", "shadow map fragments written", "shadow lookups",
-                     "shadowed lookups", "shadow maps", "specular terms"}},
+                     "shadowed lookups", "shadow maps", "pass: shadow maps", "specular terms"}},
       // The transparent objects leave the depth buffer for the sorted pass, and the shadow
       // maps' casters, so those passes' own counts change too: only the sorted pass is new.
-      {"+ transparency", {"blended writes", "pieces painted", "cut tests", "transparency", "ordering", "shading invocations",
+      {"+ transparency", {"blended writes", "pieces painted", "cut tests", "transparency", "pass: transparency", "ordering", "shading invocations",
                           "specular terms", "shadow lookups", "shadowed lookups", "fragments written", "fragments tested",
                           "screen triangles", "triangles in", "triangles clipped", "triangles outside view",
                           "triangles between pixel centers", "vertices transformed", "shadow map fragments written"}},
-      {"+ fog", {"fog blends", "fog"}},
+      {"+ fog", {"fog blends", "fog", "pass: fog"}},
       {"+ outline", {"outline edges", "outline pixels", "feature edges", "mesh edges built", "facing tests",
-                     "predicate evaluations", "predicate exact fall-backs", "edge adjacency", "outline"}},
+                     "predicate evaluations", "predicate exact fall-backs", "edge adjacency", "outline", "pass: outline"}},
   };
   return owned;
 }
@@ -64,7 +67,7 @@ std::set<std::string> changedCounters(const Stats& before, const Stats& after) {
 
 TEST(Effects, ASceneWithoutAnEffectSpendsNothingOnIt) {
   const test::LoadedScene showcase(test::sourcePath(kShowcase), 320);
-  const std::vector<effects::EffectStep> ladder = effects::effectLadder(showcase.scene);
+  const std::vector<studies::EffectStep> ladder = studies::effectLadder(showcase.scene);
   const PreparedScene bare(ladder.front().scene);
   ASSERT_EQ(ladder.front().name, "none");
   for (const char* algorithm : {"zbuffer", "painter", "ray_casting"}) {
@@ -81,7 +84,7 @@ TEST(Effects, ASceneWithoutAnEffectSpendsNothingOnIt) {
 
 TEST(Effects, AddingAnEffectAddsOnlyItsOwnPass) {
   const test::LoadedScene showcase(test::sourcePath(kShowcase), 320);
-  const std::vector<effects::EffectStep> ladder = effects::effectLadder(showcase.scene);
+  const std::vector<studies::EffectStep> ladder = studies::effectLadder(showcase.scene);
   std::vector<std::string> names;
   for (const auto& step : ladder) names.push_back(step.name);
   EXPECT_EQ(names, (std::vector<std::string>{"none", "flat", "lambert", "phong", "+ shadows", "+ transparency", "+ fog", "+ outline"}));
@@ -130,7 +133,7 @@ TEST(Effects, TheSameBitsOnAnyThreadCount) {
 
 TEST(Effects, PhongOnlyAddsHighlightsToLambert) {
   const test::LoadedScene showcase(test::sourcePath(kShowcase), 320);
-  const std::vector<effects::EffectStep> ladder = effects::effectLadder(showcase.scene);
+  const std::vector<studies::EffectStep> ladder = studies::effectLadder(showcase.scene);
   const PreparedScene lambert(ladder[2].scene), phong(ladder[3].scene);
   ASSERT_EQ(ladder[3].name, "phong");
   Stats stats;
@@ -154,7 +157,7 @@ TEST(Effects, ShadowMapsAgreeWithExactShadowRaysWithinTheDocumentedBound) {
   const ExactShadows exact(showcase.prepared, stats);
   const auto errorWith = [&](int resolution, double bias) {
     Stats mapStats;
-    const effects::ShadowMaps maps(showcase.prepared, {resolution, bias}, 2, mapStats);
+    const pipeline::ShadowMaps maps(showcase.prepared, {resolution, bias}, 2, mapStats);
     return shadowError(showcase.prepared, frame, maps, exact, 2);
   };
   const ShadowError standard = errorWith(1024, 1.5);
@@ -299,9 +302,12 @@ TEST(Effects, OutlinesLieOnTheEdgesBetweenFaces) {
 
 TEST(Effects, ThePlanSaysWhyEachPassRunsOrNot) {
   const test::LoadedScene cube(test::sourcePath("scenes/cube.toml"));
-  const auto plan = effects::planPasses(cube.prepared, findAlgorithm("zbuffer"), "");
+  const auto plan = pipeline::plan(cube.prepared, pipeline::configurationOf(findAlgorithm("zbuffer"), {}));
   std::map<std::string, std::pair<bool, std::string>> byPass;
-  for (const auto& pass : plan) byPass[pass.pass] = {pass.runs, pass.reason};
+  for (const auto& pass : plan) {
+    byPass[pass.pass] = {pass.runs, pass.reason};
+    for (const auto& work : pass.work) byPass[work.pass] = {pass.runs && work.runs, work.reason};
+  }
   EXPECT_EQ(byPass.at("shadow maps"), std::make_pair(false, std::string("effects does not list shadows")));
   EXPECT_EQ(byPass.at("corner normals"), std::make_pair(true, std::string("lambert interpolates them")));
   EXPECT_FALSE(byPass.at("fog").first);
@@ -309,12 +315,17 @@ TEST(Effects, ThePlanSaysWhyEachPassRunsOrNot) {
 
   const test::LoadedScene showcase(test::sourcePath(kShowcase));
   std::set<std::string> running;
-  for (const auto& pass : effects::planPasses(showcase.prepared, findAlgorithm("painter"), "frustum"))
+  pipeline::Configuration painter = pipeline::configurationOf(findAlgorithm("painter"), {});
+  painter.culling = culling::parsePipeline("frustum");
+  for (const auto& pass : pipeline::plan(showcase.prepared, painter)) {
     if (pass.runs) running.insert(pass.pass);
-  EXPECT_EQ(running, (std::set<std::string>{"visibility: painter", "culling", "shadow map for light 'sun'", "shading: phong",
-                                            "corner normals", "specular highlights", "shadow lookups", "transparency", "fog",
-                                            "outline"}));
-  const auto lines = effects::planPasses(showcase.prepared, findAlgorithm("appel"), "");
+    for (const auto& work : pass.work)
+      if (pass.runs && work.runs) running.insert(work.pass);
+  }
+  // The painter blends every surface in its own order: transparency shades them, not a shading pass.
+  EXPECT_EQ(running, (std::set<std::string>{"culling", "visibility: painter", "shadow maps", "transparency", "corner normals",
+                                            "specular highlights", "shadow lookups", "fog", "outline"}));
+  const auto lines = pipeline::plan(showcase.prepared, pipeline::configurationOf(findAlgorithm("appel"), {}));
   EXPECT_FALSE(lines.back().runs) << "a line drawing has nothing to shade";
 }
 
@@ -356,7 +367,7 @@ TEST(Effects, APointLightCastsShadowsThroughSixViews) {
   const Frame frame = renderWith("zbuffer", prepared, stats);
   EXPECT_EQ(stats.counter("shadow maps rendered"), 6);
   const ExactShadows exact(prepared, stats);
-  const effects::ShadowMaps maps(prepared, scene.effects.shadow, 2, stats);
+  const pipeline::ShadowMaps maps(prepared, scene.effects.shadow, 2, stats);
   const ShadowError error = shadowError(prepared, frame, maps, exact, 2);
   EXPECT_GT(error.lookups, 5000);
   EXPECT_GT(stats.counter("shadowed lookups"), 500);

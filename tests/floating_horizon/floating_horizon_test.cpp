@@ -51,7 +51,7 @@ TEST(FloatingHorizon, RippleAgreesWithTheExactDrawingWithinAPercent) {
   for (const KnobSettings& knobs : {KnobSettings{}, KnobSettings{{"mesh", "on"}}}) {
     const Judged judged = judge(loaded.prepared, knobs);
     EXPECT_GT(judged.error.visibleLength, 5000);
-    EXPECT_LT(judged.error.error, 0.01) << describeKnobs(findAlgorithm("floating_horizon"), resolveKnobs(findAlgorithm("floating_horizon"), knobs));
+    EXPECT_LT(judged.error.error, 0.01) << resolveKnobs(findAlgorithm("floating_horizon"), knobs).described();
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
+#include "pipeline/pipeline.hpp"
 #include "renderer/prepare.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
@@ -36,17 +37,15 @@ void renderEveryWay(const PreparedScene& prepared, int width, int height) {
   const culling::Pipeline everyStage = culling::parsePipeline("backface,frustum,occlusion");
   for (const AlgorithmEntry& algorithm : algorithms())
     for (const KnobValues& knobs : variantsOf(algorithm)) {
-      if (!algorithm.refusal(prepared, knobs).empty()) continue;
+      pipeline::Configuration configuration{&algorithm, knobs};
+      if (!pipeline::refusal(prepared, configuration).empty()) continue;
       Stats stats;
-      if (algorithm.kind == "line") {
-        const LineSet drawing = algorithm.drawLines(prepared, knobs, 1, stats);
-        if (algorithm.judgeLines) algorithm.judgeLines(prepared, knobs, drawing, 1, stats);
-        continue;
-      }
-      checkFrame(prepared, algorithm.render(prepared, knobs, 1, stats), width, height);
-      if (algorithm.renderVisible) {
-        const VisibleSet visible = culling::runPipeline(prepared, everyStage, 1, stats);
-        checkFrame(prepared, algorithm.renderVisible(prepared, knobs, visible, 1, stats), width, height);
+      const pipeline::Rendered rendered = pipeline::render(prepared, configuration, 1, stats);
+      checkFrame(prepared, rendered.frame, width, height);
+      if (algorithm.kind == AlgorithmKind::line) algorithm.judgeLines(prepared, knobs, rendered.drawing, 1, stats);
+      if (algorithm.takesTriangleSubsets) {
+        configuration.culling = everyStage;
+        checkFrame(prepared, pipeline::render(prepared, configuration, 1, stats).frame, width, height);
       }
     }
 }

@@ -1,11 +1,11 @@
 // The foundation's hard cases (scenes/hard/), each asserting numbers.
 #include <gtest/gtest.h>
 
-#include <cfenv>
 #include <cmath>
 #include <cstdio>
 
 #include "coverage.hpp"
+#include "floating_point_traps.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -67,10 +67,13 @@ TEST(HardCase, NearPlaneCrossingsMatchExactRays) {
   const Scene scene = loadScene(test::sourcePath("scenes/hard/near_plane.toml"));
   const PreparedScene prepared(scene);
   Stats stats;
-  const Frame frame = zbuffer::run(prepared, {}, 1, stats);
+  const Frame frame = test::render(prepared, zbuffer::Knobs{}, 1, stats);
   EXPECT_EQ(stats.counter("triangles clipped"), 3);  // the two ground triangles and the wall
   const Range behind = rangeOf(prepared, 2);
-  for (std::uint32_t id : frame.ids) EXPECT_FALSE(behind.holds(id)) << "a triangle behind the eye was drawn";
+  test::CaseFailures drawn("a triangle wholly behind the eye was drawn");
+  for (std::size_t p = 0; p < frame.ids.size(); ++p)
+    drawn.expect(!behind.holds(frame.ids[p]), [&] { return test::describePixel(frame, p) + ": " + test::describeTriangle(prepared, frame.ids[p] - 1); });
+  EXPECT_NO_FAILED_CASES(drawn);
   expectAgreementWithRays(prepared, frame, 0.98);
 }
 
@@ -184,16 +187,24 @@ TEST(HardCase, LargeCoordinatesGiveTheSameIdImage) {
 TEST(HardCase, SliversAndZeroAreaTrianglesStayExact) {
   const Scene scene = loadScene(test::sourcePath("scenes/hard/slivers.toml"));
   const PreparedScene prepared(scene);
-  // Trap invalid operations and divisions by zero while rendering: a NaN born anywhere
-  // in the pipeline stops the test instead of printing a grey pixel.
-  feenableexcept(FE_INVALID | FE_DIVBYZERO);
+  // Trapped while rendering, in every build: a NaN born anywhere in the pipeline stops
+  // the test instead of printing a grey pixel.
   Stats stats;
-  const Frame frame = zbuffer::run(prepared, {}, 2, stats);
-  fedisableexcept(FE_INVALID | FE_DIVBYZERO);
-  for (float depth : frame.depth) EXPECT_FALSE(std::isnan(depth));
-  // Triangles 13, 15, ..., 23 repeat a vertex: exactly zero area, they may own no pixel.
-  // (12, 14, ..., 22 are collinear in decimal, not quite in binary: the rays judge those.)
-  for (std::uint32_t id : frame.ids) EXPECT_FALSE(id >= 14 && id <= 24 && id % 2 == 0) << "zero-area triangle " << id - 1 << " drew";
+  Frame frame;
+  {
+    const test::TrappedFloatingPoint trapped;
+    frame = test::render(prepared, zbuffer::Knobs{}, 2, stats);
+  }
+  test::CaseFailures nan("a depth is NaN"), zeroArea("a zero-area triangle drew a pixel");
+  for (std::size_t p = 0; p < frame.pixelCount(); ++p) {
+    nan.expect(!std::isnan(frame.depth[p]), [&] { return test::describePixel(frame, p); });
+    // Triangles 13, 15, ..., 23 repeat a vertex: exactly zero area, they may own no pixel.
+    // (12, 14, ..., 22 are collinear in decimal, not quite in binary: the rays judge those.)
+    const std::uint32_t id = frame.ids[p];
+    zeroArea.expect(!(id >= 14 && id <= 24 && id % 2 == 0), [&] { return test::describePixel(frame, p) + ": " + test::describeTriangle(prepared, id - 1); });
+  }
+  EXPECT_NO_FAILED_CASES(nan);
+  EXPECT_NO_FAILED_CASES(zeroArea);
   EXPECT_GE(stats.counter("triangles between pixel centers"), 6);
   expectAgreementWithRays(prepared, frame, 0.99);
 }
@@ -203,7 +214,7 @@ TEST(HardCase, HugeTrianglesCoverExactly) {
   const Scene scene = loadScene(test::sourcePath("scenes/hard/huge_triangle.toml"));
   const PreparedScene prepared(scene);
   Stats stats;
-  const Frame frame = zbuffer::run(prepared, {}, 1, stats);
+  const Frame frame = test::render(prepared, zbuffer::Knobs{}, 1, stats);
   EXPECT_EQ(stats.counter("triangles clipped"), 1);  // only the one beyond the guard band
   expectAgreementWithRays(prepared, frame, 0.99);
   long big = 0, beyond = 0;

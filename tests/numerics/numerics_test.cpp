@@ -21,7 +21,7 @@ ReferenceImage reference(const PreparedScene& scene) {
 
 Frame render(const PreparedScene& scene, const std::string& algorithm, const KnobSettings& knobs, Stats& stats) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm);
-  return entry.render(scene, resolveKnobs(entry, knobs), 2, stats);
+  return pipeline::render(scene, pipeline::configurationOf(entry, knobs), 2, stats).frame;
 }
 
 LineError lineErrorOf(const PreparedScene& scene, const std::string& algorithm, Stats& stats, LineSet* drawing = nullptr) {

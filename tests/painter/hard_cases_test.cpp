@@ -21,7 +21,7 @@ struct PaintedRun {
 
 PaintedRun paintAgainstReference(const PreparedScene& prepared, Variant variant) {
   PaintedRun run;
-  run.frame = painter::run(prepared, test::painterKnobs(variant), 2, run.stats);
+  run.frame = test::render(prepared, test::painterKnobs(variant), 2, run.stats);
   Stats referenceStats;
   const ReferenceImage truth = traceReference(prepared, 2, referenceStats);
   run.error = surfaceError(run.frame, truth);

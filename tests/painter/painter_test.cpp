@@ -70,8 +70,10 @@ TEST(PainterBsp, OneTreeServesEveryEye) {
     scene.camera.eye = eye;
     const PreparedScene prepared(scene);
     Stats stats;
-    const ScreenGeometry geometry = buildScreenTriangles(prepared, {}, 2, stats);
-    const Frame frame = painter::paint(prepared, geometry, tree.backToFront(prepared, geometry, stats), 2, stats);
+    PaintedPieces painted{buildScreenTriangles(prepared, {}, 2, stats), {}};
+    painted.order = tree.backToFront(prepared, painted.geometry, stats);
+    Frame frame(prepared.width(), prepared.height());
+    painter::paint(prepared, painted, 2, frame, stats);
     EXPECT_EQ(stats.counter("bsp splits"), 0) << "walking the tree builds nothing";
     const ReferenceImage truth = traceReference(prepared, 2, stats);
     const test::WrongPixels wrong = test::classifyWrongPixels(prepared, frame, truth);
@@ -99,7 +101,7 @@ TEST(PainterTransparency, BlendsBackToFrontWithPorterDuffOver) {
   const PreparedScene prepared(scene);
   for (const Variant variant : {Variant::sort, Variant::newell, Variant::bsp}) {
     Stats stats;
-    const Frame frame = painter::run(prepared, test::painterKnobs(variant), 2, stats);
+    const Frame frame = test::render(prepared, test::painterKnobs(variant), 2, stats);
     const auto rgb = [&](int x, int y) {
       const std::uint8_t* p = &frame.color[4 * (std::size_t(y) * 60 + std::size_t(x))];
       return std::array<int, 3>{p[0], p[1], p[2]};
@@ -118,7 +120,7 @@ TEST(PainterTransparency, AnOpaqueSceneBlendsNothing) {
   const Scene scene = glassScene(false);
   const PreparedScene prepared(scene);
   Stats stats;
-  const Frame frame = painter::run(prepared, test::painterKnobs(Variant::bsp), 2, stats);
+  const Frame frame = test::render(prepared, test::painterKnobs(Variant::bsp), 2, stats);
   EXPECT_EQ(stats.counter("blended writes"), 0);
   long covered = 0;
   for (const std::uint32_t id : frame.ids) covered += id != 0;
@@ -130,14 +132,13 @@ TEST(PainterTransparency, AlgorithmsThatKeepOnlyTheNearestSurfaceRefuse) {
   const Scene transparentScene = glassScene(true), opaqueScene = glassScene(false);
   const PreparedScene transparent(transparentScene), opaque(opaqueScene);
   for (const char* name : {"ray_casting"}) {
-    const AlgorithmEntry& algorithm = findAlgorithm(name);
-    const KnobValues knobs = resolveKnobs(algorithm, {});
-    EXPECT_NE(algorithm.refusal(transparent, knobs).find("transparency"), std::string::npos) << name;
-    EXPECT_EQ(algorithm.refusal(opaque, knobs), "") << name;
+    const pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm(name), {});
+    EXPECT_NE(pipeline::refusal(transparent, configuration).find("transparency"), std::string::npos) << name;
+    EXPECT_EQ(pipeline::refusal(opaque, configuration), "") << name;
   }
   for (const char* name : {"painter", "zbuffer"}) {
-    const AlgorithmEntry& algorithm = findAlgorithm(name);
-    EXPECT_EQ(algorithm.refusal(transparent, resolveKnobs(algorithm, {})), "") << name << " blends back to front";
+    const pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm(name), {});
+    EXPECT_EQ(pipeline::refusal(transparent, configuration), "") << name << " blends back to front";
   }
 }
 
@@ -146,11 +147,11 @@ TEST(PainterNewell, TheSplitCapLabelsThePartialImage) {
   const PreparedScene& prepared = loaded.prepared;
   painter::Knobs knobs = test::painterKnobs(Variant::newell);
   Stats full;
-  EXPECT_EQ(painter::run(prepared, knobs, 2, full).partial, "");
+  EXPECT_EQ(test::render(prepared, knobs, 2, full).partial, "");
   EXPECT_GT(full.counter("newell splits"), 0);
   knobs.splitCap = 0;
   Stats capped;
-  const Frame frame = painter::run(prepared, knobs, 2, capped);
+  const Frame frame = test::render(prepared, knobs, 2, capped);
   EXPECT_NE(frame.partial.find("split-cap=0"), std::string::npos) << frame.partial;
   EXPECT_EQ(capped.counter("newell splits"), 0);
   EXPECT_GT(capped.counter("newell unresolved conflicts"), 0);

@@ -16,6 +16,7 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
 #include "lines/qi_support.hpp"
+#include "floating_point_traps.hpp"
 #include "metamorphic.hpp"
 #include "property/random_scene.hpp"
 #include "renderer/metrics.hpp"
@@ -47,10 +48,10 @@ std::string label(const ExactAlgorithm& algorithm) { return std::string(algorith
 // Renders with the registry's entry, or returns nothing when the algorithm refuses.
 std::optional<Frame> render(const PreparedScene& scene, const ExactAlgorithm& algorithm) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm.name);
-  const KnobValues knobs = resolveKnobs(entry, algorithm.knobs);
-  if (!entry.refusal(scene, knobs).empty()) return std::nullopt;
+  const pipeline::Configuration configuration = pipeline::configurationOf(entry, algorithm.knobs);
+  if (!pipeline::refusal(scene, configuration).empty()) return std::nullopt;
   Stats stats;
-  return entry.render(scene, knobs, 1, stats);
+  return pipeline::render(scene, configuration, 1, stats).frame;
 }
 
 test::DepthTie depthTieOf(const PreparedScene& scene, const ExactAlgorithm& algorithm) {
@@ -108,7 +109,7 @@ TEST(RandomScenes, ConservativeCullingNeverDropsAVisibleTriangle) {
     const std::vector<std::uint8_t> visible = visibleTriangles(judged.truth, judged.prepared.triangleCount());
     for (const culling::StageEntry& stage : culling::stages()) {
       if (stage.name == "backface") continue;  // right only for closed solids seen from outside: tests/culling
-      for (const auto& [variant, summary] : stage.variants) {
+      for (const std::string& variant : stage.variantKnob().choices) {
         const culling::Pipeline pipeline = culling::parsePipeline(stage.name + ":" + variant);
         if (pipeline.front().wrong()) continue;
         Stats stats;
@@ -165,6 +166,7 @@ TEST(RandomScenes, EveryAlgorithmIsTheSameMovedScaledOrSubdivided) {
 }  // namespace hsr
 
 int main(int argc, char** argv) {
+  hsr::test::trapFloatingPointWhenAsked();
   testing::InitGoogleTest(&argc, argv);
   for (int i = 1; i < argc; ++i) {
     const auto number = [&] { return i + 1 < argc ? std::strtoull(argv[++i], nullptr, 10) : 0; };

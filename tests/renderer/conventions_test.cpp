@@ -125,7 +125,10 @@ TEST(Conventions, FrameDepthIsViewDistanceForEveryFormat) {
     const auto format = static_cast<DepthFormat>(f);
     const Frame frame = renderZBuffer(PreparedScene(scene), zbuffer::Variant::full, format);
     const double tolerance = format == DepthFormat::unorm16 ? 0.02 : 1e-4;  // one unorm16 step at d = 7 is ~0.01
-    for (float depth : frame.depth) EXPECT_NEAR(depth, 7.0, tolerance) << depthFormatName(format);
+    test::CaseFailures off(std::string("a depth is not the wall's distance 7 in ") + depthFormatName(format));
+    for (std::size_t p = 0; p < frame.pixelCount(); ++p)
+      off.expect(std::abs(frame.depth[p] - 7.0) <= tolerance, [&] { return test::describePixel(frame, p) + ": " + std::to_string(frame.depth[p]); });
+    EXPECT_NO_FAILED_CASES(off);
   }
 }
 
@@ -133,7 +136,10 @@ TEST(Conventions, TiesKeepTheEarlierTriangle) {
   const Mesh twice = triangleMesh({{-10, -10, 0}, {10, -10, 0}, {0, 10, 0}, {-10, -10, 0}, {10, -10, 0}, {0, 10, 0}});
   const Frame frame = renderZBuffer(PreparedScene(sceneOf(pixelCamera(32), 32, 32, {twice})));
   EXPECT_GT(coveredPixels(frame), 0);
-  for (std::uint32_t id : frame.ids) EXPECT_TRUE(id == 0 || id == 1);
+  test::CaseFailures later("a pixel shows the later of two identical triangles");
+  for (std::size_t p = 0; p < frame.pixelCount(); ++p)
+    later.expect(frame.ids[p] == 0 || frame.ids[p] == 1, [&] { return test::describePixel(frame, p); });
+  EXPECT_NO_FAILED_CASES(later);
 }
 
 TEST(Conventions, IdsCountObjectsThenInstancesThenTriangles) {

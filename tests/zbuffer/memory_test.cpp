@@ -2,10 +2,10 @@
 // at the largest image hsr allows (16384 x 16384), the heap it needs beyond the frame it
 // returns is O(width), where a full-frame depth buffer alone would be 1 GiB. The heap is
 // measured by the same meter that gives hsr compare its peak memory column
-// (cli/allocation_meter.cpp, linked into this test).
+// (studies/allocation_meter.cpp).
 #include <gtest/gtest.h>
 
-#include "cli/allocation_meter.hpp"
+#include "studies/allocation_meter.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -18,16 +18,16 @@ struct Measured {
 };
 
 Measured measure(const PreparedScene& scene, zbuffer::Variant variant) {
-  const std::int64_t before = cli::heapBytesInUse();
-  cli::resetHeapPeak();
+  const std::int64_t before = studies::heapBytesInUse();
+  studies::resetHeapPeak();
   Stats stats;
   zbuffer::Knobs knobs;
   knobs.variant = variant;
-  const Frame frame = zbuffer::run(scene, knobs, 2, stats);
+  const Frame frame = test::render(scene, knobs, 2, stats);
   Measured measured;
   measured.frameBytes = std::int64_t(frame.color.capacity() + frame.depth.capacity() * sizeof(float) +
                                      frame.ids.capacity() * sizeof(std::uint32_t));
-  measured.workingBytes = cli::heapPeakBytes() - before - measured.frameBytes;
+  measured.workingBytes = studies::heapPeakBytes() - before - measured.frameBytes;
   measured.depthBufferBytes = stats.counter("depth buffer bytes");
   return measured;
 }

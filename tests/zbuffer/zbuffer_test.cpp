@@ -47,8 +47,8 @@ TEST(ZBuffer, CountersShowWhatEachVariantDid) {
   PreparedScene prepared(scene);
   prepared.setSize(640, 360);
   Stats full, scanline;
-  zbuffer::run(prepared, {zbuffer::Variant::full, DepthFormat::unorm16}, 2, full);
-  zbuffer::run(prepared, {zbuffer::Variant::scanline, DepthFormat::unorm16}, 2, scanline);
+  test::render(prepared, zbuffer::Knobs{zbuffer::Variant::full, DepthFormat::unorm16}, 2, full);
+  test::render(prepared, zbuffer::Knobs{zbuffer::Variant::scanline, DepthFormat::unorm16}, 2, scanline);
   // The same fragments are tested and written; only the memory differs.
   EXPECT_EQ(full.counter("fragments tested"), scanline.counter("fragments tested"));
   EXPECT_EQ(full.counter("fragments written"), scanline.counter("fragments written"));
@@ -66,7 +66,7 @@ TEST(ZBuffer, ShadingWorkFollowsTheDeclaredEffects) {
     scene.effects.shading = shading;
     const PreparedScene prepared(scene);
     Stats stats;
-    const Frame frame = zbuffer::run(prepared, {}, 1, stats);
+    const Frame frame = test::render(prepared, zbuffer::Knobs{}, 1, stats);
     const auto covered = std::count_if(frame.ids.begin(), frame.ids.end(), [](std::uint32_t id) { return id != 0; });
     EXPECT_EQ(stats.counter("shading invocations"), covered);  // once per covered pixel, whatever the overdraw
     EXPECT_EQ(stats.counter("normals computed"), shading == Shading::lambert ? 36 : 0) << shadingName(shading);

@@ -5,14 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-
 namespace hsr::culling::occlusion {
 namespace {
-
-std::size_t choiceIndex(const StageEntry& entry, const StageChoice& choice, const std::string& knob) {
-  const KnobSpec& spec = *findKnob(entry.knobs, knob);
-  return std::size_t(std::find(spec.choices.begin(), spec.choices.end(), choice.knobs.at(knob)) - spec.choices.begin());
-}
 
 // How much of the view an object can hide: its world volume, or the solid angle of its
 // bounding sphere from the eye (the projected area under orthographic projection).
@@ -31,58 +25,20 @@ double occluderScore(const CameraTransform& camera, Occluders occluders, const I
 
 }  // namespace
 
-Settings settingsOf(const StageChoice& choice) {
-  const StageEntry& entry = *choice.stage;
-  Settings settings;
-  settings.method = choice.variant == "previous-frame" ? Method::previousFrame : Method::depthMap;
-  settings.rule = static_cast<Rule>(choiceIndex(entry, choice, "raster"));
-  settings.mapWidth = static_cast<int>(knobNumber(choice.knobs, "map-width").value);
-  settings.mapHeight = static_cast<int>(knobNumber(choice.knobs, "map-height").value);
-  settings.pyramid = choice.knobs.at("pyramid") == "on";
-  settings.occluders = static_cast<Occluders>(choiceIndex(entry, choice, "occluders"));
-  settings.fraction = knobNumber(choice.knobs, "fraction").value / 100;
-  settings.minDepthComplexity = knobNumber(choice.knobs, "min-depth-complexity").value;
-  return settings;
-}
-
 StageEntry stage() {
-  StageEntry entry{
-      "occlusion",
-      "drop objects hidden behind nearer ones, by their boxes against a small depth map",
-      {{"depth-map", "occluders rasterized into a small depth map, nearest first"},
-       {"previous-frame", "the previous frame's depth, reduced to the map: objects coming into view appear a frame late"}},
-      {"previous-frame"},
-      nullptr,
-      {{"map-width", "the depth map's width in texels", {"256", "64", "128", "512"}, KnobSpec::Range{1, 4096, true}},
-       {"map-height", "the depth map's height in texels", {"128", "64", "256"}, KnobSpec::Range{1, 4096, true}},
-       {"raster",
-        "conservative: a texel only where one occluder covers it entirely, at its farthest depth there; center: the "
-        "rasterizer's pixel-center rule (can cull objects seen through gaps)",
-        {"conservative", "center"},
-        std::nullopt,
-        {"depth-map"}},
-       {"pyramid", "on: each box tested on the hierarchical-Z level where it spans at most 2x2 texels", {"off", "on"}},
-       {"occluders", "which objects are drawn into the map: all, or the largest by world volume or by solid angle",
-        {"all", "volume", "solid-angle"},
-        std::nullopt,
-        {"depth-map"}},
-       {"fraction", "the share of the objects drawn as occluders when occluders is not all, in percent",
-        {"10%", "5%", "20%"},
-        KnobSpec::Range{0.01, 100, false, true},
-        {"depth-map"}},
-       {"min-depth-complexity",
-        "run only when the objects' boxes cover the view at least this many times over (estimated from their footprints "
-        "on the map), else keep everything; 0: always",
-        {"0", "1.5", "2", "4"},
-        KnobSpec::Range{0, 1000}}},
-      [](const KnobValues& knobs) { return knobs.at("raster") == "center"; }};
-  entry.run = [](const StageChoice& choice, const StageInput& input) {
-    return cull(input.scene, input.camera, settingsOf(choice), input.in, input.previous, input.stats);
+  StageEntry entry = stageEntry("occlusion", "drop objects hidden behind nearer ones, by their boxes against a small depth map", knobTable());
+  entry.mayDropVisible = [](const KnobValues& values) {
+    const Knobs& knobs = values.as<Knobs>();
+    return knobs.method == Method::previousFrame || knobs.rule == Rule::center;
   };
-  entry.conflict = [](const std::string&, const KnobValues& knobs) {
-    const bool fractionSet = knobs.at("fraction") != "10%";
-    return knobs.at("occluders") == "all" && fractionSet ? "fraction applies only with occluders=volume or solid-angle"
-                                                          : std::string();
+  entry.conflict = [](const KnobValues& values) {
+    const Knobs& knobs = values.as<Knobs>();
+    return knobs.occluders == Occluders::all && !(knobs.fraction == Knobs{}.fraction)
+               ? "fraction applies only with occluders=volume or solid-angle"
+               : std::string();
+  };
+  entry.run = [](const KnobValues& knobs, const StageInput& input) {
+    return cull(input.scene, input.camera, knobs.as<Knobs>(), input.in, input.previous, input.stats);
   };
   return entry;
 }
@@ -107,15 +63,15 @@ double estimatedDepthComplexity(const PreparedScene& scene, const MapView& view,
   return covered / texels;
 }
 
-std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings,
+std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs,
                                            const VisibleSet& in) {
   std::vector<std::uint32_t> candidates = instancesIn(scene, in);
-  if (settings.occluders == Occluders::all || candidates.empty()) return candidates;
+  if (knobs.occluders == Occluders::all || candidates.empty()) return candidates;
   const std::size_t count =
-      std::clamp<std::size_t>(std::size_t(std::ceil(settings.fraction * double(candidates.size()))), 1, candidates.size());
+      std::clamp<std::size_t>(std::size_t(std::ceil(knobs.fraction.value / 100 * double(candidates.size()))), 1, candidates.size());
   std::vector<double> score(scene.instances().size());
   for (const std::uint32_t instance : candidates)
-    score[instance] = occluderScore(camera, settings.occluders, scene.instances()[instance]);
+    score[instance] = occluderScore(camera, knobs.occluders, scene.instances()[instance]);
   // The largest first, ties to the earlier object: the same choice on every run.
   std::stable_sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) { return score[a] > score[b]; });
   candidates.resize(count);
@@ -123,7 +79,7 @@ std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const Cam
   return candidates;
 }
 
-DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Settings& settings,
+DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Knobs& knobs,
                           const std::vector<std::uint32_t>& occluders, Stats& stats) {
   PhaseTimer timer(stats, "occlusion: rasterize occluders");
   DepthMap map(view.width, view.height);
@@ -143,7 +99,7 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
   std::sort(queue.begin(), queue.end(), [](const Queued& a, const Queued& b) {
     return a.nearest < b.nearest || (a.nearest == b.nearest && a.instance < b.instance);
   });
-  OccluderRasterizer rasterizer(view, settings.rule, map);
+  OccluderRasterizer rasterizer(view, knobs.rule, map);
   TileMaxima tiles(map);
   std::int64_t rasterized = 0, skipped = 0, texelsRead = 0;
   const std::vector<dvec3>& positions = scene.positions();
@@ -195,32 +151,32 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
   return map;
 }
 
-VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings, const VisibleSet& in,
+VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
                 const PreviousFrame* previous, Stats& stats) {
   PhaseTimer timer(stats, "culling: occlusion");
   // Occlusion culling pays only where objects hide one another: a cheap estimate first.
-  if (settings.minDepthComplexity > 0) {
-    const double complexity = estimatedDepthComplexity(scene, MapView(camera, settings.mapWidth, settings.mapHeight), in);
+  if (knobs.minDepthComplexity > 0) {
+    const double complexity = estimatedDepthComplexity(scene, MapView(camera, knobs.mapWidth, knobs.mapHeight), in);
     stats.add("occlusion: estimated depth complexity x100", std::llround(100 * complexity));
-    if (complexity < settings.minDepthComplexity) {
+    if (complexity < knobs.minDepthComplexity) {
       stats.add("occlusion: skipped, below min-depth-complexity");
       return in;
     }
   }
   // The map, and the camera that saw it: this frame's, or the previous frame's.
   std::optional<CameraTransform> previousCamera;
-  if (settings.method == Method::previousFrame) {
+  if (knobs.method == Method::previousFrame) {
     if (!previous || !previous->frame) {
       stats.add("occlusion: no previous frame", 1);
       return in;
     }
     previousCamera.emplace(previous->camera, previous->frame->width, previous->frame->height);
   }
-  const MapView view(previousCamera ? *previousCamera : camera, settings.mapWidth, settings.mapHeight);
+  const MapView view(previousCamera ? *previousCamera : camera, knobs.mapWidth, knobs.mapHeight);
   const DepthMap map = previousCamera ? depthMapOfFrame(view, *previous->frame)
-                                      : occluderDepthMap(scene, view, settings, chooseOccluders(scene, camera, settings, in), stats);
+                                      : occluderDepthMap(scene, view, knobs, chooseOccluders(scene, camera, knobs, in), stats);
   std::optional<Pyramid> pyramid;
-  if (settings.pyramid) pyramid.emplace(map);
+  if (knobs.pyramid) pyramid.emplace(map);
 
   PhaseTimer testing(stats, "occlusion: test occludees");
   std::int64_t tested = 0, culled = 0, texelsRead = 0;

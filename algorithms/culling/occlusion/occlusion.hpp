@@ -36,18 +36,45 @@ namespace hsr::culling::occlusion {
 enum class Method { depthMap, previousFrame };
 enum class Occluders { all, volume, solidAngle };
 
-struct Settings {
+struct Knobs {
   Method method = Method::depthMap;
   Rule rule = Rule::conservative;
   int mapWidth = 256, mapHeight = 128;
   bool pyramid = false;
   Occluders occluders = Occluders::all;
-  double fraction = 0.1;  // of the objects, when occluders is not all
+  KnobNumber fraction{10, true};  // percent of the objects, when occluders is not all
   // Run only when the objects' boxes cover the view at least this many times over
   // (estimatedDepthComplexity); 0: always.
   double minDepthComplexity = 0;
 };
-Settings settingsOf(const StageChoice& choice);
+
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table =
+      KnobTable<Knobs>()
+          .variants(&Knobs::method,
+                    {{Method::depthMap, "depth-map", "occluders rasterized into a small depth map, nearest first"},
+                     {Method::previousFrame, "previous-frame",
+                      "the previous frame's depth, reduced to the map: objects coming into view appear a frame late"}},
+                    "where the depth map comes from")
+          .number("map-width", &Knobs::mapWidth, {1, 4096}, {"64", "128", "512"}, "the depth map's width in texels")
+          .number("map-height", &Knobs::mapHeight, {1, 4096}, {"64", "256"}, "the depth map's height in texels")
+          .choice("raster", &Knobs::rule, {{Rule::conservative, "conservative"}, {Rule::center, "center"}},
+                  "conservative: a texel only where one occluder covers it entirely, at its farthest depth there; center: the "
+                  "rasterizer's pixel-center rule (can cull objects seen through gaps)")
+          .onlyFor({"depth-map"})
+          .onOff("pyramid", &Knobs::pyramid, "on: each box tested on the hierarchical-Z level where it spans at most 2x2 texels")
+          .choice("occluders", &Knobs::occluders,
+                  {{Occluders::all, "all"}, {Occluders::volume, "volume"}, {Occluders::solidAngle, "solid-angle"}},
+                  "which objects are drawn into the map: all, or the largest by world volume or by solid angle")
+          .onlyFor({"depth-map"})
+          .number("fraction", &Knobs::fraction, {0.01, 100, false, true}, {"5%", "20%"},
+                  "the share of the objects drawn as occluders when occluders is not all, in percent")
+          .onlyFor({"depth-map"})
+          .number("min-depth-complexity", &Knobs::minDepthComplexity, {0, 1000}, {"1.5", "2", "4"},
+                  "run only when the objects' boxes cover the view at least this many times over (estimated from their "
+                  "footprints on the map), else keep everything; 0: always");
+  return table;
+}
 
 // The stage's entry in culling::stages().
 StageEntry stage();
@@ -61,15 +88,15 @@ std::optional<std::array<dvec3, 8>> boxOfSolid(const PreparedScene& scene, const
 // covers the whole view). Cheap, and an overestimate: a box covers more than its object.
 double estimatedDepthComplexity(const PreparedScene& scene, const MapView& view, const VisibleSet& in);
 
-// The occluders the settings choose among the instances with triangles in `in`, in
+// The occluders the knobs choose among the instances with triangles in `in`, in
 // instance order.
-std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings,
+std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs,
                                            const VisibleSet& in);
 
 // Rasterizes the occluders into a map, nearest first. Counts "occlusion: occluders
 // rasterized", "occlusion: occluders skipped" (already hidden), "occlusion: occluder
 // triangles", "occlusion: texels written".
-DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Settings& settings,
+DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Knobs& knobs,
                           const std::vector<std::uint32_t>& occluders, Stats& stats);
 
 // A depth image (Frame::depth, distances) reduced to a map: each texel the farthest depth
@@ -79,7 +106,7 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame);
 // The stage: the triangles of the objects in `in` not proven hidden. Counts
 // "occlusion: occludees tested", "occlusion: occludees culled", "occlusion: texels read",
 // and "occlusion: no previous frame" when previous-frame has none (it then keeps all).
-VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Settings& settings, const VisibleSet& in,
+VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
                 const PreviousFrame* previous, Stats& stats);
 
 }  // namespace hsr::culling::occlusion

@@ -1,0 +1,142 @@
+// What an algorithm module is, to the registry (algorithms/registry.hpp) and the
+// pipeline (pipeline/pipeline.hpp) that run it: a name, its knobs, and its answer to
+// the visibility question, and nothing else. Shading, transparency, fog and outlines
+// are the pipeline's passes, the same for every algorithm; an algorithm never calls
+// another (the build gives each folder only renderer/ and this interface to include).
+//
+// Each algorithm folder defines its entry as `AlgorithmEntry <namespace>::entry()`, and
+// its CMakeLists.txt names the folder to hsr_algorithm(); the build lists the entries
+// (algorithms/CMakeLists.txt), so adding an algorithm edits nothing outside its folder
+// but that one line.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algorithms/knobs.hpp"
+#include "renderer/camera.hpp"
+#include "renderer/frame.hpp"
+#include "renderer/line_set.hpp"
+#include "renderer/metrics.hpp"
+#include "renderer/pieces.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/stats.hpp"
+#include "renderer/visible_set.hpp"
+
+namespace hsr {
+
+// What an algorithm answers.
+enum class AlgorithmKind {
+  surface,    // which triangle each pixel shows, and at what depth
+  line,       // a line drawing: the visible parts of the feature edges
+  reference,  // the exact reference: exact visibility and exact effects, the whole image
+};
+const char* algorithmKindName(AlgorithmKind kind);  // "surface", "line", "reference"
+
+// The visibility question: the scene seen from a view, over some of its triangles.
+struct VisibilityRequest {
+  const PreparedScene& scene;
+  const CameraTransform& view;   // the scene's camera, or a light's for a shadow map
+  const VisibleSet* triangles;   // only these (what culling kept, or the opaque ones); nullptr: all
+  int threads;                   // 0 = all cores; the answer is the same bits for any count
+  Stats& stats;
+};
+
+// A surface algorithm's answer, written into a frame of the view's size (which a caller
+// may reuse from one request to the next): frame.ids and frame.depth for every pixel
+// (frame.color is left to the shading passes), frame.partial when the algorithm knows
+// its answer may be wrong somewhere, and, from an algorithm that decides by painting in
+// order (the painter), the order it painted, for the transparency pass to blend in.
+struct Visibility {
+  Frame frame;
+  std::optional<PaintedPieces> painted;
+};
+
+// A line drawing judged against the exact one: its line error, and where it is wrong
+// (renderer/line_errors: lineErrorMap's colours).
+struct LineJudgement {
+  LineError error;
+  std::vector<std::uint8_t> errorMap;
+};
+
+struct AlgorithmEntry {
+  std::string name;
+  AlgorithmKind kind = AlgorithmKind::surface;
+  std::string summary;
+  std::vector<KnobSpec> knobs;  // as `hsr list` prints them
+  // The settings checked and typed by the entry's knob table (algorithms/knobs.hpp).
+  std::function<KnobValues(const KnobSettings&, const std::string& where)> resolve;
+  // The counters hsr compare prints for this algorithm, in this order.
+  std::vector<std::string> keyCounters;
+  // The configurations hsr compare's default study runs (the defaults first), chosen to
+  // show what the knobs trade.
+  std::vector<KnobSettings> studyConfigurations = {{}};
+  // Why the algorithm cannot answer for the scene at its size with these knobs, or ""
+  // when it can; the message names the knob to change when there is one.
+  std::function<std::string(const PreparedScene&, const KnobValues&)> refusal = [](const PreparedScene&, const KnobValues&) {
+    return std::string();
+  };
+
+  // Surface algorithms.
+  std::function<void(const VisibilityRequest&, const KnobValues&, Visibility&)> visibility;
+  // It can leave triangles out (request.triangles): culling stages may run before it,
+  // and the transparency pass can ask it for the opaque surfaces alone.
+  bool takesTriangleSubsets = false;
+  // List-priority algorithms: the requested triangles' screen pieces, back to front.
+  std::function<PaintedPieces(const VisibilityRequest&, const KnobValues&)> order;
+
+  // Line algorithms: the drawing, and how it is judged.
+  std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&)> drawLines;
+  std::function<LineJudgement(const PreparedScene&, const KnobValues&, const LineSet&, int threads, Stats&)> judgeLines;
+
+  // The reference: its whole image, visibility and effects both exact.
+  std::function<Frame(const PreparedScene&, int threads, Stats&)> renderExactly;
+};
+
+// The help of the knob every mesh line algorithm has: which edges are drawn besides
+// contours and boundaries.
+inline constexpr const char* kCreaseKnobHelp =
+    "feature edges: draw the edges whose two faces' normals differ by more than this many degrees";
+
+// A line drawing judged by the exact line reference of its own edges
+// (renderer/line_reference): what Roberts and Appel are judged by (judgeLines).
+LineJudgement judgedByLineReference(const PreparedScene& scene, const KnobValues& knobs, const LineSet& lines, int threads,
+                                    Stats& stats);
+
+// An entry's knob table hooked up: its specs for listing, and resolve.
+template <typename Knobs>
+void setKnobs(AlgorithmEntry& entry, const KnobTable<Knobs>& table) {
+  entry.knobs = table.specs();
+  entry.resolve = [table, owner = entry.name](const KnobSettings& settings, const std::string& where) {
+    return table.resolve(owner, settings, where);
+  };
+}
+
+// An entry's functions given as the algorithm's own, which take its Knobs struct: the
+// entry hands each the struct its knob table made.
+template <typename Knobs>
+void setVisibility(AlgorithmEntry& entry, void (*visibility)(const VisibilityRequest&, const Knobs&, Visibility&)) {
+  entry.visibility = [visibility](const VisibilityRequest& request, const KnobValues& knobs, Visibility& answer) {
+    visibility(request, knobs.as<Knobs>(), answer);
+  };
+}
+template <typename Knobs>
+void setOrder(AlgorithmEntry& entry, PaintedPieces (*order)(const VisibilityRequest&, const Knobs&)) {
+  entry.order = [order](const VisibilityRequest& request, const KnobValues& knobs) { return order(request, knobs.as<Knobs>()); };
+}
+template <typename Knobs>
+void setDrawing(AlgorithmEntry& entry, LineSet (*draw)(const PreparedScene&, const Knobs&, Stats&)) {
+  entry.drawLines = [draw](const PreparedScene& scene, const KnobValues& knobs, int, Stats& stats) {
+    return draw(scene, knobs.as<Knobs>(), stats);
+  };
+}
+template <typename Knobs>
+void setRefusal(AlgorithmEntry& entry, std::string (*refusal)(const PreparedScene&, const Knobs&)) {
+  entry.refusal = [refusal](const PreparedScene& scene, const KnobValues& knobs) { return refusal(scene, knobs.as<Knobs>()); };
+}
+// A refusal that depends on the scene alone.
+void setRefusal(AlgorithmEntry& entry, std::string (*refusal)(const PreparedScene&));
+
+}  // namespace hsr

@@ -1,0 +1,78 @@
+// The pipeline: one place that runs a configuration on a scene, pass by pass,
+//   culling -> visibility -> shadow maps -> shading -> transparency -> fog -> outline,
+// each pass only when the scene's effects (renderer/scene.hpp: Effects) and the
+// configuration call for it. The algorithm answers visibility alone (algorithms/
+// algorithm.hpp); everything after it is the same for every algorithm. `hsr render
+// --explain` prints plan(), which asks the same passes the same question render() asks
+// them, so the plan cannot drift from what runs. Each pass times itself ("pass: NAME"
+// phases, read back by passTimes).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "algorithms/algorithm.hpp"
+#include "algorithms/culling/culling.hpp"
+#include "renderer/frame.hpp"
+#include "renderer/line_set.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/stats.hpp"
+
+namespace hsr::pipeline {
+
+// What to run: an algorithm with its knobs, after culling stages (none when empty).
+struct Configuration {
+  const AlgorithmEntry* algorithm = nullptr;
+  KnobValues knobs;
+  culling::Pipeline culling = {};
+};
+
+// A configuration of an algorithm's settings, checked (InputError naming `where`).
+Configuration configurationOf(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where = "--knob");
+
+// Why the configuration cannot render the scene, or "" when it can: the algorithm's own
+// refusal (a budget, a shape it cannot handle), or transparency an algorithm cannot blend
+// (it answers only the nearest surface and cannot leave the transparent ones out).
+std::string refusal(const PreparedScene& scene, const Configuration& configuration);
+
+// One pass as the plan shows it: whether it runs, and the scene fact that decides it.
+struct PlannedPass {
+  std::string pass;
+  bool runs;
+  std::string reason;
+  std::vector<PlannedPass> work = {};  // choices inside the pass (the shading's normals, highlights, shadow lookups)
+};
+std::vector<PlannedPass> plan(const PreparedScene& scene, const Configuration& configuration);
+
+// The result of a render: the image (surfaces shaded, or a line drawing's visible lines
+// rasterized), and for a line algorithm the drawing itself.
+struct Rendered {
+  Frame frame;
+  LineSet drawing;
+};
+
+// Renders the scene at its size. threads: 0 = all cores; the image is the same bits for
+// every count. `previous`: the previous frame, for a culling stage that reuses it
+// (occlusion:previous-frame). The configuration must not be refused (refusal()).
+Rendered render(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
+                const culling::PreviousFrame* previous = nullptr);
+
+// The culling and visibility passes alone, into `visibility` (its frame reused when it
+// has the scene's size): what the studies time when they compare visibility methods,
+// which the shading passes would only add the same cost to. Returns what the culling
+// stages kept (every triangle when there are none).
+VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
+                            Visibility& visibility, const culling::PreviousFrame* previous = nullptr);
+
+// The time of each pass that ran, in pipeline order, from a render's Stats.
+struct PassTime {
+  std::string pass;
+  double seconds;
+};
+std::vector<PassTime> passTimes(const Stats& stats);
+
+// What the render decided on the way, read from its counters: the work each piece of
+// expensive machinery did, or that it did none because the scene did not need it.
+std::vector<std::string> decisionsTaken(const Stats& stats);
+
+}  // namespace hsr::pipeline

@@ -1,0 +1,75 @@
+#include "studies/common.hpp"
+
+#include <algorithm>
+#include <regex>
+
+#include "renderer/error.hpp"
+
+namespace hsr::studies {
+
+std::pair<int, int> parseSize(const std::string& text, const std::string& where) {
+  std::smatch match;
+  if (!std::regex_match(text, match, std::regex(R"((\d{1,9})x(\d{1,9}))")))
+    throw InputError(where + " " + text + ": expected WIDTHxHEIGHT, e.g. 1280x720");
+  const long long width = std::stoll(match[1]), height = std::stoll(match[2]);
+  checkImageSize(width, height, where + " " + text);
+  return {static_cast<int>(width), static_cast<int>(height)};
+}
+
+std::vector<std::string> splitList(const std::string& text, const std::string& where) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (items.back().empty()) throw InputError(where + " " + text + ": empty item in a comma-separated list");
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+pipeline::Configuration parseConfiguration(const std::string& text, const std::string& where) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t colon; (colon = text.find(':', start)) != std::string::npos; start = colon + 1)
+    parts.push_back(text.substr(start, colon - start));
+  parts.push_back(text.substr(start));
+  KnobSettings settings;
+  for (std::size_t i = 1; i < parts.size(); ++i) settings.push_back(parseKnobSetting(parts[i], where + " " + text + ":"));
+  const AlgorithmEntry& algorithm = findAlgorithm(parts[0], where);
+  return {&algorithm, resolveKnobs(algorithm, settings, where + " " + parts[0] + ":")};
+}
+
+LoadedScene loadPrepared(const std::string& path, const std::string& size) {
+  LoadedScene loaded;
+  loaded.name = path;
+  loaded.scene = std::make_unique<Scene>(loadScene(path));
+  loaded.prepared = std::make_unique<PreparedScene>(*loaded.scene);
+  if (!size.empty()) {
+    const auto [width, height] = parseSize(size, "--size");
+    loaded.prepared->setSize(width, height);
+  }
+  return loaded;
+}
+
+void checkRenders(const pipeline::Configuration& configuration, const std::string& sceneName, const PreparedScene& scene) {
+  if (const std::string refusal = pipeline::refusal(scene, configuration); !refusal.empty())
+    throw InputError(sceneName + ": " + configuration.algorithm->name + " cannot render it: " + refusal);
+}
+
+void makeFolder(const std::filesystem::path& folder, const std::string& where) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error || !std::filesystem::is_directory(folder))
+    throw InputError(where + " " + folder.string() + ": cannot create the folder" + (error ? ": " + error.message() : ""));
+}
+
+std::vector<std::filesystem::path> shippedScenes() {
+  std::vector<std::filesystem::path> scenes;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(HSR_SCENES_DIR))
+    if (entry.path().extension() == ".toml") scenes.push_back(std::filesystem::relative(entry.path(), HSR_SCENES_DIR));
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+}  // namespace hsr::studies

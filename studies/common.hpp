@@ -1,0 +1,46 @@
+// What the hsr subcommands share: parsing sizes and algorithm choices, loading scenes
+// up front (so bad input fails before any work), and the output folder.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "algorithms/registry.hpp"
+#include "pipeline/pipeline.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/scene.hpp"
+
+namespace hsr::studies {
+
+constexpr int kBadInput = 2;
+
+// "WIDTHxHEIGHT" within the image limits; `where` names the option in the error.
+std::pair<int, int> parseSize(const std::string& text, const std::string& where);
+
+// Comma-separated values of a list option ("a,b,c"); empty items are an error.
+std::vector<std::string> splitList(const std::string& text, const std::string& where);
+
+// An algorithm with validated knobs: "zbuffer" or "zbuffer:variant=scanline:depth-format=unorm16".
+pipeline::Configuration parseConfiguration(const std::string& text, const std::string& where);
+
+// A loaded scene and its prepared geometry (PreparedScene keeps a pointer to the Scene).
+struct LoadedScene {
+  std::string name;  // as given on the command line
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<PreparedScene> prepared;
+};
+LoadedScene loadPrepared(const std::string& path, const std::string& size);
+
+// Throws InputError when the configuration cannot render the scene (pipeline::refusal).
+void checkRenders(const pipeline::Configuration& configuration, const std::string& sceneName, const PreparedScene& scene);
+
+// Creates the folder (and parents) or throws InputError naming it.
+void makeFolder(const std::filesystem::path& folder, const std::string& where);
+
+// The shipped scene files (relative to HSR_SCENES_DIR), sorted.
+std::vector<std::filesystem::path> shippedScenes();
+
+}  // namespace hsr::studies

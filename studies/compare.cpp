@@ -1,0 +1,127 @@
+// hsr compare: every applicable algorithm on each scene against the exact reference,
+// time and error side by side, as a table, CSV, JSON and a contact sheet.
+#include <cstdio>
+
+#include "studies/studies.hpp"
+#include "studies/common.hpp"
+#include "studies/contact_sheet.hpp"
+#include "studies/measure.hpp"
+#include "studies/results.hpp"
+#include "renderer/error.hpp"
+#include "renderer/metrics.hpp"
+#include "renderer/reference.hpp"
+
+namespace hsr::studies {
+namespace {
+
+// The default study: the shipped scenes that each teach something about visibility.
+const char* const kStudyScenes[] = {"cube.toml", "bunny.toml", "counters.toml", "trees.toml", "dragons.toml",
+                                    "hard/coplanar.toml", "hard/near_plane.toml"};
+
+std::string formatCount(std::int64_t value) {
+  std::string digits = std::to_string(value), text;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i && (digits.size() - i) % 3 == 0) text += ',';
+    text += digits[i];
+  }
+  return text;
+}
+
+}  // namespace
+
+int compare(const CompareOptions& options) {
+  // Everything the run needs is read and checked before the first render.
+  const bool study = options.scenes.empty();
+  std::vector<std::string> scenePaths = options.scenes;
+  if (study)
+    for (const char* name : kStudyScenes) scenePaths.push_back(std::string(HSR_SCENES_DIR) + "/" + name);
+  std::vector<LoadedScene> scenes;
+  for (const std::string& path : scenePaths) scenes.push_back(loadPrepared(path, options.size));
+
+  std::vector<pipeline::Configuration> configurations;
+  if (!options.algorithms.empty()) {
+    for (const std::string& item : splitList(options.algorithms, "--algos")) {
+      configurations.push_back(parseConfiguration(item, "--algos"));
+      if (configurations.back().algorithm->kind == AlgorithmKind::reference)
+        throw InputError("--algos " + item + ": the reference is always run; name the algorithms to compare with it");
+    }
+  } else {
+    // The default study is of the surface algorithms on the shipped surface scenes; named
+    // scenes get every algorithm, line algorithms included, that accepts them.
+    for (const AlgorithmEntry& algorithm : algorithms()) {
+      if (algorithm.kind == AlgorithmKind::reference || (study && algorithm.kind != AlgorithmKind::surface)) continue;
+      if (!study) configurations.push_back(pipeline::configurationOf(algorithm, {}));
+      else
+        for (const KnobSettings& settings : algorithm.studyConfigurations) configurations.push_back(pipeline::configurationOf(algorithm, settings));
+    }
+  }
+  if (options.repeat < 1) throw InputError("--repeat " + std::to_string(options.repeat) + ": expected at least 1");
+  makeFolder(options.out, "--out");
+
+  std::vector<ResultRow> rows;
+  std::vector<SheetSection> sections;
+  const AlgorithmEntry& referenceEntry = findAlgorithm("reference");
+  for (const LoadedScene& scene : scenes) {
+    const PreparedScene& prepared = *scene.prepared;
+    const auto reference = measure(options.repeat, [&](Stats& stats) { return renderReference(prepared, options.threads, stats); });
+    const ReferenceImage& truth = reference.result;
+
+    SheetSection section;
+    section.heading = scene.name.substr(scene.name.find_last_of('/') + 1) + ":  " + std::to_string(prepared.width()) + "x" +
+                      std::to_string(prepared.height()) + ", " + formatCount(std::int64_t(prepared.triangleCount())) +
+                      " triangles";
+    std::printf("%s\n  reference: %s ambiguous pixels, %s exact fall-backs\n", section.heading.c_str(),
+                formatCount(truth.ambiguousPixels).c_str(), formatCount(truth.exactFallbacks).c_str());
+
+    std::vector<ResultRow> sceneRows;
+    ResultRow referenceRow = measuredRow(scene.name, prepared, referenceEntry, "exact", reference, options.threads);
+    referenceRow.error = surfaceError(truth.frame, truth);
+    sceneRows.push_back(referenceRow);
+    char line[128];
+    std::snprintf(line, sizeof line, "%.1f ms", referenceRow.time.median * 1e3);
+    section.images.push_back({prepared.width(), prepared.height(), truth.frame.color, {"reference (exact)", line}});
+    section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(truth.frame, truth),
+                                {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
+
+    for (const pipeline::Configuration& configuration : configurations) {
+      const AlgorithmEntry& algorithm = *configuration.algorithm;
+      if (const std::string refusal = pipeline::refusal(prepared, configuration); !refusal.empty()) {
+        std::printf("  %s %s: skipped, %s\n", algorithm.name.c_str(), configuration.knobs.described().c_str(),
+                    refusal.c_str());
+        continue;
+      }
+      const auto [row, frame, lineErrors] =
+          measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
+      sceneRows.push_back(row);
+      std::snprintf(line, sizeof line, "%.1f ms, %s error %.4f%%%s", row.time.median * 1e3, row.lines ? "line" : "pixel",
+                    row.errorValue() * 100, frame.partial.empty() ? "" : " (partial)");
+      if (!frame.partial.empty())
+        std::printf("  %s %s: the image is partial: %s\n", algorithm.name.c_str(), row.knobs.c_str(), frame.partial.c_str());
+      section.images.push_back({prepared.width(), prepared.height(), frame.color,
+                                {algorithm.name + (row.knobs == "defaults" ? "" : " " + row.knobs), line}});
+      if (row.lines) {
+        std::snprintf(line, sizeof line, "%.1f px wrong (red), %.1f px missing (blue)", row.lineError.wronglyDrawn,
+                      row.lineError.wronglyHidden);
+        section.heatMaps.push_back({prepared.width(), prepared.height(), lineErrors, {line}});
+      } else {
+        section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(frame, truth),
+                                    {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
+      }
+    }
+    std::printf("%s\n", resultsTable(sceneRows, {}).c_str());
+    rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
+    sections.push_back(std::move(section));
+  }
+
+  const Sheet sheet = composeContactSheet(sections);
+  const std::filesystem::path out = options.out;
+  OutputFiles files;
+  files.addRgbaPng(out / "contact_sheet.png", sheet.width, sheet.height, sheet.rgba);
+  files.addText(out / "results.csv", resultsCsv(rows, {}));
+  files.addText(out / "results.json", resultsJson(rows));
+  files.commit();
+  std::printf("wrote %s, results.csv and results.json in %s\n", "contact_sheet.png", out.string().c_str());
+  return 0;
+}
+
+}  // namespace hsr::studies

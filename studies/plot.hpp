@@ -1,0 +1,44 @@
+// Plots through gnuplot (Debian's gnuplot-nox): the script is generated, kept beside
+// the plots so a reader can edit and re-run it, and run once for PNG and SVG.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "studies/results.hpp"
+#include "renderer/frame.hpp"
+
+namespace hsr::studies {
+
+// `body` is the gnuplot text after the terminal and output lines, ending in a plot
+// command. Adds stem.gp, stem.png and stem.svg in `folder` to `files`.
+void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std::string& stem, const std::string& body);
+// A histogram's plot clause over a named data block whose first column labels the
+// x axis and whose next columns are the bars, one title each:
+// "$block using 2:xtic(1) title 'a', $block using 3 title 'b'".
+std::string histogramBars(const std::string& block, const std::vector<std::string>& titles);
+// A study's results: FOLDER/STEM.csv and its plot (addPlot), written together.
+void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody);
+
+// The end of a study measured row by row under an InterruptibleRun (cli/interrupt): all
+// of writeStudy when it ran to the end (returns 0); when Ctrl-C cut it short, the CSV of
+// the rows measured, complete, and no plot, since a plot of part of a study misleads
+// (returns kInterruptedExit).
+int finishStudy(const std::filesystem::path& folder, const std::string& stem, const std::vector<CsvRow>& rows,
+                std::size_t plannedRows, const std::string& plotBody);
+
+// A bar on stderr, shown only on a terminal and only once the work has taken a second.
+class Progress {
+ public:
+  explicit Progress(std::size_t total);
+  ~Progress();
+  void update(std::size_t done, const std::string& label);
+
+ private:
+  std::size_t total_;
+  double start_;
+  bool shown_ = false;
+};
+
+}  // namespace hsr::studies

@@ -1,0 +1,246 @@
+#include "studies/results.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "renderer/line_reference.hpp"
+#include "renderer/line_drawing.hpp"
+
+namespace hsr::studies {
+namespace {
+
+std::string number(double value) { return formatted(value, "%.9g"); }
+
+std::string milliseconds(double seconds) { return formatted(seconds * 1e3, "%.4f"); }
+
+// The measured fields, in column order, shared by the CSV and the JSON; "" where a
+// field does not apply (CSV: empty, JSON: null).
+std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow& row) {
+  const auto surface = [&](std::string value) { return row.lines ? std::string() : value; };
+  const auto line = [&](double value) { return row.lines ? number(value) : std::string(); };
+  return {
+      {"width", std::to_string(row.width)},
+      {"height", std::to_string(row.height)},
+      {"triangles", std::to_string(row.triangles)},
+      {"threads", std::to_string(row.threads)},
+      {"repeats", std::to_string(row.repeats)},
+      {"time_median_ms", milliseconds(row.time.median)},
+      {"time_min_ms", milliseconds(row.time.min)},
+      {"time_max_ms", milliseconds(row.time.max)},
+      {"pixel_error", surface(number(row.error.pixelError))},
+      {"wrong_pixels", surface(std::to_string(row.error.wrongPixels))},
+      {"compared_pixels", surface(std::to_string(row.error.comparedPixels))},
+      {"ambiguous_pixels", surface(std::to_string(row.error.ambiguousPixels))},
+      {"depth_error_mean", surface(number(row.error.depthErrorMean))},
+      {"depth_error_max", surface(number(row.error.depthErrorMax))},
+      {"line_error", line(row.lineError.error)},
+      {"visible_length_px", line(row.lineError.visibleLength)},
+      {"wrongly_drawn_px", line(row.lineError.wronglyDrawn)},
+      {"wrongly_hidden_px", line(row.lineError.wronglyHidden)},
+      {"peak_memory_bytes", std::to_string(row.peakBytes)},
+  };
+}
+
+// "name=value;name=value" for the CSV, "name value, name value" for the terminal.
+template <typename Value, typename Format>
+std::string joined(const std::vector<std::pair<std::string, Value>>& items, const char* between, const char* separator,
+                   Format&& format) {
+  std::string text;
+  for (const auto& [name, value] : items) {
+    if (!text.empty()) text += separator;
+    text += name;
+    text += between;
+    text += format(value);
+  }
+  return text;
+}
+
+std::string joinedCounters(const ResultRow& row, const char* between, const char* separator) {
+  return joined(row.counters, between, separator, [](std::int64_t value) { return std::to_string(value); });
+}
+
+std::string joinedPasses(const ResultRow& row, const char* between, const char* separator) {
+  return joined(row.passMs, between, separator, [](double ms) { return formatted(ms, "%.2f"); });
+}
+
+}  // namespace
+
+MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
+                                           const pipeline::Configuration& configuration, int repeats, int threads) {
+  const AlgorithmEntry& algorithm = *configuration.algorithm;
+  auto measured = measure(repeats, [&](Stats& stats) { return pipeline::render(prepared, configuration, threads, stats); });
+  ResultRow row = measuredRow(scene, prepared, algorithm, configuration.knobs.described(), measured, threads);
+  if (algorithm.kind == AlgorithmKind::line) {
+    Stats referenceStats;
+    LineJudgement judgement = algorithm.judgeLines(prepared, configuration.knobs, measured.result.drawing, threads, referenceStats);
+    row.lines = true;
+    row.lineError = judgement.error;
+    return {std::move(row), std::move(measured.result.frame), std::move(judgement.errorMap)};
+  }
+  row.error = surfaceError(measured.result.frame, truth);
+  return {std::move(row), std::move(measured.result.frame), {}};
+}
+
+std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
+  const auto line = [](const std::vector<std::string>& fields) {
+    std::string text;
+    for (const std::string& field : fields) {
+      if (!text.empty()) text += ',';
+      text += csvField(field);
+    }
+    return text + '\n';
+  };
+  std::vector<std::string> heading = {"scene", "algorithm", "knobs"};
+  heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
+  for (const auto& [name, value] : measuredFields(ResultRow{})) heading.push_back(name);
+  if (!sweptKnobs.empty()) heading.push_back("pareto");
+  heading.push_back("counters");
+  heading.push_back("pass_ms");
+  std::string csv = line(heading);
+  for (const ResultRow& row : rows) {
+    std::vector<std::string> fields = {row.scene, row.algorithm, row.knobs};
+    for (const auto& [knob, value] : row.swept) fields.push_back(value);
+    for (const auto& [name, value] : measuredFields(row)) fields.push_back(value);
+    if (!sweptKnobs.empty()) fields.push_back(row.pareto ? "1" : "0");
+    fields.push_back(joinedCounters(row, "=", ";"));
+    fields.push_back(joinedPasses(row, "=", ";"));
+    csv += line(fields);
+  }
+  return csv;
+}
+
+std::string resultsJson(const std::vector<ResultRow>& rows) {
+  std::string json = "[";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ResultRow& row = rows[i];
+    json += i ? ",\n  {" : "\n  {";
+    json += "\"scene\": " + jsonString(row.scene) + ", \"algorithm\": " + jsonString(row.algorithm) +
+            ", \"knobs\": " + jsonString(row.knobs);
+    if (!row.swept.empty()) {
+      json += ", \"swept\": {";
+      for (std::size_t k = 0; k < row.swept.size(); ++k) {
+        if (k) json += ", ";
+        json += jsonString(row.swept[k].first) + ": " + jsonString(row.swept[k].second);
+      }
+      json += "}, \"pareto\": " + std::string(row.pareto ? "true" : "false");
+    }
+    for (const auto& [name, value] : measuredFields(row)) json += ", \"" + name + "\": " + (value.empty() ? "null" : value);
+    json += ", \"counters\": {";
+    for (std::size_t k = 0; k < row.counters.size(); ++k) {
+      if (k) json += ", ";
+      json += jsonString(row.counters[k].first) + ": " + std::to_string(row.counters[k].second);
+    }
+    json += "}, \"pass_ms\": {";
+    for (std::size_t k = 0; k < row.passMs.size(); ++k) {
+      if (k) json += ", ";
+      json += jsonString(row.passMs[k].first) + ": " + formatted(row.passMs[k].second, "%.4f");
+    }
+    json += "}}";
+  }
+  return json + "\n]\n";
+}
+
+std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::string> heading = {"algorithm", "knobs"};
+  heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
+  for (const char* name : {"time ms: median [min-max]", "error", "wrong px", "depth error mean / max", "peak MB", "counters",
+                           "time per pass ms"})
+    heading.push_back(name);
+  cells.push_back(heading);
+  for (const ResultRow& row : rows) {
+    std::vector<std::string> line = {row.algorithm + (row.pareto ? " *" : ""), row.knobs};
+    for (const auto& [knob, value] : row.swept) line.push_back(value);
+    char text[160];
+    std::snprintf(text, sizeof text, "%.2f [%.2f-%.2f]", row.time.median * 1e3, row.time.min * 1e3, row.time.max * 1e3);
+    line.push_back(text);
+    if (row.lines) {
+      std::snprintf(text, sizeof text, "%.4f%% of lines", row.lineError.error * 100);
+      line.push_back(text);
+      std::snprintf(text, sizeof text, "%.1f of line", row.lineError.wronglyDrawn + row.lineError.wronglyHidden);
+      line.push_back(text);
+      line.push_back("-");
+    } else {
+      std::snprintf(text, sizeof text, "%.4f%%", row.error.pixelError * 100);
+      line.push_back(text);
+      line.push_back(std::to_string(row.error.wrongPixels));
+      std::snprintf(text, sizeof text, "%.2g / %.2g", row.error.depthErrorMean, row.error.depthErrorMax);
+      line.push_back(text);
+    }
+    std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
+    line.push_back(text);
+    line.push_back(joinedCounters(row, " ", ", "));
+    line.push_back(joinedPasses(row, " ", ", "));
+    cells.push_back(line);
+  }
+  std::vector<std::size_t> widths(heading.size(), 0);
+  for (const auto& line : cells)
+    for (std::size_t c = 0; c < line.size(); ++c) widths[c] = std::max(widths[c], line[c].size());
+  std::string table;
+  for (const auto& line : cells) {
+    std::string text;
+    for (std::size_t c = 0; c < line.size(); ++c)
+      text += line[c] + (c + 1 < line.size() ? std::string(widths[c] - line[c].size() + 2, ' ') : "");
+    table += "  " + text + "\n";
+  }
+  return table;
+}
+
+void markParetoFront(std::vector<ResultRow>& rows) {
+  for (ResultRow& row : rows) {
+    row.pareto = std::none_of(rows.begin(), rows.end(), [&](const ResultRow& other) {
+      const bool noWorse = other.time.median <= row.time.median && other.errorValue() <= row.errorValue();
+      const bool better = other.time.median < row.time.median || other.errorValue() < row.errorValue();
+      return noWorse && better;
+    });
+  }
+}
+
+std::string formatted(double value, const char* format) {
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string jsonString(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", c);
+      quoted += escape;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
+std::string csvOf(const std::vector<CsvRow>& rows) {
+  std::string text;
+  for (std::size_t i = 0; i < rows.front().size(); ++i) {
+    if (i > 0) text += ',';
+    text += rows.front()[i].first;
+  }
+  text += "\n";
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (i > 0) text += ',';
+      text += csvField(row[i].second);
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+}  // namespace hsr::studies

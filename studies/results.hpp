@@ -1,0 +1,93 @@
+// One measured configuration (a row of hsr compare's and hsr sweep's tables) and the
+// CSV and JSON they write. The columns are documented in README.md ("hsr compare").
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pipeline/pipeline.hpp"
+#include "renderer/metrics.hpp"
+#include "studies/common.hpp"
+#include "studies/measure.hpp"
+
+namespace hsr::studies {
+
+struct ResultRow {
+  std::string scene;      // scene file as given
+  std::string algorithm;  // registry name
+  std::string knobs;      // settings that differ from the defaults, or "defaults"
+  std::vector<std::pair<std::string, std::string>> swept;  // hsr sweep: the value of each swept knob
+  int width = 0, height = 0;
+  std::int64_t triangles = 0;
+  int repeats = 0, threads = 0;
+  Timing time;
+  std::int64_t peakBytes = 0;
+  SurfaceError error;    // surface algorithms
+  bool lines = false;    // a line algorithm: lineError holds its error, `error` is unused
+  LineError lineError;
+  // The error hsr sweep plots and ranks by: pixel error, or line error for a line algorithm.
+  double errorValue() const { return lines ? lineError.error : error.pixelError; }
+  std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
+  // The time of each pass of the pipeline in the last timed run (pipeline::passTimes), in ms.
+  std::vector<std::pair<std::string, double>> passMs;
+  bool pareto = false;  // hsr sweep: on the front of (time, pixel error)
+};
+
+// A row for a measured run: what ran, its timing and memory, and the algorithm's key
+// counters from the last run (the error is left for the caller to fill in).
+template <typename Result>
+ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, const AlgorithmEntry& algorithm,
+                      const std::string& knobs, const Measured<Result>& measured, int threads) {
+  ResultRow row;
+  row.scene = scene;
+  row.algorithm = algorithm.name;
+  row.knobs = knobs;
+  row.width = prepared.width();
+  row.height = prepared.height();
+  row.triangles = static_cast<std::int64_t>(prepared.triangleCount());
+  row.repeats = measured.repeats;
+  row.threads = threads;
+  row.time = measured.time;
+  row.peakBytes = measured.peakBytes;
+  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
+  for (const pipeline::PassTime& pass : pipeline::passTimes(measured.stats))
+    row.passMs.emplace_back(pass.pass, pass.seconds * 1e3);
+  return row;
+}
+
+// Measures one configuration on the prepared scene (at its current size) and its error
+// against the reference (for a line algorithm, the line reference of the edges it drew);
+// also returns the last run's frame (a line algorithm's drawing, rasterized) and, for a
+// line algorithm, a picture of where the drawing is wrong.
+struct MeasuredConfiguration {
+  ResultRow row;
+  Frame frame;
+  std::vector<std::uint8_t> lineErrorMap;  // RGBA8
+};
+MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
+                                           const pipeline::Configuration& configuration, int repeats, int threads);
+
+// Columns: scene, algorithm, knobs, then one per swept knob (hsr sweep), then the
+// measurements; the counters as one "name=value;..." field.
+std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
+// An array of objects with the same fields; counters as an object.
+std::string resultsJson(const std::vector<ResultRow>& rows);
+// The terminal table: one line per row.
+std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
+
+// A CSV field, quoted when it holds a comma, quote or newline; a JSON string literal.
+std::string csvField(const std::string& text);
+
+// Rows of (column, value) pairs, every row with the same columns, as CSV with a header.
+using CsvRow = std::vector<std::pair<std::string, std::string>>;
+std::string csvOf(const std::vector<CsvRow>& rows);
+// A number in a printf format ("%.4g" unless told).
+std::string formatted(double value, const char* format = "%.4g");
+std::string jsonString(const std::string& text);
+
+// Marks the rows no other row beats in both time (median) and error (errorValue).
+void markParetoFront(std::vector<ResultRow>& rows);
+
+}  // namespace hsr::studies
