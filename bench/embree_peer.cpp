@@ -89,7 +89,7 @@ class EmbreeScene {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   hsr::keepFreedMemoryForReuse();
   int threads = 1, runs = 9;
   std::vector<std::string> names;
@@ -150,4 +150,7 @@ int main(int argc, char** argv) {
                 100.0 * double(agree) / double(std::max<std::int64_t>(1, covered)));
   }
   return 0;
+} catch (const hsr::InputError& error) {
+  std::fprintf(stderr, "embree_peer: %s\n", error.what());
+  return 2;
 }

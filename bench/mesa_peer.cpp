@@ -158,7 +158,7 @@ void compareIds(const std::vector<std::uint32_t>& ours, const std::vector<std::u
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   int threads = 2, runs = 15;
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
@@ -167,8 +167,12 @@ int main(int argc, char** argv) {
       threads = std::atoi(argv[++i]);
     else if (argument == "--runs" && i + 1 < argc)
       runs = std::max(3, std::atoi(argv[++i]));
-    else
+    else if (!argument.empty() && argument[0] != '-')
       scenes.push_back(argument);
+    else {
+      std::fprintf(stderr, "usage: mesa_peer [--threads N] [--runs R] [scene ...]\n");
+      return 2;
+    }
   }
   if (scenes.empty()) scenes = {"dragons", "counters"};
   hsr::keepFreedMemoryForReuse();
@@ -203,4 +207,7 @@ int main(int argc, char** argv) {
     compareIds(frame.ids, mesa.ids());
   }
   return 0;
+} catch (const hsr::InputError& error) {
+  std::fprintf(stderr, "mesa_peer: %s\n", error.what());
+  return 2;
 }

@@ -42,6 +42,7 @@
 #include <gp_Ax2.hxx>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -255,12 +256,18 @@ Options parse(int argc, char** argv) {
       if (i + 1 >= argc) throw hsr::InputError(std::string(argv[i]) + ": expected a value");
       return std::string(argv[++i]);
     };
-    if (std::strcmp(argv[i], "--crease") == 0) options.crease = std::stod(value());
-    else if (std::strcmp(argv[i], "--out") == 0) options.out = value();
+    if (std::strcmp(argv[i], "--crease") == 0) {
+      const std::string angle = value();
+      const auto [end, error] = std::from_chars(angle.data(), angle.data() + angle.size(), options.crease);
+      if (error != std::errc() || end != angle.data() + angle.size() || !(options.crease >= 0 && options.crease <= 180))
+        throw hsr::InputError("--crease " + angle + ": expected an angle in degrees from 0 to 180");
+    } else if (std::strcmp(argv[i], "--out") == 0) options.out = value();
     else if (std::strcmp(argv[i], "--size") == 0) {
       const std::string size = value();
       if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2)
         throw hsr::InputError("--size " + size + ": expected WIDTHxHEIGHT");
+    } else if (argv[i][0] == '-') {
+      throw hsr::InputError(std::string(argv[i]) + ": unknown option (usage: occt_peer [--crease DEGREES] [--size WxH] [--out FOLDER] [scene.toml])");
     } else options.scene = argv[i];
   }
   return options;
