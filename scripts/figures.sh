@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
+# The architecture: the layers and the pipeline's passes (README "Architecture").
+dot -Tpng -Gdpi=96 images/figures/architecture.dot -o images/figures/architecture.png
 mkdir -p images/figures/zbuffer
 ./build/hsr render scenes/dragons.toml --size 960x540 -o images/figures/dragons.png
 for format in float32 reversed-float32 unorm24 unorm16; do
