@@ -4,12 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include "cli/commands.hpp"
 #include "renderer/error.hpp"
 #include "renderer/frame.hpp"
+#include "renderer/image_library.hpp"
 
 namespace hsr::cli {
 
@@ -22,13 +20,9 @@ int diff(const DiffOptions& options) {
                      std::to_string(second.channels) + " channels; expected " + std::to_string(first.width) + "x" +
                      std::to_string(first.height) + " with " + std::to_string(first.channels) + " like " + options.first);
 
-  const auto wrap = [](const Image& image) {
-    OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8));
-    buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, image.pixels.data());
-    return buffer;
-  };
-  const auto tolerance = static_cast<float>(options.tolerance);
-  const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(wrap(first), wrap(second), tolerance, tolerance);
+  ImageComparison result;
+  if (const std::string error = imageLibrary().compare(first, second, options.tolerance, result); !error.empty())
+    throw InputError(options.first + ": cannot compare with " + options.second + ": " + error);
   OutputFiles files;  // written only once everything has succeeded
   if (!options.heatmap.empty()) {
     // The first image dimmed to grey; each differing pixel in red, brighter the larger its
@@ -56,13 +50,13 @@ int diff(const DiffOptions& options) {
     files.addRgbaPng(options.heatmap, first.width, first.height, heat);
   }
   const double pixels = double(first.width) * first.height;
-  std::printf("mean error %.6g, rms %.6g, PSNR %.2f dB, max error %.6g at (%d, %d) channel %d\n", result.meanerror,
-              result.rms_error, result.PSNR, result.maxerror, result.maxx, result.maxy, result.maxc);
-  std::printf("pixels over tolerance %.6g: %llu (%.4f%%)\n", options.tolerance, static_cast<unsigned long long>(result.nfail),
-              100.0 * double(result.nfail) / pixels);
+  std::printf("mean error %.6g, rms %.6g, PSNR %.2f dB, max error %.6g at (%d, %d) channel %d\n", result.meanError,
+              result.rmsError, result.psnr, result.maxError, result.maxX, result.maxY, result.maxChannel);
+  std::printf("pixels over tolerance %.6g: %llu (%.4f%%)\n", options.tolerance, static_cast<unsigned long long>(result.failing),
+              100.0 * double(result.failing) / pixels);
 
   files.commit();
-  return result.nfail == 0 ? 0 : 1;
+  return result.failing == 0 ? 0 : 1;
 }
 
 }  // namespace hsr::cli

@@ -3,22 +3,13 @@
 #include <fstream>
 #include <limits>
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include "renderer/error.hpp"
+#include "renderer/image_library.hpp"
+#include "renderer/png.hpp"
 
 namespace hsr {
-namespace {
-
-void writeImage(const std::filesystem::path& path, const OIIO::ImageSpec& spec, const void* pixels) {
-  auto output = OIIO::ImageOutput::create(path.string());
-  if (!output || !output->open(path.string(), spec) || !output->write_image(spec.format, pixels) || !output->close())
-    throw InputError(path.string() + ": cannot write the image" +
-                     (output ? ": " + output->geterror() : std::string(": no writer for this extension")));
-}
-
-}  // namespace
 
 std::string partialFilePrefix(const std::filesystem::path& final) {
   std::string prefix(1, '.');
@@ -47,7 +38,7 @@ std::filesystem::path OutputFiles::stage(const std::filesystem::path& path, cons
   const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
   if (!std::filesystem::is_directory(folder))
     throw InputError(path.string() + ": the folder " + folder.string() + " does not exist");
-  // Same folder, same extension (OpenImageIO picks the format by it), a name no one else uses.
+  // Same folder, same extension (an image's format goes by it), a name no one else uses.
   std::filesystem::path temporary = path;
   temporary.replace_filename(partialFilePrefix(path) + std::to_string(::getpid()) + extension);
   staged_.emplace_back(temporary, path);
@@ -57,16 +48,15 @@ std::filesystem::path OutputFiles::stage(const std::filesystem::path& path, cons
 void OutputFiles::addColorPng(const std::filesystem::path& path, const Frame& frame) {
   HSR_CHECK(frame.color.size() == frame.pixelCount() * 4);
   const auto temporary = stage(path, ".png");
-  OIIO::ImageSpec spec(frame.width, frame.height, 4, OIIO::TypeDesc::UINT8);
   // A partial image says so in the file itself, not only on the terminal.
-  if (!frame.partial.empty()) spec.attribute("ImageDescription", "partial image: " + frame.partial);
-  writeImage(temporary, spec, frame.color.data());
+  writePng(temporary, frame.width, frame.height, 4, frame.color.data(),
+           frame.partial.empty() ? "" : "partial image: " + frame.partial);
 }
 
 void OutputFiles::addRgbaPng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
   HSR_CHECK(rgba.size() == std::size_t(width) * std::size_t(height) * 4);
   const auto temporary = stage(path, ".png");
-  writeImage(temporary, OIIO::ImageSpec(width, height, 4, OIIO::TypeDesc::UINT8), rgba.data());
+  writePng(temporary, width, height, 4, rgba.data());
 }
 
 void OutputFiles::addText(const std::filesystem::path& path, const std::string& text) {
@@ -89,15 +79,13 @@ void OutputFiles::addIdsPng(const std::filesystem::path& path, const Frame& fram
     rgb[3 * i + 1] = static_cast<std::uint8_t>(frame.ids[i] >> 8);
     rgb[3 * i + 2] = static_cast<std::uint8_t>(frame.ids[i]);
   }
-  writeImage(temporary, OIIO::ImageSpec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8), rgb.data());
+  writePng(temporary, frame.width, frame.height, 3, rgb.data());
 }
 
 void OutputFiles::addDepthExr(const std::filesystem::path& path, const Frame& frame) {
   const auto temporary = stage(path, ".exr");
-  OIIO::ImageSpec spec(frame.width, frame.height, 1, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"Z"};
-  spec.z_channel = 0;
-  writeImage(temporary, spec, frame.depth.data());
+  const std::string error = imageLibrary().writeDepthExr(temporary.string(), frame.width, frame.height, frame.depth.data());
+  if (!error.empty()) throw InputError(path.string() + ": cannot write the image: " + error);
 }
 
 void OutputFiles::commit() {
@@ -106,13 +94,10 @@ void OutputFiles::commit() {
 }
 
 Image readImage(const std::filesystem::path& path) {
-  auto input = OIIO::ImageInput::open(path.string());
-  if (!input) throw InputError(path.string() + ": cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = input->spec();
-  Image image{spec.width, spec.height, spec.nchannels, {}};
-  image.pixels.resize(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, image.pixels.data()))
-    throw InputError(path.string() + ": cannot read the image: " + input->geterror());
+  if (path.extension() == ".png") return readPng(path);
+  Image image;
+  const std::string error = imageLibrary().readImage(path.string(), image);
+  if (!error.empty()) throw InputError(path.string() + ": cannot read the image: " + error);
   return image;
 }
 

@@ -56,7 +56,8 @@ class OutputFiles {
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // temporary, final
 };
 
-// Reads an 8-bit RGB(A) image for tests and comparisons; throws InputError.
+// Reads an image as 8 bits per channel for tests and comparisons (a PNG through libpng,
+// any other format through OpenImageIO); throws InputError.
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<std::uint8_t> pixels;

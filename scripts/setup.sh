@@ -7,7 +7,8 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libglm-dev                   # vectors and matrices
-  libopenimageio-dev           # image IO and ImageBufAlgo::compare for goldens
+  libopenimageio-dev           # EXR depth, image comparison, contact sheets, goldens (loaded on use)
+  libpng-dev                   # the PNGs every render writes, without OpenImageIO's start-up cost
   libtinyobjloader-dev         # OBJ meshes
   libtomlplusplus-dev          # TOML scenes
   libcli11-dev                 # the hsr command line
@@ -19,6 +20,7 @@ packages=(
   libgtest-dev libgmock-dev    # tests
   clang libclang-rt-14-dev     # the sanitizer build (scripts/sanitize.sh)
   libbenchmark-dev             # bench/
+  hyperfine                    # bench/startup.sh: how long a command takes, start to finish
   libosmesa6-dev               # the Mesa peer benchmark (bench/ only)
   libembree-dev                # the Embree peer benchmark (bench/ only)
   libocct-modeling-algorithms-dev  # the Open CASCADE hidden-line peer (bench/occt_peer only);

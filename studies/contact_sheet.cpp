@@ -1,10 +1,11 @@
 #include "studies/contact_sheet.hpp"
 
 #include <algorithm>
-#include <stdexcept>
+#include <utility>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "renderer/error.hpp"
+#include "renderer/frame.hpp"
+#include "renderer/image_library.hpp"
 
 namespace hsr::studies {
 namespace {
@@ -16,36 +17,52 @@ int thumbnailHeight(const SheetImage& image) {
   return std::max(1, image.height * kThumbnailWidth / std::max(1, image.width));
 }
 
-OIIO::ImageBuf wrap(const SheetImage& image) {
-  OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8));
-  buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, image.rgba.data());
-  return buffer;
-}
-
-OIIO::ImageBuf shrinkImage(const SheetImage& image) {
-  return OIIO::ImageBufAlgo::resize(wrap(image), "", 0, OIIO::ROI(0, kThumbnailWidth, 0, thumbnailHeight(image), 0, 1, 0, 4));
+Image shrinkImage(const SheetImage& image) {
+  Image thumbnail;
+  const std::string error =
+      imageLibrary().resize({image.width, image.height, 4, image.rgba}, kThumbnailWidth, thumbnailHeight(image), thumbnail);
+  if (!error.empty()) throw InputError("contact sheet: cannot shrink an image: " + error);
+  return thumbnail;
 }
 
 // The most saturated pixel of each block wins, so a single wrong pixel stays visible.
-OIIO::ImageBuf shrinkHeatMap(const SheetImage& image) {
+Image shrinkHeatMap(const SheetImage& image) {
   const int width = kThumbnailWidth, height = thumbnailHeight(image);
-  std::vector<std::uint8_t> small(std::size_t(width) * std::size_t(height) * 4, 0);
+  Image small{width, height, 4, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4, 0)};
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       const std::uint8_t* from = &image.rgba[4 * (std::size_t(y) * std::size_t(image.width) + std::size_t(x))];
-      std::uint8_t* to = &small[4 * (std::size_t(y * height / image.height) * std::size_t(width) + std::size_t(x * width / image.width))];
+      std::uint8_t* to =
+          &small.pixels[4 * (std::size_t(y * height / image.height) * std::size_t(width) + std::size_t(x * width / image.width))];
       const auto saturation = [](const std::uint8_t* p) { return std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}); };
       if (to[3] == 0 || saturation(from) > saturation(to)) std::copy(from, from + 4, to);
     }
-  OIIO::ImageBuf buffer(OIIO::ImageSpec(width, height, 4, OIIO::TypeDesc::UINT8));
-  buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, small.data());
-  return buffer;
+  // A heat map narrower than the thumbnail is enlarged instead: the thumbnail pixels no
+  // image pixel fell on take their nearest one's.
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      std::uint8_t* to = &small.pixels[4 * (std::size_t(y) * std::size_t(width) + std::size_t(x))];
+      if (to[3] != 0) continue;
+      const std::size_t nearest = std::size_t(y * image.height / height) * std::size_t(image.width) + std::size_t(x * image.width / width);
+      std::copy(&image.rgba[4 * nearest], &image.rgba[4 * nearest] + 4, to);
+    }
+  return small;
 }
 
-void text(OIIO::ImageBuf& canvas, int x, int baseline, const std::string& line, float grey) {
+// Copies an RGBA image into the canvas with its top left corner at (x, y), clipped.
+void paste(Image& canvas, int x, int y, const Image& image) {
+  for (int row = 0; row < image.height && y + row < canvas.height; ++row) {
+    const int columns = std::min(image.width, canvas.width - x);
+    if (columns <= 0) return;
+    const auto from = image.pixels.begin() + 4 * std::ptrdiff_t(row) * image.width;
+    std::copy(from, from + 4 * columns, canvas.pixels.begin() + 4 * (std::ptrdiff_t(y + row) * canvas.width + x));
+  }
+}
+
+void text(Image& canvas, int x, int baseline, const std::string& line, float grey) {
   const float color[4] = {grey, grey, grey, 1};
-  if (!OIIO::ImageBufAlgo::render_text(canvas, x, baseline, line, kFontSize, kFont, color))
-    throw std::runtime_error(std::string("contact sheet: cannot draw text with ") + kFont + ": " + canvas.geterror());
+  if (const std::string error = imageLibrary().drawText(canvas, x, baseline, line, kFontSize, kFont, color); !error.empty())
+    throw InputError(std::string("contact sheet: cannot draw text with ") + kFont + ": " + error);
 }
 
 int captionHeight(const std::vector<SheetImage>& images) {
@@ -71,9 +88,9 @@ Sheet composeContactSheet(const std::vector<SheetSection>& sections) {
   }
   const int width = kMargin + int(columns) * (kThumbnailWidth + kMargin);
 
-  OIIO::ImageBuf canvas(OIIO::ImageSpec(width, height, 4, OIIO::TypeDesc::UINT8));
-  const float background[4] = {0.09f, 0.09f, 0.1f, 1};
-  OIIO::ImageBufAlgo::fill(canvas, background);
+  Image canvas{width, height, 4, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4)};
+  const std::uint8_t background[4] = {23, 23, 26, 255};  // (0.09, 0.09, 0.1) in 8 bits
+  for (std::size_t pixel = 0; pixel < canvas.pixels.size(); pixel += 4) std::copy(background, background + 4, &canvas.pixels[pixel]);
   int y = kMargin;
   for (const SheetSection& section : sections) {
     text(canvas, kMargin, y + 20, section.heading, 1.0f);
@@ -83,8 +100,7 @@ Sheet composeContactSheet(const std::vector<SheetSection>& sections) {
       for (std::size_t column = 0; column < row->size(); ++column) {
         const SheetImage& image = (*row)[column];
         const int x = kMargin + int(column) * (kThumbnailWidth + kMargin);
-        const OIIO::ImageBuf thumbnail = row == &section.images ? shrinkImage(image) : shrinkHeatMap(image);
-        OIIO::ImageBufAlgo::paste(canvas, x, y, 0, 0, thumbnail);
+        paste(canvas, x, y, row == &section.images ? shrinkImage(image) : shrinkHeatMap(image));
         for (std::size_t line = 0; line < image.caption.size(); ++line)
           text(canvas, x, y + imagesHeight + kCaptionLine * int(line + 1), image.caption[line], line == 0 ? 0.95f : 0.7f);
       }
@@ -92,9 +108,7 @@ Sheet composeContactSheet(const std::vector<SheetSection>& sections) {
     }
     y += kMargin;
   }
-  Sheet sheet{width, height, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4)};
-  canvas.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, sheet.rgba.data());
-  return sheet;
+  return Sheet{width, height, std::move(canvas.pixels)};
 }
 
 }  // namespace hsr::studies

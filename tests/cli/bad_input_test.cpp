@@ -260,5 +260,17 @@ TEST(Cli, ListShowsAlgorithmsKnobsAndScenes) {
     EXPECT_NE(result.output.find(expected), std::string::npos) << expected;
 }
 
+TEST(Cli, VersionNamesTheCommitItWasBuiltFrom) {
+  const test::CommandResult version = test::runCommand(std::string(HSR_BINARY) + " --version");
+  ASSERT_EQ(version.exitCode, 0) << version.output;
+  EXPECT_EQ(version.output.rfind("hsr " HSR_VERSION " (", 0), 0u) << version.output;
+  // The build's commit is the checkout's (a build from a tarball says it has none).
+  const test::CommandResult head = test::runCommand("git -C " + test::sourcePath("").string() + " rev-parse --short=12 HEAD");
+  if (head.exitCode == 0)
+    EXPECT_NE(version.output.find(head.output.substr(0, 12)), std::string::npos) << version.output << " against " << head.output;
+  else
+    EXPECT_NE(version.output.find("unknown commit"), std::string::npos) << version.output;
+}
+
 }  // namespace
 }  // namespace hsr
