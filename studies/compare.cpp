@@ -113,10 +113,10 @@ int compare(const CompareOptions& options) {
     sections.push_back(std::move(section));
   }
 
-  const Sheet sheet = composeContactSheet(sections);
+  const Image sheet = composeContactSheet(sections);
   const std::filesystem::path out = options.out;
   OutputFiles files;
-  files.addRgbaPng(out / "contact_sheet.png", sheet.width, sheet.height, sheet.rgba);
+  files.addRgbaPng(out / "contact_sheet.png", sheet.width, sheet.height, sheet.pixels);
   files.addText(out / "results.csv", resultsCsv(rows, {}));
   files.addText(out / "results.json", resultsJson(rows));
   files.commit();

@@ -1,10 +1,8 @@
 #include "studies/contact_sheet.hpp"
 
 #include <algorithm>
-#include <utility>
 
 #include "renderer/error.hpp"
-#include "renderer/frame.hpp"
 #include "renderer/image_library.hpp"
 
 namespace hsr::studies {
@@ -13,25 +11,24 @@ namespace {
 constexpr int kMargin = 10, kHeadingHeight = 30, kCaptionLine = 17, kFontSize = 14;
 constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // Debian: fonts-dejavu-core
 
-int thumbnailHeight(const SheetImage& image) {
+int thumbnailHeight(const Image& image) {
   return std::max(1, image.height * kThumbnailWidth / std::max(1, image.width));
 }
 
-Image shrinkImage(const SheetImage& image) {
+Image shrinkImage(const Image& image) {
   Image thumbnail;
-  const std::string error =
-      imageLibrary().resize({image.width, image.height, 4, image.rgba}, kThumbnailWidth, thumbnailHeight(image), thumbnail);
+  const std::string error = imageLibrary().resize(image, kThumbnailWidth, thumbnailHeight(image), thumbnail);
   if (!error.empty()) throw InputError("contact sheet: cannot shrink an image: " + error);
   return thumbnail;
 }
 
 // The most saturated pixel of each block wins, so a single wrong pixel stays visible.
-Image shrinkHeatMap(const SheetImage& image) {
+Image shrinkHeatMap(const Image& image) {
   const int width = kThumbnailWidth, height = thumbnailHeight(image);
   Image small{width, height, 4, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4, 0)};
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
-      const std::uint8_t* from = &image.rgba[4 * (std::size_t(y) * std::size_t(image.width) + std::size_t(x))];
+      const std::uint8_t* from = &image.pixels[4 * (std::size_t(y) * std::size_t(image.width) + std::size_t(x))];
       std::uint8_t* to =
           &small.pixels[4 * (std::size_t(y * height / image.height) * std::size_t(width) + std::size_t(x * width / image.width))];
       const auto saturation = [](const std::uint8_t* p) { return std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}); };
@@ -44,16 +41,16 @@ Image shrinkHeatMap(const SheetImage& image) {
       std::uint8_t* to = &small.pixels[4 * (std::size_t(y) * std::size_t(width) + std::size_t(x))];
       if (to[3] != 0) continue;
       const std::size_t nearest = std::size_t(y * image.height / height) * std::size_t(image.width) + std::size_t(x * image.width / width);
-      std::copy(&image.rgba[4 * nearest], &image.rgba[4 * nearest] + 4, to);
+      std::copy(&image.pixels[4 * nearest], &image.pixels[4 * nearest] + 4, to);
     }
   return small;
 }
 
 // Copies an RGBA image into the canvas with its top left corner at (x, y), clipped.
 void paste(Image& canvas, int x, int y, const Image& image) {
+  const int columns = std::min(image.width, canvas.width - x);
+  if (columns <= 0) return;
   for (int row = 0; row < image.height && y + row < canvas.height; ++row) {
-    const int columns = std::min(image.width, canvas.width - x);
-    if (columns <= 0) return;
     const auto from = image.pixels.begin() + 4 * std::ptrdiff_t(row) * image.width;
     std::copy(from, from + 4 * columns, canvas.pixels.begin() + 4 * (std::ptrdiff_t(y + row) * canvas.width + x));
   }
@@ -73,13 +70,13 @@ int captionHeight(const std::vector<SheetImage>& images) {
 
 int rowHeight(const std::vector<SheetImage>& images) {
   int height = 0;
-  for (const SheetImage& image : images) height = std::max(height, thumbnailHeight(image));
+  for (const SheetImage& sheetImage : images) height = std::max(height, thumbnailHeight(sheetImage.image));
   return height + captionHeight(images);
 }
 
 }  // namespace
 
-Sheet composeContactSheet(const std::vector<SheetSection>& sections) {
+Image composeContactSheet(const std::vector<SheetSection>& sections) {
   std::size_t columns = 1;
   int height = kMargin;
   for (const SheetSection& section : sections) {
@@ -98,17 +95,17 @@ Sheet composeContactSheet(const std::vector<SheetSection>& sections) {
     for (const auto* row : {&section.images, &section.heatMaps}) {
       const int imagesHeight = rowHeight(*row) - captionHeight(*row);
       for (std::size_t column = 0; column < row->size(); ++column) {
-        const SheetImage& image = (*row)[column];
+        const SheetImage& shown = (*row)[column];
         const int x = kMargin + int(column) * (kThumbnailWidth + kMargin);
-        paste(canvas, x, y, row == &section.images ? shrinkImage(image) : shrinkHeatMap(image));
-        for (std::size_t line = 0; line < image.caption.size(); ++line)
-          text(canvas, x, y + imagesHeight + kCaptionLine * int(line + 1), image.caption[line], line == 0 ? 0.95f : 0.7f);
+        paste(canvas, x, y, row == &section.images ? shrinkImage(shown.image) : shrinkHeatMap(shown.image));
+        for (std::size_t line = 0; line < shown.caption.size(); ++line)
+          text(canvas, x, y + imagesHeight + kCaptionLine * int(line + 1), shown.caption[line], line == 0 ? 0.95f : 0.7f);
       }
       y += rowHeight(*row);
     }
     y += kMargin;
   }
-  return Sheet{width, height, std::move(canvas.pixels)};
+  return canvas;
 }
 
 }  // namespace hsr::studies

@@ -4,13 +4,17 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "renderer/frame.hpp"
 
 namespace hsr::studies {
 
 struct SheetImage {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgba;
+  SheetImage(int width, int height, std::vector<std::uint8_t> rgba, std::vector<std::string> caption_)
+      : image{width, height, 4, std::move(rgba)}, caption(std::move(caption_)) {}
+  Image image;
   std::vector<std::string> caption;  // one or two short lines
 };
 
@@ -20,14 +24,9 @@ struct SheetSection {
   std::vector<SheetImage> heatMaps;  // one per image
 };
 
-struct Sheet {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgba;
-};
-
 // Thumbnails are kThumbnailWidth wide. Heat maps are shrunk so that no marked pixel
 // disappears: a thumbnail pixel is red (or blue) if any pixel it covers is.
 constexpr int kThumbnailWidth = 256;
-Sheet composeContactSheet(const std::vector<SheetSection>& sections);
+Image composeContactSheet(const std::vector<SheetSection>& sections);
 
 }  // namespace hsr::studies

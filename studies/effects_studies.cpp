@@ -100,9 +100,9 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
     section.heatMaps.push_back({width, height, changed, {previous.empty() ? "the start" : "what it changed"}});
     previous = frame.color;
   }
-  const Sheet sheet = composeContactSheet({section});
+  const Image sheet = composeContactSheet({section});
   OutputFiles files;
-  files.addRgbaPng(folder / "effects_steps.png", sheet.width, sheet.height, sheet.rgba);
+  files.addRgbaPng(folder / "effects_steps.png", sheet.width, sheet.height, sheet.pixels);
   files.commit();
   std::printf("wrote %s/effects_steps.png\n", folder.string().c_str());
   data += "EOD\nset title 'Each effect added in turn: time per pass (z-buffer, median)'\nset ylabel 'ms'\n"
