@@ -48,7 +48,9 @@ std::vector<std::string> decisionsTaken(const Stats& stats) {
   if (counted("occlusion: occludees tested") > 0)
     decisions.push_back("occlusion culling: " + n(counted("occlusion: occluders rasterized")) + " occluders drawn, " +
                         n(counted("occlusion: occludees culled")) + " of " + n(counted("occlusion: occludees tested")) + " objects culled");
-  say(counted("normals computed") > 0, "normals: " + n(counted("normals computed")) + " corner normals computed",
+  say(counted("normals computed") > 0,
+      "normals: " + n(counted("normals computed")) + " corner normals computed, for the " + n(counted("shading set-ups")) +
+          " triangles shading set up",
       "normals: none computed");
   if (counted("shadow maps rendered") > 0)
     decisions.push_back("shadows: " + count(std::size_t(counted("shadow maps rendered")), "map view") + ", " +

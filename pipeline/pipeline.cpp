@@ -34,10 +34,10 @@ struct Context {
   Visibility& visibility;          // the frame, and the painter's order
   LineSet drawing = {};
   std::optional<ShadowMaps> shadowMaps = {};
-  std::optional<PixelShader> shader = {};  // built by the first pass that shades
+  std::optional<PixelShader<float>> shader = {};  // built by the first pass that shades
 
-  const PixelShader& pixelShader() {
-    if (!shader) shader.emplace(scene, camera, stats, shadowMaps ? &*shadowMaps : nullptr);
+  PixelShader<float>& pixelShader() {
+    if (!shader) shader.emplace(scene, camera, shadowMaps ? &*shadowMaps : nullptr);
     return *shader;
   }
 };
@@ -149,7 +149,7 @@ std::vector<PlannedPass> shadingWork(const Facts& facts) {
   for (const Light& light : facts.scene.scene().lights) views += std::size_t(shadowViewCount(light));
   return {
       {"corner normals", effects.smoothNormals(),
-       effects.smoothNormals() ? std::string(shadingName(effects.shading)) + " interpolates them"
+       effects.smoothNormals() ? std::string(shadingName(effects.shading)) + " interpolates them; only for the triangles it shades"
        : effects.lit()         ? "flat shading uses face normals"
                                : "no lit effect"},
       {"specular highlights", effects.shading == Shading::phong,

@@ -37,6 +37,14 @@ void writeColors(const std::vector<dvec3>& blended, Frame& frame) {
   }
 }
 
+// Shading's per-triangle set-up, once, for every surface the pieces paint.
+void setUpShading(const PaintedPieces& pieces, PixelShader<float>& shader, int threads, Stats& stats) {
+  std::vector<std::uint32_t> triangles;
+  triangles.reserve(pieces.order.pieces.size());
+  for (const Piece& piece : pieces.order.pieces) triangles.push_back(pieces.geometry.triangles[piece.screenTriangle].triangle);
+  shader.setUp(triangles, threads, stats);
+}
+
 TileCounts total(const std::vector<TileCounts>& tiles) {
   TileCounts sum;
   for (const TileCounts& tile : tiles) {
@@ -49,9 +57,10 @@ TileCounts total(const std::vector<TileCounts>& tiles) {
 
 }  // namespace
 
-void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, const PixelShader& shader, int threads, Frame& frame,
+void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, PixelShader<float>& shader, int threads, Frame& frame,
                   Stats& stats) {
   PhaseTimer timer(stats, "transparency");
+  setUpShading(painted, shader, threads, stats);
   const dvec3 background(scene.scene().background);
   const TileGrid tiles(frame.width, frame.height);
   std::vector<dvec3> blended(frame.pixelCount());
@@ -66,7 +75,7 @@ void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, cons
       [&](std::size_t tile, const PieceFragment& f) {
         // Porter and Duff's "over": this surface in front of everything drawn so far.
         const double opacity = opacities[tile](f.triangle);
-        blended[f.pixel] = opacity * shader.shade(f.triangle, f.x, f.y, counts[tile].shading) + (1 - opacity) * blended[f.pixel];
+        blended[f.pixel] = opacity * dvec3(shader.shade(f.triangle, f.x, f.y, counts[tile].shading)) + (1 - opacity) * blended[f.pixel];
         if (opacity < 1) ++counts[tile].blended;
       });
   const TileCounts sum = total(counts);
@@ -75,9 +84,10 @@ void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, cons
   writeColors(blended, frame);
 }
 
-void blendOverOpaque(const PreparedScene& scene, const PaintedPieces& glass, const PixelShader& shader, int threads, Frame& frame,
+void blendOverOpaque(const PreparedScene& scene, const PaintedPieces& glass, PixelShader<float>& shader, int threads, Frame& frame,
                      Stats& stats) {
   PhaseTimer timer(stats, "transparency");
+  setUpShading(glass, shader, threads, stats);
   const std::vector<float> opaqueDepth = frame.depth;
   const TileGrid tiles(frame.width, frame.height);
   std::vector<dvec3> blended(frame.pixelCount());
@@ -102,7 +112,7 @@ void blendOverOpaque(const PreparedScene& scene, const PaintedPieces& glass, con
           frame.depth[f.pixel] = f.depth;
         }
         const double opacity = opacities[tile](f.triangle);
-        blended[f.pixel] = opacity * shader.shade(f.triangle, f.x, f.y, counts[tile].shading) + (1 - opacity) * blended[f.pixel];
+        blended[f.pixel] = opacity * dvec3(shader.shade(f.triangle, f.x, f.y, counts[tile].shading)) + (1 - opacity) * blended[f.pixel];
         if (opacity < 1) ++counts[tile].blended;
       });
   const TileCounts sum = total(counts);

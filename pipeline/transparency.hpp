@@ -24,7 +24,7 @@ namespace hsr::pipeline {
 // Phase "transparency": frame.color from every piece of `painted`, blended in its order
 // from the background (ids and depth are the painting's already). Counts "blended
 // writes" (fragments of a surface below opacity 1) and the shading counters.
-void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, const PixelShader& shader, int threads, Frame& frame,
+void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, PixelShader<float>& shader, int threads, Frame& frame,
                   Stats& stats);
 
 // Phase "transparency": the pieces of `glass` (the transparent surfaces, back to front)
@@ -32,7 +32,7 @@ void blendInOrder(const PreparedScene& scene, const PaintedPieces& painted, cons
 // where it lies in front of their depth; a pixel's id and depth become the nearest
 // surface's. Counts "pieces painted", "fragments written", "cut tests" (as the painter
 // counts its own), "blended writes" and the shading counters.
-void blendOverOpaque(const PreparedScene& scene, const PaintedPieces& glass, const PixelShader& shader, int threads, Frame& frame,
+void blendOverOpaque(const PreparedScene& scene, const PaintedPieces& glass, PixelShader<float>& shader, int threads, Frame& frame,
                      Stats& stats);
 
 }  // namespace hsr::pipeline

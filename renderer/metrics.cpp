@@ -123,16 +123,16 @@ ShadowError shadowError(const PreparedScene& scene, const Frame& frame, const Sh
                         int threads) {
   const CameraTransform camera(scene.scene().camera, frame.width, frame.height);
   const auto& lights = scene.scene().lights;
-  const std::vector<std::array<dvec3, 3>>* normals = nullptr;
+  PixelShader<double> shader(scene, camera, &exact);
   Stats unused;
-  if (scene.scene().effects.smoothNormals()) normals = &scene.cornerNormals(unused);
+  shader.setUpShownIn(frame, threads, unused);
   std::vector<ShadowError> rows(static_cast<std::size_t>(frame.height));
   parallelFor(rows.size(), threads, [&](std::size_t row, int) {
     ShadowError& error = rows[row];
     for (int x = 0; x < frame.width; ++x) {
       const std::uint32_t id = frame.ids[row * std::size_t(frame.width) + std::size_t(x)];
       if (id == conventions::kBackgroundId) continue;
-      const SurfacePoint point = surfacePoint(scene, camera, id - 1, x, static_cast<int>(row), normals);
+      const SurfacePoint point = shader.surfacePoint(id - 1, x, static_cast<int>(row));
       for (std::size_t light = 0; light < lights.size(); ++light) {
         if (glm::dot(point.normal, towardLight(lights[light], point.position)) <= 0) continue;
         ++error.lookups;

@@ -30,7 +30,7 @@ std::vector<std::uint8_t> errorHeatMap(const Frame& frame, const ReferenceImage&
 
 // Shadows: at every covered pixel of a frame and every light that faces the surface
 // there, a shadow technique's decision against the exact one at the same surface point
-// (renderer/shading: surfacePoint), so that the error is the shadow test's alone.
+// (renderer/shading: PixelShader<double>::surfacePoint), so that the error is the shadow test's alone.
 struct ShadowError {
   std::int64_t lookups = 0;    // (pixel, light) pairs tested
   std::int64_t differing = 0;  // decided differently from the exact test

@@ -69,6 +69,7 @@ PreparedScene::PreparedScene(const Scene& scene, const std::vector<dmat4>& scene
         instance.color = object.color;
         instance.opacity = object.opacity;
         instance.worldFromObject = worldFromObject;
+        instance.normalFromObject = glm::transpose(glm::inverse(dmat3(worldFromObject)));
         instances_.push_back(instance);
         for (const Triangle& t : object.mesh->triangles)
           triangles_.push_back({t[0] + firstVertex, t[1] + firstVertex, t[2] + firstVertex});
@@ -115,66 +116,47 @@ dvec3 PreparedScene::faceNormal(std::uint32_t triangle) const {
   return length > 0 ? n / length : dvec3(0);
 }
 
-const std::vector<std::array<dvec3, 3>>& PreparedScene::cornerNormals(Stats& stats) const {
-  std::call_once(normalsBuilt_, [&] {
-    PhaseTimer timer(stats, "normals");
-    const std::size_t faces = triangles_.size();
-    cornerNormals_.assign(faces, {dvec3(0), dvec3(0), dvec3(0)});
-    // Step 1: the normals the mesh file gave, moved to world space by the inverse
-    // transpose of the copy's placement (which keeps them perpendicular to the surface
-    // under non-uniform scaling).
-    std::int64_t fromMesh = 0;
-    for (const Instance& instance : instances_) {
-      const Mesh& mesh = *scene_->objects[instance.object].mesh;
-      if (mesh.cornerNormals.empty()) continue;
-      const dmat3 normalMatrix = glm::transpose(glm::inverse(dmat3(instance.worldFromObject)));
-      for (std::uint32_t t = 0; t < instance.triangleCount; ++t)
-        for (int k = 0; k < 3; ++k) {
-          const dvec3 given = normalMatrix * mesh.cornerNormals[t][k];
-          if (glm::length(given) == 0) continue;
-          cornerNormals_[instance.firstTriangle + t][k] = glm::normalize(given);
-          ++fromMesh;
-        }
-    }
-    if (fromMesh == std::int64_t(3 * faces)) {
-      stats.add("normals from the mesh", fromMesh);
-      return;
-    }
-    // Step 2: every other corner: each face's contribution at a vertex is its unit normal
-    // weighted by its angle there, so the result does not depend on how the surface
-    // around the vertex was triangulated.
-    std::vector<dvec3> unitNormal(faces);
-    std::vector<std::array<double, 3>> cornerAngle(faces);
-    for (std::size_t f = 0; f < faces; ++f) {
-      unitNormal[f] = faceNormal(static_cast<std::uint32_t>(f));
-      const Triangle& t = triangles_[f];
-      for (int k = 0; k < 3; ++k) {
-        const dvec3 e1 = positions_[t[(k + 1) % 3]] - positions_[t[k]], e2 = positions_[t[(k + 2) % 3]] - positions_[t[k]];
-        cornerAngle[f][k] = std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
-      }
-    }
-    const VertexTriangles around = buildVertexTriangles(positions_.size(), triangles_);
-
-    const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180);
-    std::int64_t computed = 0;
-    for (std::size_t f = 0; f < faces; ++f)
-      for (int k = 0; k < 3; ++k) {
-        if (glm::length(cornerNormals_[f][k]) > 0) continue;  // given by the mesh
-        const std::uint32_t v = triangles_[f][k];
-        dvec3 sum(0);
-        for (const std::uint32_t other : around.around(v)) {
-          if (glm::dot(unitNormal[other], unitNormal[f]) < creaseCosine) continue;
-          const int corner = triangles_[other][0] == v ? 0 : triangles_[other][1] == v ? 1 : 2;
-          sum += unitNormal[other] * cornerAngle[other][corner];
-        }
-        const double length = glm::length(sum);
-        cornerNormals_[f][k] = length > 0 ? sum / length : unitNormal[f];
-        ++computed;
-      }
-    stats.add("normals computed", computed);
-    if (fromMesh > 0) stats.add("normals from the mesh", fromMesh);
+const VertexTriangles& PreparedScene::trianglesAroundVertices(Stats& stats) const {
+  std::call_once(aroundBuilt_, [&] {
+    PhaseTimer timer(stats, "vertex triangles");
+    trianglesAroundVertices_ = buildVertexTriangles(positions_.size(), triangles_);
   });
-  return cornerNormals_;
+  return trianglesAroundVertices_;
+}
+
+int PreparedScene::cornerNormals(std::uint32_t triangle, const VertexTriangles& around, std::array<dvec3, 3>& normals) const {
+  const Instance& instance = instanceOf(triangle);
+  const Mesh& mesh = *scene_->objects[instance.object].mesh;
+  const dvec3 face = faceNormal(triangle);
+  static const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180);
+  int fromMesh = 0;
+  for (int k = 0; k < 3; ++k) {
+    // Step 1: the normal the mesh file gave at this corner, if any.
+    if (!mesh.cornerNormals.empty()) {
+      const dvec3 given = instance.normalFromObject * mesh.cornerNormals[triangle - instance.firstTriangle][std::size_t(k)];
+      if (glm::length(given) > 0) {
+        normals[std::size_t(k)] = glm::normalize(given);
+        ++fromMesh;
+        continue;
+      }
+    }
+    // Step 2: each neighbouring face within the crease angle contributes its unit normal
+    // weighted by its angle at the vertex, so the result does not depend on how the
+    // surface around the vertex was triangulated.
+    const std::uint32_t v = triangles_[triangle][std::size_t(k)];
+    dvec3 sum(0);
+    for (const std::uint32_t other : around.around(v)) {
+      const dvec3 otherFace = faceNormal(other);
+      if (glm::dot(otherFace, face) < creaseCosine) continue;
+      const Triangle& t = triangles_[other];
+      const int corner = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+      const dvec3 e1 = positions_[t[std::size_t(corner + 1) % 3]] - positions_[v], e2 = positions_[t[std::size_t(corner + 2) % 3]] - positions_[v];
+      sum += otherFace * std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
+    }
+    const double length = glm::length(sum);
+    normals[std::size_t(k)] = length > 0 ? sum / length : face;
+  }
+  return fromMesh;
 }
 
 const Bvh& PreparedScene::triangleBvh(Stats& stats) const {

@@ -41,6 +41,9 @@ struct Instance {
   //     by the placement's linear part (its largest row sum of magnitudes).
   double placementRounding = 0;
   double statedRounding = 0;
+  // The inverse transpose of the placement's linear part: it carries a mesh file's
+  // normals to world space and keeps them perpendicular under non-uniform scaling.
+  dmat3 normalFromObject{1.0};
 };
 
 class PreparedScene {
@@ -85,13 +88,17 @@ class PreparedScene {
 
   // Unit face normal (b - a) x (c - a); zero for a degenerate triangle.
   dvec3 faceNormal(std::uint32_t triangle) const;
-  // #T x 3 unit normals, one per triangle corner, built on first use: the mesh file's
-  // own where it gave one (OBJ vn; counted as "normals from the mesh"), and elsewhere
-  // (counted as "normals computed") the angle-weighted average of the face normals
-  // around the corner's vertex that lie within kCreaseDegrees of this face's, so smooth
-  // surfaces shade smoothly and a cube keeps its edges.
+  // The triangles around each vertex, built on first use (phase "vertex triangles"):
+  // what corner normals average over.
+  const VertexTriangles& trianglesAroundVertices(Stats& stats) const;
+  // One triangle's three unit corner normals: the mesh file's own where it gave one (OBJ
+  // vn, carried by Instance::normalFromObject), and elsewhere the angle-weighted average
+  // of the face normals around the corner's vertex that lie within kCreaseDegrees of this
+  // face's, so smooth surfaces shade smoothly and a cube keeps its edges. Computed on
+  // demand, for the triangles shading sees (renderer/shading counts them: "normals from
+  // the mesh", "normals computed"); returns how many of the three the mesh gave.
   static constexpr double kCreaseDegrees = 40;
-  const std::vector<std::array<dvec3, 3>>& cornerNormals(Stats& stats) const;
+  int cornerNormals(std::uint32_t triangle, const VertexTriangles& around, std::array<dvec3, 3>& normals) const;
 
   // A BVH over the triangles (primitive i = global triangle i), built on first use
   // (phase "bvh build", counter "bvh nodes built").
@@ -129,8 +136,8 @@ class PreparedScene {
   std::vector<dvec3> positions_;
   std::vector<Triangle> triangles_;
   std::vector<Instance> instances_;
-  mutable std::once_flag normalsBuilt_;
-  mutable std::vector<std::array<dvec3, 3>> cornerNormals_;
+  mutable std::once_flag aroundBuilt_;
+  mutable VertexTriangles trianglesAroundVertices_;
   mutable std::once_flag bvhBuilt_;
   mutable Bvh triangleBvh_;
   mutable std::vector<LeafTriangle> leafTriangles_;

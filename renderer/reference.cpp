@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 #include <gmpxx.h>
@@ -471,13 +472,17 @@ ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& s
   const Effects& effects = scene.scene().effects;
   std::optional<ExactShadows> shadows;
   if (effects.shadows) shadows.emplace(scene, stats);
-  const PixelShader shader(scene, camera, stats, shadows ? &*shadows : nullptr);
+  PixelShader<double> shader(scene, camera, shadows ? &*shadows : nullptr);
   if (!effects.transparency) {
     shadeFrame(scene, image.frame, shader, threads, stats);
   } else {
     // The exact blend: every surface along the pixel's ray, in exact depth order, each
     // "over" the ones behind it, from the nearest opaque one (or the background) forward.
     PhaseTimer timer(stats, "shading");
+    // Any surface may be seen through glass: every one is set up.
+    std::vector<std::uint32_t> everyTriangle(scene.triangleCount());
+    std::iota(everyTriangle.begin(), everyTriangle.end(), 0u);
+    shader.setUp(everyTriangle, threads, stats);
     const SurfaceReference reference(scene, stats);
     const dvec3 background(scene.scene().background);
     const auto rows = static_cast<std::size_t>(scene.height());

@@ -1,52 +1,14 @@
 #include "renderer/shading.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
-#include <limits>
 
 #include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
 #include "renderer/parallel.hpp"
-#include "renderer/raster.hpp"
 
 namespace hsr {
-
-dvec3 barycentricAlongRay(const PreparedScene& scene, std::uint32_t triangle, const Ray& ray) {
-  const Triangle& t = scene.triangles()[triangle];
-  const dvec3 a = scene.positions()[t[0]], b = scene.positions()[t[1]], c = scene.positions()[t[2]];
-  // Möller–Trumbore without the inside test: the pixel center may sit a hair outside
-  // the triangle (it was covered after snapping to 1/256 pixel), so clamp the result.
-  const dvec3 e1 = b - a, e2 = c - a;
-  const dvec3 p = glm::cross(ray.direction, e2);
-  const double det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-300) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  const dvec3 s = ray.origin - a;
-  const double u = glm::dot(s, p) / det;
-  const double v = glm::dot(ray.direction, glm::cross(s, e1)) / det;
-  dvec3 bary(1 - u - v, u, v);
-  bary = glm::clamp(bary, 0.0, 1.0);
-  return bary / (bary.x + bary.y + bary.z);
-}
-
-SurfacePoint surfacePoint(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, int x, int y,
-                          const std::vector<std::array<dvec3, 3>>* cornerNormals) {
-  const Ray ray = camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(y));
-  const dvec3 bary = barycentricAlongRay(scene, triangle, ray);
-  const Triangle& t = scene.triangles()[triangle];
-  SurfacePoint point;
-  point.position = bary.x * scene.positions()[t[0]] + bary.y * scene.positions()[t[1]] + bary.z * scene.positions()[t[2]];
-  point.toViewer = -glm::normalize(ray.direction);
-  const dvec3 face = scene.faceNormal(triangle);
-  point.normal = face;
-  if (cornerNormals) {
-    const auto& corner = (*cornerNormals)[triangle];
-    const dvec3 smooth = bary.x * corner[0] + bary.y * corner[1] + bary.z * corner[2];
-    if (glm::length(smooth) > 0) point.normal = glm::normalize(smooth);
-  }
-  // Lit from both sides: a surface seen from behind shades as its front would.
-  if (glm::dot(face, point.toViewer) < 0) point.normal = -point.normal;
-  return point;
-}
 
 dvec3 towardLight(const Light& light, const dvec3& point) {
   return light.kind == Light::Kind::directional ? -light.direction : glm::normalize(light.position - point);
@@ -67,66 +29,275 @@ void ShadingCounts::addTo(Stats& stats) const {
   if (shadowedLookups) stats.add("shadowed lookups", shadowedLookups);
 }
 
-PixelShader::PixelShader(const PreparedScene& scene, const CameraTransform& camera, Stats& stats, const ShadowTest* shadows)
-    : scene_(scene), camera_(camera),
-      normals_(scene.scene().effects.smoothNormals() ? &scene.cornerNormals(stats) : nullptr),
-      shadows_(scene.scene().effects.shadows ? shadows : nullptr) {
-  HSR_CHECK(!scene.scene().effects.shadows || shadows);
+template <class Real>
+PixelShader<Real>::PixelShader(const PreparedScene& scene, const CameraTransform& camera, const ShadowTest* shadows)
+    : scene_(scene), camera_(camera), shadows_(scene.scene().effects.shadows ? shadows : nullptr) {
+  const Scene& description = scene.scene();
+  HSR_CHECK(!description.effects.shadows || shadows);
+  smooth_ = description.effects.smoothNormals();
+  lit_ = description.effects.lit();
+  specular_ = description.effects.shading == Shading::phong;
+  ambient_ = Real(description.ambient);
+  for (const Light& light : description.lights) {
+    lights_.push_back({light.kind == Light::Kind::directional, Vec(-light.direction), Vec(light.position - camera.camera().eye),
+                       Real(light.intensity)});
+  }
 }
 
-dvec3 PixelShader::shade(std::uint32_t triangle, int x, int y, ShadingCounts& counts) const {
-  ++counts.invocations;
-  const Scene& description = scene_.scene();
+template <class Real>
+typename PixelShader<Real>::TriangleSetUp PixelShader<Real>::makeSetUp(std::uint32_t triangle, const VertexTriangles* around,
+                                                                        std::int64_t& fromMesh) const {
+  const dvec3 eye = camera_.camera().eye;
+  const Triangle& t = scene_.triangles()[triangle];
+  dvec3 corner[3];
+  for (int k = 0; k < 3; ++k) corner[k] = scene_.positions()[t[std::size_t(k)]] - eye;
+  // Corner k's weight at a pixel is the eye ray's triple product with the edge opposite
+  // k, (d . ((V_k+1 - o) x (V_k+2 - o))): linear in the pixel coordinates under both
+  // projections, so three samples give its plane.
+  const auto weightsAt = [&](double px, double py) {
+    const Ray ray = camera_.rayThroughPixel(px, py);
+    const dvec3 origin = ray.origin - eye;
+    dvec3 weights;
+    for (int k = 0; k < 3; ++k)
+      weights[k] = glm::dot(ray.direction, glm::cross(corner[(k + 1) % 3] - origin, corner[(k + 2) % 3] - origin));
+    return weights;
+  };
+  TriangleSetUp setUp;
+  setUp.weightsAt0 = weightsAt(0, 0);
+  setUp.weightsPerX = weightsAt(1, 0) - setUp.weightsAt0;
+  setUp.weightsPerY = weightsAt(0, 1) - setUp.weightsAt0;
+  for (int k = 0; k < 3; ++k) setUp.corner[k] = Vec(corner[k]);
+
+  // Lit from both sides: a surface seen from behind shades as its front would. Which
+  // side a pixel's eye ray sees, the sign of face . -direction, is linear in the pixel
+  // coordinates too.
+  const dvec3 face = scene_.faceNormal(triangle);
+  const auto facingAt = [&](double px, double py) { return -glm::dot(face, camera_.rayThroughPixel(px, py).direction); };
+  setUp.facingAt0 = Real(facingAt(0, 0));
+  setUp.facingPerX = Real(facingAt(1, 0) - facingAt(0, 0));
+  setUp.facingPerY = Real(facingAt(0, 1) - facingAt(0, 0));
+  setUp.face = Vec(face);
+  if (around) {
+    std::array<dvec3, 3> normals;
+    fromMesh += scene_.cornerNormals(triangle, *around, normals);
+    for (int k = 0; k < 3; ++k) setUp.normal[k] = Vec(normals[std::size_t(k)]);
+  }
+
   const Instance& instance = scene_.instanceOf(triangle);
-  const dvec3 base = dvec3(instance.color);
-  if (!description.effects.lit()) return base;
-  const SurfacePoint point = surfacePoint(scene_, camera_, triangle, x, y, normals_);
-  const SceneObject& material = description.objects[instance.object];
-  const bool specular = description.effects.shading == Shading::phong;
+  const SceneObject& material = scene_.scene().objects[instance.object];
+  setUp.color = Vec(instance.color);
+  setUp.reflectivity = Real(material.reflectivity);
+  setUp.shininess = Real(material.shininess);
+  setUp.triangle = triangle;
+  return setUp;
+}
+
+template <class Real>
+void PixelShader<Real>::setUpClaimed(const std::vector<std::uint32_t>& claimed, int threads, Stats& stats) {
+  const std::size_t first = setUps_.size();
+  for (std::size_t i = 0; i < claimed.size(); ++i) slotOf_[claimed[i]] = static_cast<std::uint32_t>(first + i + 1);
+  setUps_.resize(first + claimed.size());
+  const VertexTriangles* around = smooth_ ? &scene_.trianglesAroundVertices(stats) : nullptr;
+  constexpr std::size_t kChunk = 256;
+  const std::size_t chunks = (claimed.size() + kChunk - 1) / kChunk;
+  std::vector<std::int64_t> fromMesh(chunks, 0);
+  parallelFor(chunks, threads, [&](std::size_t chunk, int) {
+    for (std::size_t i = chunk * kChunk; i < std::min(claimed.size(), (chunk + 1) * kChunk); ++i)
+      setUps_[first + i] = makeSetUp(claimed[i], around, fromMesh[chunk]);
+  });
+  stats.add("shading set-ups", static_cast<std::int64_t>(claimed.size()));
+  if (!smooth_) return;
+  std::int64_t given = 0;
+  for (const std::int64_t chunk : fromMesh) given += chunk;
+  if (given > 0) stats.add("normals from the mesh", given);
+  if (3 * std::int64_t(claimed.size()) > given) stats.add("normals computed", 3 * std::int64_t(claimed.size()) - given);
+}
+
+template <class Real>
+void PixelShader<Real>::setUp(std::span<const std::uint32_t> triangles, int threads, Stats& stats) {
+  slotOf_.resize(scene_.triangleCount(), 0);
+  std::vector<std::uint32_t> claimed;
+  for (const std::uint32_t triangle : triangles)
+    if (slotOf_[triangle] == 0) {
+      slotOf_[triangle] = 1;  // claimed; setUpClaimed gives it its slot
+      claimed.push_back(triangle);
+    }
+  setUpClaimed(claimed, threads, stats);
+}
+
+template <class Real>
+void PixelShader<Real>::setUpShownIn(const Frame& frame, int threads, Stats& stats) {
+  slotOf_.resize(scene_.triangleCount(), 0);
+  // Rows in parallel; each triangle claimed by whichever row meets it first. Which row
+  // that is changes only where its set-up is stored, never what it holds.
+  const auto rows = static_cast<std::size_t>(frame.height);
+  std::vector<std::vector<std::uint32_t>> claimedIn(rows);
+  parallelFor(rows, threads, [&](std::size_t row, int) {
+    std::uint32_t previous = conventions::kBackgroundId;
+    for (std::size_t pixel = row * std::size_t(frame.width); pixel < (row + 1) * std::size_t(frame.width); ++pixel) {
+      const std::uint32_t id = frame.ids[pixel];
+      if (id == previous || id == conventions::kBackgroundId) continue;
+      previous = id;
+      std::atomic_ref<std::uint32_t> slot(slotOf_[id - 1]);
+      if (slot.load(std::memory_order_relaxed) == 0 && slot.exchange(1, std::memory_order_relaxed) == 0)
+        claimedIn[row].push_back(id - 1);
+    }
+  });
+  std::vector<std::uint32_t> claimed;
+  for (const auto& row : claimedIn) claimed.insert(claimed.end(), row.begin(), row.end());
+  setUpClaimed(claimed, threads, stats);
+}
+
+template <class Real>
+void PixelShader<Real>::interpolateRun(const TriangleSetUp& setUp, int y, int firstX, int count, RunPoints& points) const {
+  // Step 1: barycentrics. The weights at the run's first pixel in double, then stepped
+  // along the row in Real: the step's rounding grows with the run's length only.
+  const dvec3 first = setUp.weightsAt0 + conventions::pixelCenter(firstX) * setUp.weightsPerX +
+                      conventions::pixelCenter(y) * setUp.weightsPerY;
+  const Vec start(first), step(setUp.weightsPerX);
+  Real* const b0 = points.b0;
+  Real* const b1 = points.b1;
+  Real* const b2 = points.b2;
+  for (int i = 0; i < count; ++i) {
+    const Real w0 = start.x + Real(i) * step.x, w1 = start.y + Real(i) * step.y, w2 = start.z + Real(i) * step.z;
+    const Real sum = w0 + w1 + w2;
+    // Seen edge-on the weights cancel: then any point of the triangle is as good as another.
+    const bool edgeOn = !(std::abs(sum) > Real(0x1p-60) * (std::abs(w0) + std::abs(w1) + std::abs(w2)));
+    const Real inverse = 1 / (edgeOn ? Real(1) : sum);
+    // A pixel center may sit a hair outside the triangle (it was covered after snapping
+    // to 1/256 pixel; the ray march's triangle may not cover it at all): clamp to the
+    // triangle. The clamped weights sum to at least 1.
+    const auto clamped = [&](Real w) { return edgeOn ? Real(1) : std::min(std::max(w * inverse, Real(0)), Real(1)); };
+    const Real c0 = clamped(w0), c1 = clamped(w1), c2 = clamped(w2);
+    const Real normalize = 1 / (c0 + c1 + c2);
+    b0[i] = c0 * normalize, b1[i] = c1 * normalize, b2[i] = c2 * normalize;
+  }
+  // Step 2: the normal, interpolated (Phong shading) or the face's (flat), turned
+  // toward the side the pixel's ray sees.
+  const Vec n0 = setUp.normal[0], n1 = setUp.normal[1], n2 = setUp.normal[2], face = setUp.face;
+  const Real facingStart = setUp.facingAt0 + Real(conventions::pixelCenter(firstX)) * setUp.facingPerX +
+                           Real(conventions::pixelCenter(y)) * setUp.facingPerY;
+  for (int i = 0; i < count; ++i) {
+    Real x = face.x, yy = face.y, z = face.z;
+    if (smooth_) {
+      const Real sx = b0[i] * n0.x + b1[i] * n1.x + b2[i] * n2.x, sy = b0[i] * n0.y + b1[i] * n1.y + b2[i] * n2.y,
+                 sz = b0[i] * n0.z + b1[i] * n1.z + b2[i] * n2.z;
+      const Real length = std::sqrt(sx * sx + sy * sy + sz * sz);
+      // Corner normals that cancel (a fold) leave no direction: the face's serves.
+      const bool none = !(length > 0);
+      const Real inverse = 1 / (none ? Real(1) : length);
+      x = none ? x : sx * inverse, yy = none ? yy : sy * inverse, z = none ? z : sz * inverse;
+    }
+    const Real side = facingStart + Real(i) * setUp.facingPerX < 0 ? Real(-1) : Real(1);
+    points.nx[i] = side * x, points.ny[i] = side * yy, points.nz[i] = side * z;
+  }
+}
+
+template <class Real>
+typename PixelShader<Real>::Vec PixelShader<Real>::RunPoints::position(const TriangleSetUp& setUp, int i) const {
+  return b0[i] * setUp.corner[0] + b1[i] * setUp.corner[1] + b2[i] * setUp.corner[2];
+}
+
+template <class Real>
+typename PixelShader<Real>::Vec PixelShader<Real>::toViewer(const Vec& position) const {
+  return camera_.perspective() ? -glm::normalize(position) : Vec(-camera_.forward());
+}
+
+template <class Real>
+void PixelShader<Real>::shadeRun(const TriangleSetUp& setUp, int y, int firstX, int count, Color* colors,
+                                 ShadingCounts& counts) const {
+  HSR_CHECK(count >= 1 && count <= kRun);
+  counts.invocations += count;
+  if (!lit_) {
+    std::fill_n(colors, count, setUp.color);
+    return;
+  }
+  RunPoints points;
+  interpolateRun(setUp, y, firstX, count, points);
   // Phong's model (1975) with Blinn's half-vector (1977): ambient, plus per light that
   // reaches the point Lambert's cosine law and a white highlight.
-  double diffuse = description.ambient, highlight = 0;
-  for (std::size_t i = 0; i < description.lights.size(); ++i) {
-    const Light& light = description.lights[i];
-    const dvec3 toLight = towardLight(light, point.position);
-    const double cosine = glm::dot(point.normal, toLight);
-    if (cosine <= 0) continue;  // the light is behind the surface: no shadow test needed
-    if (shadows_) {
-      ++counts.shadowLookups;
-      if (shadows_->shadowed(i, point.position, triangle)) {
-        ++counts.shadowedLookups;
-        continue;
-      }
+  Real diffuse[kRun], highlight[kRun];
+  std::fill_n(diffuse, count, ambient_);
+  std::fill_n(highlight, count, Real(0));
+  for (std::size_t light = 0; light < lights_.size(); ++light) {
+    const LightSource& source = lights_[light];
+    if (source.directional && !shadows_ && !specular_) {
+      // The common case, one loop without branches: the cosine law, nothing behind the surface.
+      const Vec toLight = source.towardLight;
+      for (int i = 0; i < count; ++i)
+        diffuse[i] += source.intensity * std::max(Real(0), points.nx[i] * toLight.x + points.ny[i] * toLight.y + points.nz[i] * toLight.z);
+      continue;
     }
-    diffuse += light.intensity * cosine;
-    if (specular) {
-      ++counts.specularTerms;
-      const dvec3 half = glm::normalize(toLight + point.toViewer);
-      highlight += light.intensity * material.reflectivity * std::pow(std::max(0.0, glm::dot(point.normal, half)), material.shininess);
+    for (int i = 0; i < count; ++i) {
+      const Vec normal(points.nx[i], points.ny[i], points.nz[i]), position = points.position(setUp, i);
+      const Vec toLight = source.directional ? source.towardLight : glm::normalize(source.position - position);
+      const Real cosine = glm::dot(normal, toLight);
+      if (cosine <= 0) continue;  // the light is behind the surface: no shadow test needed
+      if (shadows_) {
+        ++counts.shadowLookups;
+        if (shadows_->shadowed(light, camera_.camera().eye + dvec3(position), setUp.triangle)) {
+          ++counts.shadowedLookups;
+          continue;
+        }
+      }
+      diffuse[i] += source.intensity * cosine;
+      if (specular_) {
+        ++counts.specularTerms;
+        const Vec half = glm::normalize(toLight + toViewer(position));
+        highlight[i] += source.intensity * setUp.reflectivity * std::pow(std::max(Real(0), glm::dot(normal, half)), setUp.shininess);
+      }
     }
   }
-  return base * diffuse + dvec3(highlight);
+  for (int i = 0; i < count; ++i) colors[i] = setUp.color * diffuse[i] + Color(highlight[i]);
 }
 
-std::uint8_t channelByte(double value) { return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0, 1.0) * 255)); }
+template <class Real>
+typename PixelShader<Real>::Color PixelShader<Real>::shade(std::uint32_t triangle, int x, int y, ShadingCounts& counts) const {
+  Color color;
+  shadeRun(setUpOf(triangle), y, x, 1, &color, counts);
+  return color;
+}
 
-void shadeFrame(const PreparedScene& scene, Frame& frame, const PixelShader& shader,
-                int threads, Stats& stats) {
+template <class Real>
+SurfacePoint PixelShader<Real>::surfacePoint(std::uint32_t triangle, int x, int y) const {
+  RunPoints points;
+  const TriangleSetUp& setUp = setUpOf(triangle);
+  interpolateRun(setUp, y, x, 1, points);
+  const Vec normal(points.nx[0], points.ny[0], points.nz[0]), position = points.position(setUp, 0);
+  return {camera_.camera().eye + dvec3(position), dvec3(normal), dvec3(toViewer(position))};
+}
+
+template <class Real>
+void shadeFrame(const PreparedScene& scene, Frame& frame, PixelShader<Real>& shader, int threads, Stats& stats) {
   PhaseTimer timer(stats, "shading");
-  const vec3 background = scene.scene().background;
+  shader.setUpShownIn(frame, threads, stats);
+  std::uint8_t background[4] = {0, 0, 0, 255};
+  for (int c = 0; c < 3; ++c) background[c] = channelByte(scene.scene().background[c]);
   std::vector<ShadingCounts> counts(static_cast<std::size_t>(frame.height));
   parallelFor(static_cast<std::size_t>(frame.height), threads, [&](std::size_t row, int) {
+    const std::uint32_t* const ids = frame.ids.data() + row * std::size_t(frame.width);
+    std::uint8_t* const rgba = frame.color.data() + 4 * row * std::size_t(frame.width);
     ShadingCounts rowCounts;
-    for (int x = 0; x < frame.width; ++x) {
-      const std::size_t pixel = row * std::size_t(frame.width) + std::size_t(x);
-      std::uint8_t* rgba = &frame.color[4 * pixel];
-      rgba[3] = 255;
-      if (frame.ids[pixel] == conventions::kBackgroundId) {
-        for (int c = 0; c < 3; ++c) rgba[c] = channelByte(background[c]);
+    // Run by run of pixels showing one triangle, which share its set-up.
+    constexpr int kBatch = PixelShader<Real>::kRun;
+    typename PixelShader<Real>::Color colors[kBatch];
+    for (int runStart = 0, runEnd; runStart < frame.width; runStart = runEnd) {
+      const std::uint32_t id = ids[runStart];
+      for (runEnd = runStart + 1; runEnd < frame.width && ids[runEnd] == id;) ++runEnd;
+      if (id == conventions::kBackgroundId) {
+        for (int x = runStart; x < runEnd; ++x) std::copy(background, background + 4, rgba + 4 * x);
         continue;
       }
-      const dvec3 color = shader.shade(frame.ids[pixel] - 1, x, static_cast<int>(row), rowCounts);
-      for (int c = 0; c < 3; ++c) rgba[c] = channelByte(color[c]);
+      const auto& setUp = shader.setUpOf(id - 1);
+      for (int batchStart = runStart; batchStart < runEnd; batchStart += kBatch) {
+        const int count = std::min(kBatch, runEnd - batchStart);
+        shader.shadeRun(setUp, static_cast<int>(row), batchStart, count, colors, rowCounts);
+        for (int i = 0; i < count; ++i) {
+          std::uint8_t* const pixel = rgba + 4 * (batchStart + i);
+          for (int c = 0; c < 3; ++c) pixel[c] = channelByte(colors[i][c]);
+          pixel[3] = 255;
+        }
+      }
     }
     counts[row] = rowCounts;
   });
@@ -134,5 +305,10 @@ void shadeFrame(const PreparedScene& scene, Frame& frame, const PixelShader& sha
   for (const ShadingCounts& row : counts) total += row;
   total.addTo(stats);
 }
+
+template class PixelShader<float>;
+template class PixelShader<double>;
+template void shadeFrame(const PreparedScene&, Frame&, PixelShader<float>&, int, Stats&);
+template void shadeFrame(const PreparedScene&, Frame&, PixelShader<double>&, int, Stats&);
 
 }  // namespace hsr

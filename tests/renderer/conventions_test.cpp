@@ -170,34 +170,40 @@ TEST(Conventions, IdsCountObjectsThenInstancesThenTriangles) {
 namespace hsr {
 namespace {
 
-// Attributes are interpolated perspective-correctly: for any point on a slanted
-// triangle, the barycentrics recovered at the pixel it projects to are its own, not
-// the screen-space (affine) ones, which differ visibly under perspective.
+// Attributes are interpolated perspective-correctly: the surface point shading finds at a
+// pixel center lies on the ray through that center, not where screen-space (affine)
+// interpolation of the corners would put it, which differs visibly under perspective.
 TEST(Conventions, AttributesArePerspectiveCorrect) {
   Camera camera;
   camera.eye = {0, 0, 2};
   const Mesh slanted = test::triangleMesh({{-1, -1, 0}, {1, -1, -8}, {0, 1, -1}});
   const PreparedScene scene(test::sceneOf(camera, 256, 256, {slanted}));
   const CameraTransform transform(camera, 256, 256);
+  PixelShader<double> shader(scene, transform);
+  Stats stats;
+  const std::uint32_t only[] = {0};
+  shader.setUp(only, 1, stats);
+  dvec2 p[3];
+  for (int k = 0; k < 3; ++k) p[k] = transform.pixelFromClip(transform.clipFromWorld(slanted.positions[std::size_t(k)]));
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> unit(0, 1);
+  std::uniform_real_distribution<double> inner(0.15, 0.7);
   double largestAffineError = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    double u = unit(random), v = unit(random);
-    if (u + v > 1) u = 1 - u, v = 1 - v;
-    const dvec3 bary(1 - u - v, u, v);
-    const dvec3 point = bary.x * slanted.positions[0] + bary.y * slanted.positions[1] + bary.z * slanted.positions[2];
-    const dvec2 pixel = transform.pixelFromClip(transform.clipFromWorld(point));
-    const dvec3 recovered = barycentricAlongRay(scene, 0, transform.rayThroughPixel(pixel.x, pixel.y));
-    EXPECT_NEAR(glm::distance(recovered, bary), 0.0, 1e-9);
-    // The affine answer: barycentrics of the pixel within the projected triangle.
-    dvec2 p[3];
-    for (int k = 0; k < 3; ++k) p[k] = transform.pixelFromClip(transform.clipFromWorld(slanted.positions[std::size_t(k)]));
+    const double u = inner(random), v = inner(random);
+    if (u + v > 0.85) continue;  // well inside the triangle, so that the pixel's center is too
+    const dvec2 inside = (1 - u - v) * p[0] + u * p[1] + v * p[2];
+    const int x = int(inside.x), y = int(inside.y);
+    const dvec2 center(conventions::pixelCenter(x), conventions::pixelCenter(y));
+    const dvec3 surface = shader.surfacePoint(0, x, y).position;
+    EXPECT_NEAR(glm::distance(transform.pixelFromClip(transform.clipFromWorld(surface)), center), 0.0, 1e-9);
+    // The affine answer: the corners weighted by the center's barycentrics on screen.
     const double area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
-    const double affineU = ((pixel.x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (pixel.y - p[0].y)) / area;
-    largestAffineError = std::max(largestAffineError, std::abs(affineU - u));
+    const double affineU = ((center.x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (center.y - p[0].y)) / area;
+    const double affineV = ((p[1].x - p[0].x) * (center.y - p[0].y) - (center.x - p[0].x) * (p[1].y - p[0].y)) / area;
+    const dvec3 affine = (1 - affineU - affineV) * slanted.positions[0] + affineU * slanted.positions[1] + affineV * slanted.positions[2];
+    largestAffineError = std::max(largestAffineError, glm::distance(affine, surface));
   }
-  EXPECT_GT(largestAffineError, 0.1);  // the difference perspective correction makes here
+  EXPECT_GT(largestAffineError, 0.1);  // the difference perspective correction makes here, in world units
 }
 
 }  // namespace
