@@ -31,13 +31,19 @@ void ShadingCounts::addTo(Stats& stats) const {
 
 template <class Real>
 PixelShader<Real>::PixelShader(const PreparedScene& scene, const CameraTransform& camera, const ShadowTest* shadows)
-    : scene_(scene), camera_(camera), shadows_(scene.scene().effects.shadows ? shadows : nullptr) {
+    : scene_(scene), camera_(camera), shadows_(scene.scene().effects.shadows ? shadows : nullptr), slotOf_(scene.triangleCount(), 0) {
   const Scene& description = scene.scene();
   HSR_CHECK(!description.effects.shadows || shadows);
   smooth_ = description.effects.smoothNormals();
   lit_ = description.effects.lit();
   specular_ = description.effects.shading == Shading::phong;
   ambient_ = Real(description.ambient);
+  // The eye rays every set-up samples its planes at, the same for every triangle.
+  const double samples[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  for (int s = 0; s < 3; ++s) {
+    sampleRays_[s] = camera.rayThroughPixel(samples[s][0], samples[s][1]);
+    sampleRays_[s].origin -= camera.camera().eye;
+  }
   for (const Light& light : description.lights) {
     lights_.push_back({light.kind == Light::Kind::directional, Vec(-light.direction), Vec(light.position - camera.camera().eye),
                        Real(light.intensity)});
@@ -51,31 +57,28 @@ typename PixelShader<Real>::TriangleSetUp PixelShader<Real>::makeSetUp(std::uint
   const Triangle& t = scene_.triangles()[triangle];
   dvec3 corner[3];
   for (int k = 0; k < 3; ++k) corner[k] = scene_.positions()[t[std::size_t(k)]] - eye;
-  // Corner k's weight at a pixel is the eye ray's triple product with the edge opposite
-  // k, (d . ((V_k+1 - o) x (V_k+2 - o))): linear in the pixel coordinates under both
-  // projections, so three samples give its plane.
-  const auto weightsAt = [&](double px, double py) {
-    const Ray ray = camera_.rayThroughPixel(px, py);
-    const dvec3 origin = ray.origin - eye;
-    dvec3 weights;
-    for (int k = 0; k < 3; ++k)
-      weights[k] = glm::dot(ray.direction, glm::cross(corner[(k + 1) % 3] - origin, corner[(k + 2) % 3] - origin));
-    return weights;
-  };
-  TriangleSetUp setUp;
-  setUp.weightsAt0 = weightsAt(0, 0);
-  setUp.weightsPerX = weightsAt(1, 0) - setUp.weightsAt0;
-  setUp.weightsPerY = weightsAt(0, 1) - setUp.weightsAt0;
-  for (int k = 0; k < 3; ++k) setUp.corner[k] = Vec(corner[k]);
-
-  // Lit from both sides: a surface seen from behind shades as its front would. Which
-  // side a pixel's eye ray sees, the sign of face . -direction, is linear in the pixel
-  // coordinates too.
   const dvec3 face = scene_.faceNormal(triangle);
-  const auto facingAt = [&](double px, double py) { return -glm::dot(face, camera_.rayThroughPixel(px, py).direction); };
-  setUp.facingAt0 = Real(facingAt(0, 0));
-  setUp.facingPerX = Real(facingAt(1, 0) - facingAt(0, 0));
-  setUp.facingPerY = Real(facingAt(0, 1) - facingAt(0, 0));
+  // Corner k's weight at a pixel is the eye ray's triple product with the edge opposite
+  // k, (d . ((V_k+1 - o) x (V_k+2 - o))). Lit from both sides, a surface seen from behind
+  // shades as its front would: which side a pixel's eye ray sees is the sign of
+  // face . -d. Both are linear in the pixel coordinates under both projections, so their
+  // values on the three sample rays give their planes.
+  dvec3 weights[3];
+  double facing[3];
+  for (int s = 0; s < 3; ++s) {
+    const Ray& ray = sampleRays_[s];
+    for (int k = 0; k < 3; ++k)
+      weights[s][k] = glm::dot(ray.direction, glm::cross(corner[(k + 1) % 3] - ray.origin, corner[(k + 2) % 3] - ray.origin));
+    facing[s] = -glm::dot(face, ray.direction);
+  }
+  TriangleSetUp setUp;
+  setUp.weightsAt0 = weights[0];
+  setUp.weightsPerX = weights[1] - weights[0];
+  setUp.weightsPerY = weights[2] - weights[0];
+  setUp.facingAt0 = Real(facing[0]);
+  setUp.facingPerX = Real(facing[1] - facing[0]);
+  setUp.facingPerY = Real(facing[2] - facing[0]);
+  for (int k = 0; k < 3; ++k) setUp.corner[k] = Vec(corner[k]);
   setUp.face = Vec(face);
   if (around) {
     std::array<dvec3, 3> normals;
@@ -115,7 +118,6 @@ void PixelShader<Real>::setUpClaimed(const std::vector<std::uint32_t>& claimed, 
 
 template <class Real>
 void PixelShader<Real>::setUp(std::span<const std::uint32_t> triangles, int threads, Stats& stats) {
-  slotOf_.resize(scene_.triangleCount(), 0);
   std::vector<std::uint32_t> claimed;
   for (const std::uint32_t triangle : triangles)
     if (slotOf_[triangle] == 0) {
@@ -127,7 +129,6 @@ void PixelShader<Real>::setUp(std::span<const std::uint32_t> triangles, int thre
 
 template <class Real>
 void PixelShader<Real>::setUpShownIn(const Frame& frame, int threads, Stats& stats) {
-  slotOf_.resize(scene_.triangleCount(), 0);
   // Rows in parallel; each triangle claimed by whichever row meets it first. Which row
   // that is changes only where its set-up is stored, never what it holds.
   const auto rows = static_cast<std::size_t>(frame.height);

@@ -123,6 +123,7 @@ class PixelShader {
   const ShadowTest* shadows_;
   bool smooth_, lit_, specular_;
   Real ambient_;
+  Ray sampleRays_[3];  // through pixels (0, 0), (1, 0), (0, 1), origins relative to the eye
   std::vector<LightSource> lights_;
   std::vector<std::uint32_t> slotOf_;  // per triangle: 1 + its index in setUps_, 0 before it is set up
   std::vector<TriangleSetUp> setUps_;
