@@ -177,7 +177,8 @@ TEST(Conventions, AttributesArePerspectiveCorrect) {
   Camera camera;
   camera.eye = {0, 0, 2};
   const Mesh slanted = test::triangleMesh({{-1, -1, 0}, {1, -1, -8}, {0, 1, -1}});
-  const PreparedScene scene(test::sceneOf(camera, 256, 256, {slanted}));
+  const Scene description = test::sceneOf(camera, 256, 256, {slanted});  // a PreparedScene keeps a pointer to its Scene
+  const PreparedScene scene(description);
   const CameraTransform transform(camera, 256, 256);
   PixelShader<double> shader(scene, transform);
   Stats stats;
