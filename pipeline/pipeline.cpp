@@ -312,8 +312,11 @@ VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& con
 std::vector<PassTime> passTimes(const Stats& stats) {
   const std::vector<std::string> phases = stats.phaseNames();
   std::vector<PassTime> times;
-  for (const Pass& pass : passes())
-    if (std::find(phases.begin(), phases.end(), phaseOf(pass)) != phases.end()) times.push_back({pass.name, stats.seconds(phaseOf(pass))});
+  for (std::size_t p = 0; p < passes().size(); ++p) {
+    const Pass& pass = passes()[p];
+    if (std::find(phases.begin(), phases.end(), phaseOf(pass)) != phases.end())
+      times.push_back({pass.name, stats.seconds(phaseOf(pass)), p < kVisibilityPasses});
+  }
   return times;
 }
 

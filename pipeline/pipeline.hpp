@@ -68,6 +68,7 @@ VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& con
 struct PassTime {
   std::string pass;
   double seconds;
+  bool visibility;  // culling or visibility: the algorithm's own cost (renderVisibility's passes)
 };
 std::vector<PassTime> passTimes(const Stats& stats);
 

@@ -78,7 +78,7 @@ int compare(const CompareOptions& options) {
     referenceRow.error = surfaceError(truth.frame, truth);
     sceneRows.push_back(referenceRow);
     char line[128];
-    std::snprintf(line, sizeof line, "%.1f ms", referenceRow.time.median * 1e3);
+    std::snprintf(line, sizeof line, "visibility %.1f ms, total %.1f", referenceRow.visibility.median * 1e3, referenceRow.time.median * 1e3);
     section.images.push_back({prepared.width(), prepared.height(), truth.frame.color, {"reference (exact)", line}});
     section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(truth.frame, truth),
                                 {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
@@ -93,7 +93,7 @@ int compare(const CompareOptions& options) {
       const auto [row, frame, lineErrors] =
           measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
       sceneRows.push_back(row);
-      std::snprintf(line, sizeof line, "%.1f ms, %s error %.4f%%%s", row.time.median * 1e3, row.lines ? "line" : "pixel",
+      std::snprintf(line, sizeof line, "visibility %.1f ms, %s error %.4f%%%s", row.visibility.median * 1e3, row.lines ? "line" : "pixel",
                     row.errorValue() * 100, frame.partial.empty() ? "" : " (partial)");
       if (!frame.partial.empty())
         std::printf("  %s %s: the image is partial: %s\n", algorithm.name.c_str(), row.knobs.c_str(), frame.partial.c_str());
@@ -113,6 +113,7 @@ int compare(const CompareOptions& options) {
     sections.push_back(std::move(section));
   }
 
+  warnIfBusy(rows, options.repeat);
   const Image sheet = composeContactSheet(sections);
   const std::filesystem::path out = options.out;
   OutputFiles files;

@@ -231,29 +231,48 @@ std::string table(const SceneResult& scene, const StudyOptions& options) {
   return text;
 }
 
-// The published conclusions, each checked on the scenes that were run.
+// One mode's frame time over another's, frame by frame (the same pose of the same
+// scene, measured moments apart), as a median with its confidence interval: the poses
+// make frame times vary far more than noise does, their ratios much less.
+Interval pairedRatio(const SceneResult& scene, const std::string& mode, const std::string& over) {
+  const std::vector<double>& numerator = scene.modes[modeIndex(mode)].seconds;
+  const std::vector<double>& denominator = scene.modes[modeIndex(over)].seconds;
+  std::vector<double> ratios;
+  for (std::size_t f = 0; f < numerator.size(); ++f) ratios.push_back(numerator[f] / denominator[f]);
+  return medianWithConfidence(ratios);
+}
+
+// "0.62 [0.60-0.64]"
+std::string describe(const Interval& ratio) {
+  return formatted(ratio.median, "%.2f") + " [" + formatted(ratio.low, "%.2f") + "-" + formatted(ratio.high, "%.2f") + "]";
+}
+
+// The published conclusions, each checked on the scenes that were run. A claim that one
+// mode is faster holds when the confidence interval of the paired ratio lies on its
+// side of 1, and is within noise when the interval straddles 1.
 std::string conclusions(const std::vector<SceneResult>& scenes) {
-  std::string text = "\nconclusions:\n";
-  const auto verdict = [](bool held) { return held ? "held" : "did not hold"; };
+  std::string text = "\nconclusions (frame-time ratios: median of the frames [95% confidence interval]):\n";
   const auto find = [&](const std::string& name) -> const SceneResult* {
     for (const SceneResult& scene : scenes)
       if (scene.name == name) return &scene;
     return nullptr;
   };
   // 1. Backface culling always helps: with and without the z-buffer.
-  bool helps = true;
+  std::vector<Verdict> verdicts;
   std::string detail;
   for (const SceneResult& scene : scenes) {
-    const double without = scene.meanMs("backface") / scene.meanMs("none");
-    const double with = scene.meanMs("backface + z-buffer") / scene.meanMs("z-buffer");
-    helps = helps && without < 1 && with < 1;
-    detail += " " + scene.name + " " + formatted(without, "%.2f") + "/" + formatted(with, "%.2f");
+    const Interval without = pairedRatio(scene, "backface", "none");
+    const Interval with = pairedRatio(scene, "backface + z-buffer", "z-buffer");
+    verdicts.push_back(below(without, 1));
+    verdicts.push_back(below(with, 1));
+    detail += " " + scene.name + " " + describe(without) + " / " + describe(with) + ";";
   }
-  text += std::string("  backface culling always helps: ") + verdict(helps) +
+  detail.pop_back();
+  text += std::string("  backface culling always helps: ") + verdictText(allOf(verdicts)) +
           " (time with it / without, no depth test / z-buffer:" + detail + ")\n";
   // 2. Frustum culling costs more than it saves on the single cube, and saves most on dragons.
   const auto frustumRatio = [](const SceneResult& scene, const std::string& variant) {
-    return scene.meanMs("backface + z-buffer + frustum (" + variant + ")") / scene.meanMs("backface + z-buffer");
+    return pairedRatio(scene, "backface + z-buffer + frustum (" + variant + ")", "backface + z-buffer");
   };
   if (const SceneResult* cube = find("cube")) {
     // The cube never leaves the view, so a frustum test can only cost: held when it
@@ -266,35 +285,42 @@ std::string conclusions(const std::vector<SceneResult>& scenes) {
     };
     const auto [sphereNothing, sphereMicroseconds] = stage("sphere");
     const auto [triangleNothing, triangleMicroseconds] = stage("triangle");
-    text += std::string("  frustum culling costs more than it saves on the cube: ") + verdict(sphereNothing && triangleNothing) +
-            " (it removed " + (sphereNothing && triangleNothing ? "nothing" : "some triangles") + "; the frustum stage took " +
+    text += std::string("  frustum culling costs more than it saves on the cube: ") +
+            verdictText(sphereNothing && triangleNothing ? Verdict::held : Verdict::didNotHold) + " (it removed " +
+            (sphereNothing && triangleNothing ? "nothing" : "some triangles") + "; the frustum stage took " +
             formatted(sphereMicroseconds, "%.1f") + " us per frame with the sphere test, " + formatted(triangleMicroseconds, "%.1f") +
-            " us with the triangle test; frame time with / without frustum: sphere " +
-            formatted(frustumRatio(*cube, "sphere"), "%.2f") + ", triangle " + formatted(frustumRatio(*cube, "triangle"), "%.2f") + ")\n";
+            " us with the triangle test; frame time with / without frustum: sphere " + describe(frustumRatio(*cube, "sphere")) +
+            ", triangle " + describe(frustumRatio(*cube, "triangle")) + ")\n";
   }
-  if (scenes.size() > 1) {
-    const SceneResult* most = &scenes.front();
+  if (const SceneResult* dragons = find("dragons"); dragons && scenes.size() > 1) {
+    // Saves most: dragons' ratio below every other scene's, each pair judged on intervals.
+    const Interval most = frustumRatio(*dragons, "sphere");
+    verdicts.clear();
     detail.clear();
     for (const SceneResult& scene : scenes) {
-      const double saving = 1 - frustumRatio(scene, "sphere");
-      if (saving > 1 - frustumRatio(*most, "sphere")) most = &scene;
-      detail += " " + scene.name + " " + formatted(100 * saving, "%.0f%%");
+      const Interval ratio = frustumRatio(scene, "sphere");
+      if (&scene != dragons)
+        verdicts.push_back(most.high < ratio.low ? Verdict::held : most.low > ratio.high ? Verdict::didNotHold : Verdict::withinNoise);
+      detail += " " + scene.name + " " + describe(ratio) + ";";
     }
-    text += std::string("  frustum culling saves most on dragons: ") + verdict(most->name == "dragons") + " (saved by sphere:" +
-            detail + ")\n";
+    detail.pop_back();
+    text += std::string("  frustum culling saves most on dragons: ") + verdictText(allOf(verdicts)) +
+            " (time with the sphere test / without:" + detail + ")\n";
   }
   // 3. Per-object spheres beat per-triangle tests wherever there is more than one object.
-  bool sphereWins = true;
+  verdicts.clear();
   detail.clear();
   for (const SceneResult& scene : scenes) {
     if (scene.objects < 2) continue;
-    const double ratio = frustumRatio(scene, "sphere") / frustumRatio(scene, "triangle");
-    sphereWins = sphereWins && ratio < 1;
-    detail += " " + scene.name + " " + formatted(ratio, "%.2f");
+    const Interval ratio = pairedRatio(scene, "backface + z-buffer + frustum (sphere)", "backface + z-buffer + frustum (triangle)");
+    verdicts.push_back(below(ratio, 1));
+    detail += " " + scene.name + " " + describe(ratio) + ";";
   }
-  if (!detail.empty())
-    text += std::string("  per-object spheres beat per-triangle tests on scenes of several objects: ") + verdict(sphereWins) +
+  if (!detail.empty()) {
+    detail.pop_back();
+    text += std::string("  per-object spheres beat per-triangle tests on scenes of several objects: ") + verdictText(allOf(verdicts)) +
             " (sphere time / triangle time:" + detail + ")\n";
+  }
   return text;
 }
 
@@ -314,16 +340,14 @@ std::string plot(const std::vector<SceneResult>& scenes) {
     data += "\n";
   }
   data += "EOD\n";
-  std::string series;
-  for (std::size_t m = 0; m < modes().size(); ++m)
-    series += std::string(m ? ", \\\n     " : "plot ") + "$frames using " + std::to_string(2 + 3 * m) + ":" + std::to_string(3 + 3 * m) +
-              ":" + std::to_string(4 + 3 * m) + (m ? "" : ":xtic(1)") + " title '" + modes()[m].name + "'";
+  std::vector<std::string> titles;
+  for (const Mode& mode : modes()) titles.push_back(mode.name);
   return data +
          "set title 'Culling combinations: mean frame time over a full turn (bars: best and worst 5%)'\n"
          "set ylabel 'visibility pass per frame (ms)'\nset logscale y\nset grid ytics\n"
          "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
-         "set boxwidth 0.9\nset key below horizontal maxcols 2 font ',10'\nset xtics nomirror\n" +
-         series + "\n";
+         "set boxwidth 0.9\nset key below horizontal maxcols 2 font ',10'\nset xtics nomirror\nplot " +
+         histogramBars("$frames", titles, 3) + "\n";
 }
 
 }  // namespace

@@ -26,11 +26,6 @@ namespace {
 
 const char* const kShowcase = "effects.toml";
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
 // --------------------------------------------------------------------------------
 // effects
 
@@ -41,11 +36,12 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
   const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
   const std::vector<std::string> passes = {"visibility", "shadow maps", "shading", "transparency", "fog", "outline"};
 
-  std::printf("effects added in turn to %s, %dx%d, z-buffer, median of %d renders on %d thread(s), ms:\n  %-16s", kShowcase, width,
-              height, repeats, options.threads, "step");
-  for (const std::string& pass : passes) std::printf(" %12s", pass.c_str());
-  std::printf(" %10s %8s\n", "total", "x none");
+  std::printf("effects added in turn to %s, %dx%d, z-buffer, %d renders on %d thread(s), ms: median [fastest-slowest]:\n  %-16s",
+              kShowcase, width, height, repeats, options.threads, "step");
+  for (const std::string& pass : passes) std::printf(" %21s", pass.c_str());
+  std::printf(" %21s %8s\n", "total", "x none");
   std::vector<CsvRow> rows;
+  std::vector<std::pair<std::string, Timing>> measured;  // for the busy-machine warning
   std::string data = "$steps << EOD\n";
   SheetSection section;
   section.heading = std::string(kShowcase) + ", each effect added in turn (z-buffer; red: the pixels the step changed)";
@@ -57,34 +53,40 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
     std::vector<std::vector<double>> samples(passes.size());
     std::vector<double> totals;
     Frame frame;
-    for (int r = 0; r < repeats; ++r) {
+    for (int r = -1; r < repeats; ++r) {  // r = -1: a warm-up render, untimed (caches cold, normals' index built)
       Stats stats;
       const auto start = std::chrono::steady_clock::now();
       frame = pipeline::render(prepared, zbuffer, options.threads, stats).frame;
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      totals.push_back(seconds * 1e3);
+      if (r < 0) continue;
+      totals.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       const std::vector<pipeline::PassTime> times = pipeline::passTimes(stats);
       for (std::size_t p = 0; p < passes.size(); ++p) {
         const auto found = std::find_if(times.begin(), times.end(), [&](const pipeline::PassTime& t) { return t.pass == passes[p]; });
-        samples[p].push_back(found == times.end() ? 0.0 : found->seconds * 1e3);
+        samples[p].push_back(found == times.end() ? 0.0 : found->seconds);
       }
     }
-    const double total = median(totals);
-    if (rows.empty()) noneTotal = total;
+    const Timing total = summarize(totals);
+    measured.emplace_back(step.name, total);
+    if (rows.empty()) noneTotal = total.median;
     std::printf("  %-16s", step.name.c_str());
     CsvRow row = {{"step", step.name}};
     data += "\"" + step.name + "\"";
     for (std::size_t p = 0; p < passes.size(); ++p) {
-      const double ms = median(samples[p]);
-      std::printf(" %12.2f", ms);
-      row.emplace_back(passes[p] + "_ms", formatted(ms, "%.4f"));
+      const Timing pass = summarize(samples[p]);
+      std::printf(" %21s", formattedRange(pass, 1e3).c_str());
+      row.emplace_back(passes[p] + "_ms", formatted(pass.median * 1e3, "%.4f"));
+      row.emplace_back(passes[p] + "_min_ms", formatted(pass.min * 1e3, "%.4f"));
+      row.emplace_back(passes[p] + "_max_ms", formatted(pass.max * 1e3, "%.4f"));
       data += ' ';
-      data += formatted(ms, "%.4g");
+      data += formatted(pass.median * 1e3, "%.4g");
     }
-    std::printf(" %10.2f %8.2f\n", total, total / noneTotal);
-    row.emplace_back("total_ms", formatted(total, "%.4f"));
-    row.emplace_back("ratio_to_none", formatted(total / noneTotal, "%.3f"));
+    std::printf(" %21s %8.2f\n", formattedRange(total, 1e3).c_str(), total.median / noneTotal);
+    row.emplace_back("total_ms", formatted(total.median * 1e3, "%.4f"));
+    row.emplace_back("total_min_ms", formatted(total.min * 1e3, "%.4f"));
+    row.emplace_back("total_max_ms", formatted(total.max * 1e3, "%.4f"));
+    row.emplace_back("ratio_to_none", formatted(total.median / noneTotal, "%.3f"));
     rows.push_back(row);
+    data += timingColumns(total, 1e3);
     data += "\n";
 
     // The step's image, and where it differs from the step before.
@@ -96,7 +98,7 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
                                       differs ? std::uint8_t(30) : grey, 255};
       std::copy(marked, marked + 4, &changed[4 * pixel]);
     }
-    section.images.push_back({width, height, frame.color, {step.name, formatted(total, "%.1f") + " ms"}});
+    section.images.push_back({width, height, frame.color, {step.name, formatted(total.median * 1e3, "%.1f") + " ms"}});
     section.heatMaps.push_back({width, height, changed, {previous.empty() ? "the start" : "what it changed"}});
     previous = frame.color;
   }
@@ -105,10 +107,14 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
   files.addRgbaPng(folder / "effects_steps.png", sheet.width, sheet.height, sheet.pixels);
   files.commit();
   std::printf("wrote %s/effects_steps.png\n", folder.string().c_str());
-  data += "EOD\nset title 'Each effect added in turn: time per pass (z-buffer, median)'\nset ylabel 'ms'\n"
-          "set style data histogram\nset style histogram rowstacked\nset style fill solid 0.85 border -1\nset boxwidth 0.7\n"
-          "set grid ytics\nset xtics rotate by -25\nset key outside right font ',9'\nplot ";
+  data += "EOD\nset title 'Each effect added in turn: time per pass (z-buffer, median; bar: the total, fastest to slowest)'\n"
+          "set ylabel 'ms'\nset style data histogram\nset style histogram rowstacked\nset style fill solid 0.85 border -1\n"
+          "set boxwidth 0.7\nset grid ytics\nset xtics rotate by -25\nset key outside right font ',9'\nplot ";
   data += histogramBars("$steps", passes);
+  const std::string total = std::to_string(passes.size() + 2);
+  data += ", $steps using 0:" + total + ":" + std::to_string(passes.size() + 3) + ":" + std::to_string(passes.size() + 4) +
+          " with yerrorbars lc rgb 'black' pt 7 ps 0.6 title 'total'";
+  warnIfBusy(measured, "--frames " + std::to_string(std::max(9, 3 * repeats)));
   writeStudy(folder, "effects", csvOf(rows), data + "\n");
   return 0;
 }
@@ -137,7 +143,7 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
   std::printf("\n");
   std::vector<CsvRow> rows;
   std::string data = "$errors << EOD\n";
-  std::vector<double> passMs(resolutions.size(), 0);
+  std::vector<Timing> passTime(resolutions.size());  // seconds; the last bias's runs
   const InterruptibleRun interruptible;
   for (const double bias : biases) {
     if (InterruptibleRun::requested()) break;
@@ -147,12 +153,12 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
       if (InterruptibleRun::requested()) break;
       std::vector<double> times;
       std::optional<pipeline::ShadowMaps> maps;
-      for (int k = 0; k < repeats; ++k) {
+      for (int k = -1; k < repeats; ++k) {  // k = -1: a warm-up, untimed
         Stats mapStats;
         maps.emplace(prepared, ShadowSettings{resolutions[r], bias}, options.threads, mapStats);
-        times.push_back(mapStats.seconds("shadow maps") * 1e3);
+        if (k >= 0) times.push_back(mapStats.seconds("shadow maps"));
       }
-      passMs[r] = median(times);
+      passTime[r] = summarize(times);
       const ShadowError error = shadowError(prepared, frame, *maps, exact, options.threads);
       std::printf(" %7.3f=%4.2f+%4.2f", 100 * error.fraction, 100.0 * double(error.falselyShadowed) / double(error.lookups),
                   100.0 * double(error.falselyLit) / double(error.lookups));
@@ -162,7 +168,9 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
                       {"falsely_shadowed", std::to_string(error.falselyShadowed)},
                       {"falsely_lit", std::to_string(error.falselyLit)},
                       {"error_fraction", formatted(error.fraction, "%.6f")},
-                      {"shadow_pass_ms_median", formatted(passMs[r], "%.4f")}});
+                      {"shadow_pass_ms_median", formatted(passTime[r].median * 1e3, "%.4f")},
+                      {"shadow_pass_ms_min", formatted(passTime[r].min * 1e3, "%.4f")},
+                      {"shadow_pass_ms_max", formatted(passTime[r].max * 1e3, "%.4f")}});
       data += ' ';
       data += formatted(100 * error.fraction, "%.5g");
     }
@@ -171,10 +179,17 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
     std::fflush(stdout);  // a line per bias as it is measured, also through a pipe
   }
   std::printf("  %-8s", "pass ms");
-  for (const double ms : passMs) std::printf(" %16.2f", ms);
+  for (const Timing& time : passTime) std::printf(" %16s", formattedRange(time, 1e3).c_str());
   std::printf("\n");
+  std::vector<std::pair<std::string, Timing>> measured;
+  for (std::size_t r = 0; r < resolutions.size(); ++r) measured.emplace_back("the shadow pass at " + std::to_string(resolutions[r]), passTime[r]);
+  warnIfBusy(measured, "--frames " + std::to_string(std::max(9, 3 * repeats)));
   data += "EOD\n$times << EOD\n";
-  for (std::size_t r = 0; r < resolutions.size(); ++r) data += std::to_string(resolutions[r]) + " " + formatted(passMs[r], "%.4g") + "\n";
+  for (std::size_t r = 0; r < resolutions.size(); ++r) {
+    data += std::to_string(resolutions[r]);
+    data += timingColumns(passTime[r], 1e3);
+    data += "\n";
+  }
   data += "EOD\nset multiplot layout 1,2\nset title 'Shadow decisions off the exact rays'\nset ylabel '% of lookups'\n"
           "set xlabel 'bias (texels at the receiver)'\nset logscale y\nset grid\nset key top right title 'resolution' font ',9'\n"
           "set style data linespoints\nplot ";
@@ -183,7 +198,7 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
     data += "$errors using 1:" + std::to_string(r + 2) + " title '" + std::to_string(resolutions[r]) + "'";
   }
   data += "\nunset logscale y\nset logscale x 2\nset title 'Shadow pass time'\nset xlabel 'resolution (texels per side)'\n"
-          "set ylabel 'ms'\nset key off\nplot $times using 1:2 with linespoints\nunset multiplot\n";
+          "set ylabel 'ms (median, bar: fastest to slowest)'\nset key off\nplot $times using 1:2:3:4 with yerrorlines\nunset multiplot\n";
   return finishStudy(folder, "shadow_map", rows, biases.size() * resolutions.size(), data);
 }
 

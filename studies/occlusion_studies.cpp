@@ -32,7 +32,7 @@ namespace hsr::studies {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point start) { return 1e3 * std::chrono::duration<double>(Clock::now() - start).count(); }
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // The z-buffer (float32, full frame) after the culling stages of `cull`.
 pipeline::Configuration zbufferAfter(const std::string& cull) {
@@ -43,7 +43,7 @@ pipeline::Configuration zbufferAfter(const std::string& cull) {
 
 // One frame of one configuration: the pipeline's culling and visibility passes, timed apart.
 struct FrameResult {
-  double cullMs = 0, renderMs = 0;
+  double cullSeconds = 0, renderSeconds = 0;
   VisibleSet kept;
 };
 FrameResult renderFrame(const PreparedScene& scene, const pipeline::Configuration& configuration, const culling::PreviousFrame* previous,
@@ -51,7 +51,7 @@ FrameResult renderFrame(const PreparedScene& scene, const pipeline::Configuratio
   FrameResult result;
   Stats stats;
   result.kept = pipeline::renderVisibility(scene, configuration, threads, stats, visibility, previous);
-  for (const pipeline::PassTime& pass : pipeline::passTimes(stats)) (pass.pass == "culling" ? result.cullMs : result.renderMs) += pass.seconds * 1e3;
+  for (const pipeline::PassTime& pass : pipeline::passTimes(stats)) (pass.pass == "culling" ? result.cullSeconds : result.renderSeconds) += pass.seconds;
   return result;
 }
 
@@ -123,7 +123,7 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
       Result& result = results[m];
       const culling::PreviousFrame previous{result.lastCamera, &result.last};
       const FrameResult frame = renderFrame(scene, configurations[m], result.hasLast ? &previous : nullptr, options.threads, result.visibility);
-      result.ms.push_back(frame.cullMs + frame.renderMs);
+      result.ms.push_back(1e3 * (frame.cullSeconds + frame.renderSeconds));
       result.drawn += double(frame.kept.triangles.size());
       const std::int64_t wrong = objectsFalselyCulled(scene, truth, frame.kept);
       result.falselyCulled += wrong;
@@ -182,8 +182,9 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
   std::printf("hierarchical-Z resolution: walls with doors just behind them, %dx%d, %zu objects; each setting timed over %d "
               "runs, %d thread(s)\n\n  %-9s %-13s %-8s %12s %14s %14s\n",
               scene.width(), scene.height(), scene.instances().size(), repeats, options.threads, "map", "rule", "pyramid",
-              "culled", "doors lost", "culling ms");
+              "culled", "doors lost", "culling ms: median [min-max]");
   std::vector<CsvRow> rows;
+  std::vector<std::pair<std::string, Timing>> measured;  // for the busy-machine warning
   std::string data = "$sizes << EOD\n";
   const std::vector<std::string> sizes = {"64x64", "128x128", "256x128", "256x256", "512x256"};
   const InterruptibleRun interruptible;
@@ -196,26 +197,26 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
         if (InterruptibleRun::requested()) break;
         const culling::Pipeline pipeline = culling::parsePipeline("occlusion:map-width=" + width + ":map-height=" + height +
                                                                   ":raster=" + rule + ":pyramid=" + pyramid);
-        std::vector<double> ms;
+        std::vector<double> seconds;
         std::int64_t culled = 0;
         VisibleSet kept;
-        for (int r = 0; r < repeats; ++r) {
+        for (int r = -1; r < repeats; ++r) {  // r = -1: a warm-up, untimed
           Stats stats;
           const auto start = Clock::now();
           kept = culling::runPipeline(scene, pipeline, options.threads, stats);
-          ms.push_back(since(start));
+          if (r >= 0) seconds.push_back(since(start));
           culled = stats.counter("occlusion: occludees culled");
         }
-        std::sort(ms.begin(), ms.end());
-        const double median = ms[ms.size() / 2];
+        const Timing time = summarize(seconds);
+        measured.emplace_back(size + " " + rule + " pyramid " + pyramid, time);
         const std::int64_t lost = objectsFalselyCulled(scene, truth, kept);
-        std::printf("  %-9s %-13s %-8s %12lld %14lld %14.3f\n", size.c_str(), rule.c_str(), pyramid.c_str(),
-                    static_cast<long long>(culled), static_cast<long long>(lost), median);
+        std::printf("  %-9s %-13s %-8s %12lld %14lld %22s\n", size.c_str(), rule.c_str(), pyramid.c_str(),
+                    static_cast<long long>(culled), static_cast<long long>(lost), formattedRange(time, 1e3, "%.3f").c_str());
         std::fflush(stdout);
         rows.push_back({{"map", size}, {"rule", rule}, {"pyramid", pyramid}, {"objects_culled", std::to_string(culled)},
-                        {"visible_objects_culled", std::to_string(lost)}, {"culling_ms_median", formatted(median, "%.4f")}});
-        data += ' ';
-        data += formatted(median, "%.5g");
+                        {"visible_objects_culled", std::to_string(lost)}, {"culling_ms_median", formatted(time.median * 1e3, "%.4f")},
+                        {"culling_ms_min", formatted(time.min * 1e3, "%.4f")}, {"culling_ms_max", formatted(time.max * 1e3, "%.4f")}});
+        data += timingColumns(time, 1e3);
         data += ' ';
         data += std::to_string(lost);
       }
@@ -231,7 +232,8 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
       scene, view, settings, culling::occlusion::chooseOccluders(scene, camera, settings, VisibleSet::everything(scene)), stats);
   const culling::occlusion::Pyramid pyramid(map);
   std::mt19937_64 random(1);
-  std::printf("\n  %-10s %16s %16s\n", "queries", "flat ns/query", "pyramid ns/query");
+  constexpr int kQueryRuns = 5;
+  std::printf("\n  %-10s %22s %22s   (ns per query: median [min-max] of %d runs)\n", "queries", "flat", "pyramid", kQueryRuns);
   data += "EOD\n$queries << EOD\n";
   for (std::int64_t count = 10; count <= 1000000; count *= 10) {
     if (InterruptibleRun::requested()) break;
@@ -241,27 +243,43 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
       box.x1 = std::min(256, box.x0 + 1 + int(random() % 40)), box.y1 = std::min(128, box.y0 + 1 + int(random() % 40));
       box.nearest = std::uniform_real_distribution<float>(-0.2f, 0)(random);
     }
-    double perQuery[2];
+    Timing perQuery[2];  // seconds per query
     std::int64_t hidden[2] = {0, 0};
     for (int usePyramid = 0; usePyramid < 2; ++usePyramid) {
-      std::int64_t read = 0;
-      const auto start = Clock::now();
-      for (const auto& box : boxes) hidden[usePyramid] += usePyramid ? pyramid.hidden(box, read) : hiddenOnMap(map, box, read);
-      perQuery[usePyramid] = 1e6 * since(start) / double(count);
+      std::vector<double> seconds;
+      for (int run = -1; run < kQueryRuns; ++run) {  // run = -1: a warm-up, untimed
+        std::int64_t read = 0;
+        hidden[usePyramid] = 0;
+        const auto start = Clock::now();
+        for (const auto& box : boxes) hidden[usePyramid] += usePyramid ? pyramid.hidden(box, read) : hiddenOnMap(map, box, read);
+        if (run >= 0) seconds.push_back(since(start) / double(count));
+      }
+      perQuery[usePyramid] = summarize(seconds);
+      measured.emplace_back(std::to_string(count) + (usePyramid ? " pyramid" : " flat") + " queries", perQuery[usePyramid]);
     }
-    std::printf("  %-10lld %16.1f %16.1f   (hidden: %lld flat, %lld pyramid)\n", static_cast<long long>(count), perQuery[0],
-                perQuery[1], static_cast<long long>(hidden[0]), static_cast<long long>(hidden[1]));
+    std::printf("  %-10lld %22s %22s   (hidden: %lld flat, %lld pyramid)\n", static_cast<long long>(count),
+                formattedRange(perQuery[0], 1e9, "%.1f").c_str(), formattedRange(perQuery[1], 1e9, "%.1f").c_str(),
+                static_cast<long long>(hidden[0]), static_cast<long long>(hidden[1]));
     std::fflush(stdout);
+    // These rows time one query, in ns: "flat/pyramid".
+    const auto both = [&](double Timing::*field) {
+      return formatted(perQuery[0].*field * 1e9, "%.2f") + "/" + formatted(perQuery[1].*field * 1e9, "%.2f") + " ns";
+    };
     rows.push_back({{"map", "256x128"}, {"rule", "conservative"}, {"pyramid", "queries=" + std::to_string(count)},
-                    {"objects_culled", ""}, {"visible_objects_culled", ""},
-                    {"culling_ms_median", formatted(perQuery[0], "%.2f") + "/" + formatted(perQuery[1], "%.2f") + " ns"}});
-    data += std::to_string(count) + " " + formatted(perQuery[0], "%.4g") + " " + formatted(perQuery[1], "%.4g") + "\n";
+                    {"objects_culled", ""}, {"visible_objects_culled", ""}, {"culling_ms_median", both(&Timing::median)},
+                    {"culling_ms_min", both(&Timing::min)}, {"culling_ms_max", both(&Timing::max)}});
+    data += std::to_string(count);
+    for (const Timing& time : perQuery)
+      data += timingColumns(time, 1e9);
+    data += "\n";
   }
-  data += "EOD\nset multiplot layout 1,2\nset title 'Culling time by map size (median)'\nset ylabel 'ms'\nset style data linespoints\n"
-          "set grid\nset key top left font ',9'\nplot $sizes using 2:xtic(1) title 'conservative', '' using 4 title "
-          "'conservative + pyramid', '' using 6 title 'center', '' using 8 title 'center + pyramid'\n"
+  data += "EOD\nset multiplot layout 1,2\nset title 'Culling time by map size (median, bars: fastest to slowest)'\nset ylabel 'ms'\n"
+          "set style data yerrorlines\nset grid\nset key top left font ',9'\n"
+          "plot $sizes using 0:2:3:4:xtic(1) title 'conservative', '' using 0:6:7:8 title 'conservative + pyramid', "
+          "'' using 0:10:11:12 title 'center', '' using 0:14:15:16 title 'center + pyramid'\n"
           "set title 'Time per occludee query (256x128)'\nset logscale x\nset xlabel 'queries'\nset ylabel 'ns'\n"
-          "plot $queries using 1:2 title 'flat' with linespoints, '' using 1:3 title 'pyramid' with linespoints\nunset multiplot\n";
+          "plot $queries using 1:2:3:4 title 'flat', '' using 1:5:6:7 title 'pyramid'\nunset multiplot\n";
+  if (!InterruptibleRun::requested()) warnIfBusy(measured, "--frames " + std::to_string(std::max(90, 3 * repeats)));
   return finishStudy(folder, "hzb_resolution", rows, sizes.size() * 4 + 6, data);
 }
 
@@ -281,6 +299,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
       {"solid angle 20%", "frustum,occlusion:occluders=solid-angle:fraction=20%"}};
   const int repeats = options.frames > 0 ? options.frames : 20;
   std::vector<CsvRow> rows;
+  std::vector<std::pair<std::string, Timing>> measured;  // for the busy-machine warning
   std::string data = "$levels << EOD\n";
   const InterruptibleRun interruptible;
   for (const auto& [level, description] : levels) {
@@ -289,41 +308,46 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
     const PreparedScene& scene = *loaded.prepared;
     Stats referenceStats;
     const ReferenceImage truth = traceReference(scene, 0, referenceStats);
-    std::printf("\n%s (%s): %zu objects, %zu triangles, %dx%d, median of %d frames\n  %-18s %12s %12s %12s %12s %12s\n",
+    std::printf("\n%s (%s): %zu objects, %zu triangles, %dx%d, %d frames, ms: median [min-max]\n  %-18s %10s %20s %20s %20s %12s\n",
                 level.c_str(), description.c_str(), scene.instances().size(), scene.triangleCount(), scene.width(), scene.height(),
-                repeats, "occluders", "drawn", "culling ms", "render ms", "total ms", "lost objects");
+                repeats, "occluders", "drawn", "culling", "render", "total", "lost objects");
     data += level;
     Visibility visibility;
     for (const auto& [name, cull] : choices) {
       if (InterruptibleRun::requested()) break;
       const pipeline::Configuration configuration = zbufferAfter(cull);
-      std::vector<double> cullMs, renderMs;
+      std::vector<double> cullSeconds, renderSeconds, totalSeconds;
       FrameResult result;
-      for (int r = 0; r < repeats; ++r) {
+      for (int r = -1; r < repeats; ++r) {  // r = -1: a warm-up, untimed
         result = renderFrame(scene, configuration, nullptr, options.threads, visibility);
-        cullMs.push_back(result.cullMs), renderMs.push_back(result.renderMs);
+        if (r < 0) continue;
+        cullSeconds.push_back(result.cullSeconds), renderSeconds.push_back(result.renderSeconds);
+        totalSeconds.push_back(result.cullSeconds + result.renderSeconds);
       }
-      std::sort(cullMs.begin(), cullMs.end()), std::sort(renderMs.begin(), renderMs.end());
-      const double cullMedian = cullMs[cullMs.size() / 2], renderMedian = renderMs[renderMs.size() / 2];
+      const Timing culling = summarize(cullSeconds), render = summarize(renderSeconds), total = summarize(totalSeconds);
+      measured.emplace_back(level + ", " + name, total);
       const std::int64_t lost = objectsFalselyCulled(scene, truth, result.kept);
-      std::printf("  %-18s %12zu %12.3f %12.3f %12.3f %12lld\n", name.c_str(), result.kept.triangles.size(), cullMedian, renderMedian,
-                  cullMedian + renderMedian, static_cast<long long>(lost));
+      std::printf("  %-18s %10zu %20s %20s %20s %12lld\n", name.c_str(), result.kept.triangles.size(),
+                  formattedRange(culling, 1e3, "%.3f").c_str(), formattedRange(render, 1e3, "%.3f").c_str(),
+                  formattedRange(total, 1e3, "%.3f").c_str(), static_cast<long long>(lost));
       std::fflush(stdout);
       rows.push_back({{"level", level}, {"occluders", name}, {"culling", cull},
                       {"triangles_drawn", std::to_string(result.kept.triangles.size())},
-                      {"culling_ms_median", formatted(cullMedian, "%.4f")}, {"render_ms_median", formatted(renderMedian, "%.4f")},
-                      {"visible_objects_culled", std::to_string(lost)}});
-      data += ' ';
-      data += formatted(cullMedian + renderMedian, "%.5g");
+                      {"culling_ms_median", formatted(culling.median * 1e3, "%.4f")},
+                      {"render_ms_median", formatted(render.median * 1e3, "%.4f")},
+                      {"total_ms_median", formatted(total.median * 1e3, "%.4f")}, {"total_ms_min", formatted(total.min * 1e3, "%.4f")},
+                      {"total_ms_max", formatted(total.max * 1e3, "%.4f")}, {"visible_objects_culled", std::to_string(lost)}});
+      data += timingColumns(total, 1e3);
     }
     data += "\n";
   }
-  data += "EOD\nset title 'Occluder fraction: frame time (culling + depth pass, median)'\nset ylabel 'ms'\nset style data histogram\n"
-          "set style histogram clustered gap 1.5\nset style fill solid 0.85 border -1\nset boxwidth 0.9\nset grid ytics\n"
-          "set key below horizontal maxcols 4 font ',9'\nplot ";
+  data += "EOD\nset title 'Occluder fraction: frame time (culling + depth pass, median; bars: fastest to slowest)'\nset ylabel 'ms'\n"
+          "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\nset boxwidth 0.9\n"
+          "set grid ytics\nset key below horizontal maxcols 4 font ',9'\nplot ";
   std::vector<std::string> titles;
   for (const auto& choice : choices) titles.push_back(choice.first);
-  data += histogramBars("$levels", titles);
+  data += histogramBars("$levels", titles, 3);
+  if (!InterruptibleRun::requested()) warnIfBusy(measured, "--frames " + std::to_string(std::max(60, 3 * repeats)));
   return finishStudy(folder, "occluder_fraction", rows, levels.size() * choices.size(), data + "\n");
 }
 

@@ -84,11 +84,21 @@ int finishStudy(const std::filesystem::path& folder, const std::string& stem, co
   return kInterruptedExit;
 }
 
-std::string histogramBars(const std::string& block, const std::vector<std::string>& titles) {
+std::string timingColumns(const Timing& time, double scale) {
+  char text[96];
+  std::snprintf(text, sizeof text, " %.5g %.5g %.5g", time.median * scale, time.min * scale, time.max * scale);
+  return text;
+}
+
+std::string histogramBars(const std::string& block, const std::vector<std::string>& titles, std::size_t columnsPerBar) {
   std::string clause;
   for (std::size_t c = 0; c < titles.size(); ++c) {
     if (c > 0) clause += ", ";
-    clause += block + " using " + std::to_string(c + 2);
+    clause += block + " using ";
+    for (std::size_t k = 0; k < columnsPerBar; ++k) {
+      if (k > 0) clause += ':';
+      clause += std::to_string(2 + c * columnsPerBar + k);
+    }
     if (c == 0) clause += ":xtic(1)";
     clause += " title '" + titles[c] + "'";
   }

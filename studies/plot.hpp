@@ -15,9 +15,13 @@ namespace hsr::studies {
 // command. Adds stem.gp, stem.png and stem.svg in `folder` to `files`.
 void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std::string& stem, const std::string& body);
 // A histogram's plot clause over a named data block whose first column labels the
-// x axis and whose next columns are the bars, one title each:
+// x axis and whose next columns are the bars, one title each, `columnsPerBar` columns
+// a bar (3 for a histogram with error bars: the value, its low and its high):
 // "$block using 2:xtic(1) title 'a', $block using 3 title 'b'".
-std::string histogramBars(const std::string& block, const std::vector<std::string>& titles);
+std::string histogramBars(const std::string& block, const std::vector<std::string>& titles, std::size_t columnsPerBar = 1);
+// A timing's median, fastest and slowest as three columns of a plot's data block, each
+// multiplied by `scale` and led by a space: " 8.73 8.7 9.02" (a point and its error bar).
+std::string timingColumns(const Timing& time, double scale);
 // A study's results: FOLDER/STEM.csv and its plot (addPlot), written together.
 void writeStudy(const std::filesystem::path& folder, const std::string& stem, const std::string& csv, const std::string& plotBody);
 

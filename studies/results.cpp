@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "renderer/line_reference.hpp"
 #include "renderer/line_drawing.hpp"
@@ -24,6 +25,12 @@ std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow&
       {"triangles", std::to_string(row.triangles)},
       {"threads", std::to_string(row.threads)},
       {"repeats", std::to_string(row.repeats)},
+      {"visibility_median_ms", milliseconds(row.visibility.median)},
+      {"visibility_min_ms", milliseconds(row.visibility.min)},
+      {"visibility_max_ms", milliseconds(row.visibility.max)},
+      {"effects_median_ms", milliseconds(row.effects.median)},
+      {"effects_min_ms", milliseconds(row.effects.min)},
+      {"effects_max_ms", milliseconds(row.effects.max)},
       {"time_median_ms", milliseconds(row.time.median)},
       {"time_min_ms", milliseconds(row.time.min)},
       {"time_max_ms", milliseconds(row.time.max)},
@@ -59,11 +66,39 @@ std::string joinedCounters(const ResultRow& row, const char* between, const char
   return joined(row.counters, between, separator, [](std::int64_t value) { return std::to_string(value); });
 }
 
-std::string joinedPasses(const ResultRow& row, const char* between, const char* separator) {
-  return joined(row.passMs, between, separator, [](double ms) { return formatted(ms, "%.2f"); });
+// Each pass's median.
+std::string joinedPasses(const ResultRow& row, const char* between, const char* separator, const char* format) {
+  return joined(row.passes, between, separator, [&](const Timing& time) { return formatted(time.median * 1e3, format); });
 }
 
+
 }  // namespace
+
+std::string ResultRow::label() const {
+  return algorithm + (knobs == "defaults" ? "" : " " + knobs) + " on " + std::filesystem::path(scene).filename().string();
+}
+
+void splitTimes(ResultRow& row, const std::vector<Stats>& runs, const std::vector<double>& seconds) {
+  std::vector<double> own, after;
+  std::vector<std::pair<std::string, std::vector<double>>> passes;
+  for (std::size_t run = 0; run < runs.size(); ++run) {
+    const std::vector<pipeline::PassTime> times = pipeline::passTimes(runs[run]);
+    // The reference runs outside the pipeline: its ray casting is its visibility.
+    double visibility = times.empty() ? runs[run].seconds("reference") : 0;
+    for (const pipeline::PassTime& pass : times) {
+      if (pass.visibility) visibility += pass.seconds;
+      if (run == 0) passes.emplace_back(pass.pass, std::vector<double>());
+      const auto same = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.first == pass.pass; });
+      if (same != passes.end()) same->second.push_back(pass.seconds);
+    }
+    own.push_back(visibility);
+    after.push_back(std::max(0.0, seconds[run] - visibility));
+  }
+  row.visibility = summarize(own);
+  row.effects = summarize(after);
+  row.passes.clear();
+  for (const auto& [pass, times] : passes) row.passes.emplace_back(pass, summarize(times));
+}
 
 MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
                                            const pipeline::Configuration& configuration, int repeats, int threads) {
@@ -103,7 +138,7 @@ std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std
     for (const auto& [name, value] : measuredFields(row)) fields.push_back(value);
     if (!sweptKnobs.empty()) fields.push_back(row.pareto ? "1" : "0");
     fields.push_back(joinedCounters(row, "=", ";"));
-    fields.push_back(joinedPasses(row, "=", ";"));
+    fields.push_back(joinedPasses(row, "=", ";", "%.4f"));
     csv += line(fields);
   }
   return csv;
@@ -131,9 +166,9 @@ std::string resultsJson(const std::vector<ResultRow>& rows) {
       json += jsonString(row.counters[k].first) + ": " + std::to_string(row.counters[k].second);
     }
     json += "}, \"pass_ms\": {";
-    for (std::size_t k = 0; k < row.passMs.size(); ++k) {
+    for (std::size_t k = 0; k < row.passes.size(); ++k) {
       if (k) json += ", ";
-      json += jsonString(row.passMs[k].first) + ": " + formatted(row.passMs[k].second, "%.4f");
+      json += jsonString(row.passes[k].first) + ": " + formatted(row.passes[k].second.median * 1e3, "%.4f");
     }
     json += "}}";
   }
@@ -144,16 +179,17 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
   std::vector<std::vector<std::string>> cells;
   std::vector<std::string> heading = {"algorithm", "knobs"};
   heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
-  for (const char* name : {"time ms: median [min-max]", "error", "wrong px", "depth error mean / max", "peak MB", "counters",
-                           "time per pass ms"})
+  for (const char* name : {"visibility ms: median [min-max]", "+ shading, effects ms", "= total ms", "error", "wrong px",
+                           "depth error mean / max", "peak MB", "counters", "median ms per pass"})
     heading.push_back(name);
   cells.push_back(heading);
   for (const ResultRow& row : rows) {
     std::vector<std::string> line = {row.algorithm + (row.pareto ? " *" : ""), row.knobs};
     for (const auto& [knob, value] : row.swept) line.push_back(value);
+    line.push_back(formattedRange(row.visibility, 1e3));
+    line.push_back(formattedRange(row.effects, 1e3));
+    line.push_back(formattedRange(row.time, 1e3));
     char text[160];
-    std::snprintf(text, sizeof text, "%.2f [%.2f-%.2f]", row.time.median * 1e3, row.time.min * 1e3, row.time.max * 1e3);
-    line.push_back(text);
     if (row.lines) {
       std::snprintf(text, sizeof text, "%.4f%% of lines", row.lineError.error * 100);
       line.push_back(text);
@@ -170,7 +206,7 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
     std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
     line.push_back(text);
     line.push_back(joinedCounters(row, " ", ", "));
-    line.push_back(joinedPasses(row, " ", ", "));
+    line.push_back(joinedPasses(row, " ", ", ", "%.2f"));
     cells.push_back(line);
   }
   std::vector<std::size_t> widths(heading.size(), 0);
@@ -189,16 +225,33 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
 void markParetoFront(std::vector<ResultRow>& rows) {
   for (ResultRow& row : rows) {
     row.pareto = std::none_of(rows.begin(), rows.end(), [&](const ResultRow& other) {
-      const bool noWorse = other.time.median <= row.time.median && other.errorValue() <= row.errorValue();
-      const bool better = other.time.median < row.time.median || other.errorValue() < row.errorValue();
+      const Order time = compareTimings(other.visibility, row.visibility);
+      const bool noWorse = time != Order::slower && other.errorValue() <= row.errorValue();
+      const bool better = time == Order::faster || other.errorValue() < row.errorValue();
       return noWorse && better;
     });
   }
 }
 
+void warnIfBusy(const std::vector<ResultRow>& rows, int repeats) {
+  std::vector<std::pair<std::string, Timing>> timings;
+  for (const ResultRow& row : rows) {
+    timings.emplace_back(row.label() + " (visibility)", row.visibility);
+    timings.emplace_back(row.label() + " (total)", row.time);
+  }
+  warnIfBusy(timings, "--repeat " + std::to_string(std::max(9, 3 * repeats)));
+}
+
 std::string formatted(double value, const char* format) {
   char text[48];
   std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+std::string formattedRange(const Timing& time, double scale, const char* format) {
+  const std::string pattern = std::string(format) + " [" + format + "-" + format + "]";
+  char text[128];
+  std::snprintf(text, sizeof text, pattern.c_str(), time.median * scale, time.min * scale, time.max * scale);
   return text;
 }
 

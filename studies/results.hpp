@@ -22,7 +22,11 @@ struct ResultRow {
   int width = 0, height = 0;
   std::int64_t triangles = 0;
   int repeats = 0, threads = 0;
-  Timing time;
+  // Seconds, over the timed runs. The algorithm's own cost leads: its visibility passes
+  // (culling and visibility; for the reference, its ray casting), then what follows it,
+  // the same code for every algorithm (shadow maps, shading, transparency, fog, outline,
+  // a line drawing rasterized), then the whole render.
+  Timing visibility, effects, time;
   std::int64_t peakBytes = 0;
   SurfaceError error;    // surface algorithms
   bool lines = false;    // a line algorithm: lineError holds its error, `error` is unused
@@ -30,10 +34,16 @@ struct ResultRow {
   // The error hsr sweep plots and ranks by: pixel error, or line error for a line algorithm.
   double errorValue() const { return lines ? lineError.error : error.pixelError; }
   std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
-  // The time of each pass of the pipeline in the last timed run (pipeline::passTimes), in ms.
-  std::vector<std::pair<std::string, double>> passMs;
-  bool pareto = false;  // hsr sweep: on the front of (time, pixel error)
+  // Each pass of the pipeline that ran (pipeline::passTimes), over the timed runs.
+  std::vector<std::pair<std::string, Timing>> passes;
+  bool pareto = false;  // hsr sweep: on the front of (visibility time, error)
+  // How the row is named in a warning: "zbuffer variant=scanline on counters.toml".
+  std::string label() const;
 };
+
+// Fills the row's visibility, effects and per-pass timings from each timed run's
+// phase times and wall time.
+void splitTimes(ResultRow& row, const std::vector<Stats>& runs, const std::vector<double>& seconds);
 
 // A row for a measured run: what ran, its timing and memory, and the algorithm's key
 // counters from the last run (the error is left for the caller to fill in).
@@ -50,10 +60,9 @@ ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, c
   row.repeats = measured.repeats;
   row.threads = threads;
   row.time = measured.time;
+  splitTimes(row, measured.runs, measured.seconds);
   row.peakBytes = measured.peakBytes;
-  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.stats.counter(counter));
-  for (const pipeline::PassTime& pass : pipeline::passTimes(measured.stats))
-    row.passMs.emplace_back(pass.pass, pass.seconds * 1e3);
+  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.lastStats().counter(counter));
   return row;
 }
 
@@ -86,8 +95,15 @@ std::string csvOf(const std::vector<CsvRow>& rows);
 // A number in a printf format ("%.4g" unless told).
 std::string formatted(double value, const char* format = "%.4g");
 std::string jsonString(const std::string& text);
+// "8.73 [8.70-9.02]": a timing's median and range, each multiplied by `scale` (1e3: seconds to ms).
+std::string formattedRange(const Timing& time, double scale = 1, const char* format = "%.2f");
 
-// Marks the rows no other row beats in both time (median) and error (errorValue).
+// Marks the rows no other row beats: a row is beaten by one at least as accurate
+// (errorValue) whose visibility time is faster or within noise (compareTimings), and
+// which is more accurate or surely faster. Within noise, time does not decide.
 void markParetoFront(std::vector<ResultRow>& rows);
+
+// The busy-machine warning (warnIfBusy) over the rows' visibility and whole-render timings.
+void warnIfBusy(const std::vector<ResultRow>& rows, int repeats);
 
 }  // namespace hsr::studies

@@ -167,7 +167,8 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     ResultRow row = measureConfiguration(scene.name, *scene.prepared, references[size], configuration, options.repeat,
                                          options.threads).row;
     row.swept = swept;
-    std::printf("  %zu/%zu %s: %.3f ms\n", rows.size() + 1, plan.size(), label.c_str(), row.time.median * 1e3);
+    std::printf("  %zu/%zu %s: visibility %.3f ms [%.3f-%.3f]\n", rows.size() + 1, plan.size(), label.c_str(),
+                row.visibility.median * 1e3, row.visibility.min * 1e3, row.visibility.max * 1e3);
     std::fflush(stdout);
     rows.push_back(std::move(row));
   }
@@ -177,9 +178,11 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     if (rows.empty()) return kInterruptedExit;
   }
   markParetoFront(rows);
+  warnIfBusy(rows, options.repeat);
   const bool lines = algorithm.kind == AlgorithmKind::line;
   const std::string errorName = lines ? "line error" : "pixel error";
-  std::printf("%s on %s (* = on the Pareto front of time and %s)\n%s", algorithm.name.c_str(), options.scene.c_str(),
+  std::printf("%s on %s (* = on the Pareto front of visibility time and %s; times within each other's range tie)\n%s",
+              algorithm.name.c_str(), options.scene.c_str(),
               errorName.c_str(), resultsTable(rows, sweptKnobs).c_str());
 
   // The error on a log axis, where a tenfold gain in accuracy reads as one step; an
@@ -203,28 +206,30 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     }
     if (row.errorValue() == 0) label += " (error 0)";
     char line[256];
-    // Labels alternate above and below their points, so neighbours do not overprint.
-    std::snprintf(line, sizeof line, "%.6g %.6g %s %d", row.time.median * 1e3, plotted(row), quotedLabel(label).c_str(),
-                  i % 2 ? -1 : 1);
+    // Labels alternate above and below their points, so neighbours do not overprint;
+    // the time's range is the point's horizontal bar.
+    std::snprintf(line, sizeof line, "%.6g %.6g %s %d %.6g %.6g", row.visibility.median * 1e3, plotted(row), quotedLabel(label).c_str(),
+                  i % 2 ? -1 : 1, row.visibility.min * 1e3, row.visibility.max * 1e3);
     points.push_back(line);
     if (row.pareto) frontRows.push_back(&row);
   }
-  std::sort(frontRows.begin(), frontRows.end(), [](const ResultRow* a, const ResultRow* b) { return a->time.median < b->time.median; });
+  std::sort(frontRows.begin(), frontRows.end(),
+            [](const ResultRow* a, const ResultRow* b) { return a->visibility.median < b->visibility.median; });
   for (const ResultRow* row : frontRows) {
     char line[128];
-    std::snprintf(line, sizeof line, "%.6g %.6g", row->time.median * 1e3, plotted(*row));
+    std::snprintf(line, sizeof line, "%.6g %.6g", row->visibility.median * 1e3, plotted(*row));
     front.push_back(line);
   }
   const std::string sceneFile = std::filesystem::path(options.scene).filename().string();
   const std::string body =
       dataBlock("points", points) + dataBlock("front", front) + "set title " +
-      quotedLabel(algorithm.name + " on " + sceneFile + ": " + errorName + " against time") +
-      "\nset xlabel 'time per frame, median of " + std::to_string(options.repeat) + " runs (ms)'\nset ylabel '" +
+      quotedLabel(algorithm.name + " on " + sceneFile + ": " + errorName + " against visibility time") +
+      "\nset xlabel 'visibility time per frame, median and range of " + std::to_string(options.repeat) + " runs (ms)'\nset ylabel '" +
       (lines ? "line error (% of the visible length, log scale)" : "pixel error (% of non-ambiguous pixels, log scale)") +
       "'\nset logscale y\nset format y '%g'\nset grid\n"
       "set offsets graph 0.1, graph 0.35, graph 0.3, graph 0.3\nset key top right\n"
       "plot $front using 1:2 with linespoints lw 2 pt 6 ps 2 lc rgb '#d95f02' title 'Pareto front', \\\n"
-      "     $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'configurations', \\\n"
+      "     $points using 1:2:5:6 with xerrorbars pt 7 ps 1.3 lc rgb '#1b9e77' title 'configurations', \\\n"
       "     $points using 1:($2 * (1 + 0.25 * $4)):3 with labels left offset char 1,0 font ',9' notitle";
   writeResults(options.out, "sweep", rows, sweptKnobs, body);
   return InterruptibleRun::requested() ? kInterruptedExit : 0;
@@ -319,9 +324,9 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     ResultRow row = measureConfiguration(scene.name, *prepared, truth, configuration, options.repeat, options.threads).row;
     row.swept = {{options.scale, value}};
     sizes.push_back(options.scale == "pixels" ? double(step) * step : double(prepared->triangleCount()));
-    times.push_back(row.time.median);
-    std::printf("  %zu/%zu %s %s: %.3f ms\n", rows.size() + 1, steps.size(), options.scale.c_str(), value.c_str(),
-                row.time.median * 1e3);
+    times.push_back(row.visibility.median);
+    std::printf("  %zu/%zu %s %s: visibility %.3f ms [%.3f-%.3f]\n", rows.size() + 1, steps.size(), options.scale.c_str(), value.c_str(),
+                row.visibility.median * 1e3, row.visibility.min * 1e3, row.visibility.max * 1e3);
     std::fflush(stdout);
     rows.push_back(std::move(row));
   }
@@ -332,26 +337,28 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     if (rows.size() < 2) return kInterruptedExit;
   }
   if (rows.size() < 2) throw InputError(options.scene + ": " + algorithm.name + " renders only one size; no exponent to fit");
+  warnIfBusy(rows, options.repeat);
   const auto [exponent, intercept] = powerFit(sizes, times);
-  std::printf("%s on %s, growing %s\n%s  fit: time ~ %s^%.3f\n", algorithm.name.c_str(), options.scene.c_str(),
+  std::printf("%s on %s, growing %s\n%s  fit: visibility time ~ %s^%.3f\n", algorithm.name.c_str(), options.scene.c_str(),
               options.scale.c_str(), resultsTable(rows, {options.scale}).c_str(), options.scale.c_str(), exponent);
 
   std::vector<std::string> points;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     char line[128];
-    std::snprintf(line, sizeof line, "%.6g %.6g", sizes[i], times[i] * 1e3);
+    std::snprintf(line, sizeof line, "%.6g %.6g %.6g %.6g", sizes[i], times[i] * 1e3, rows[i].visibility.min * 1e3,
+                  rows[i].visibility.max * 1e3);
     points.push_back(line);
   }
   char fit[256];
   std::snprintf(fit, sizeof fit, "fit(x) = exp(%.9g) * x**%.9g * 1000\n", intercept, exponent);
   char key[96];
-  std::snprintf(key, sizeof key, "fit: time ~ %s^%.2f", options.scale.c_str(), exponent);
+  std::snprintf(key, sizeof key, "fit: visibility time ~ %s^%.2f", options.scale.c_str(), exponent);
   const std::string sceneFile = std::filesystem::path(options.scene).filename().string();
   const std::string body = dataBlock("points", points) + fit + "set title " +
-                           quotedLabel(algorithm.name + " on " + sceneFile + ": time against " + options.scale) +
-                           "\nset logscale xy\nset xlabel '" + options.scale + "'\nset ylabel 'time per frame, median (ms)'\n"
+                           quotedLabel(algorithm.name + " on " + sceneFile + ": visibility time against " + options.scale) +
+                           "\nset logscale xy\nset xlabel '" + options.scale + "'\nset ylabel 'visibility time per frame, median and range (ms)'\n"
                            "set grid\nset key top left\n"
-                           "plot $points using 1:2 with points pt 7 ps 1.3 lc rgb '#1b9e77' title 'measured', \\\n"
+                           "plot $points using 1:2:3:4 with yerrorbars pt 7 ps 1.3 lc rgb '#1b9e77' title 'measured', \\\n"
                            "     fit(x) with lines lw 2 lc rgb '#d95f02' title " + quotedLabel(key);
   writeResults(options.out, "scale_" + options.scale, rows, {options.scale}, body);
   return InterruptibleRun::requested() ? kInterruptedExit : 0;

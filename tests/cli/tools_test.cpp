@@ -65,14 +65,20 @@ double number(const Row& row, const std::string& column) {
 
 // The measured columns, in order, as README.md ("hsr compare") documents them.
 const std::vector<std::string> kMeasuredColumns = {
-    "width", "height", "triangles", "threads", "repeats", "time_median_ms", "time_min_ms", "time_max_ms",
+    "width", "height", "triangles", "threads", "repeats", "visibility_median_ms", "visibility_min_ms", "visibility_max_ms",
+    "effects_median_ms", "effects_min_ms", "effects_max_ms", "time_median_ms", "time_min_ms", "time_max_ms",
     "pixel_error", "wrong_pixels", "compared_pixels", "ambiguous_pixels", "depth_error_mean", "depth_error_max",
     "line_error", "visible_length_px", "wrongly_drawn_px", "wrongly_hidden_px", "peak_memory_bytes"};
 
 void expectConsistentMeasurements(const Row& row) {
-  EXPECT_LE(number(row, "time_min_ms"), number(row, "time_median_ms"));
-  EXPECT_LE(number(row, "time_median_ms"), number(row, "time_max_ms"));
-  EXPECT_GT(number(row, "time_min_ms"), 0);
+  for (const std::string timing : {"visibility", "effects", "time"}) {
+    EXPECT_LE(number(row, timing + "_min_ms"), number(row, timing + "_median_ms")) << timing;
+    EXPECT_LE(number(row, timing + "_median_ms"), number(row, timing + "_max_ms")) << timing;
+  }
+  EXPECT_GT(number(row, "visibility_min_ms"), 0);
+  // Each run's visibility is part of that run's time, so each order statistic is too.
+  for (const std::string statistic : {"_min_ms", "_median_ms", "_max_ms"})
+    EXPECT_LE(number(row, "visibility" + statistic), number(row, "time" + statistic)) << statistic;
   EXPECT_GT(number(row, "peak_memory_bytes"), 0);
   if (!row.at("line_error").empty()) {  // a line algorithm: line error only
     EXPECT_EQ(row.at("pixel_error"), "");
@@ -101,6 +107,11 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
                                                       kScenes + "hard/coplanar.toml --size 96x72 --repeat 2 --out " + folder.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_NE(result.output.find("reference: 0 ambiguous pixels"), std::string::npos) << result.output;
+  // The table leads with the algorithm's own time, the shared passes beside it.
+  const std::size_t visibility = result.output.find("visibility ms: median [min-max]");
+  ASSERT_NE(visibility, std::string::npos) << result.output;
+  EXPECT_LT(visibility, result.output.find("+ shading, effects ms", visibility)) << result.output;
+  EXPECT_LT(result.output.find("+ shading, effects ms", visibility), result.output.find("= total ms", visibility)) << result.output;
 
   std::vector<std::string> header;
   const std::vector<Row> rows = readCsv(folder / "results.csv", header);
@@ -163,6 +174,10 @@ TEST(Study, CullingCombosWritesItsTableAndCountsTheWorkEachModeSaves) {
                        "--size 320x180 --out " + folder.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_NE(result.output.find("per-object spheres beat per-triangle tests"), std::string::npos) << result.output;
+  // Each claim gets one of three verdicts, with the ratios' intervals it was decided on.
+  const std::regex claim(R"(: (held|did not hold|within noise) \(.*\[[0-9.]+-[0-9.]+\])");
+  const std::ptrdiff_t verdicts = std::distance(std::sregex_iterator(result.output.begin(), result.output.end(), claim), std::sregex_iterator());
+  EXPECT_EQ(verdicts, 3) << "backface, frustum on the cube, spheres against triangles\n" << result.output;
   std::vector<std::string> header;
   const std::vector<Row> rows = readCsv(folder / "culling_combos.csv", header);
   ASSERT_EQ(rows.size(), 16u);  // two scenes, eight modes
@@ -413,10 +428,10 @@ TEST(Sweep, TriangleScalingFitsAnExponent) {
   // over the CSV's rows (checked against the rows, not against a time bound: the
   // machine is shared, and speed belongs in bench/).
   std::smatch fit;
-  ASSERT_TRUE(std::regex_search(result.output, fit, std::regex(R"(fit: time ~ triangles\^(-?[0-9.]+))"))) << result.output;
+  ASSERT_TRUE(std::regex_search(result.output, fit, std::regex(R"(fit: visibility time ~ triangles\^(-?[0-9.]+))"))) << result.output;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const Row& row : rows) {
-    const double x = std::log(number(row, "triangles")), y = std::log(number(row, "time_median_ms"));
+    const double x = std::log(number(row, "triangles")), y = std::log(number(row, "visibility_median_ms"));
     sx += x, sy += y, sxx += x * x, sxy += x * y;
   }
   const double n = double(rows.size());
