@@ -67,8 +67,8 @@ bool warnIfBusy(const std::vector<std::pair<std::string, Timing>>& timings, cons
   std::fflush(stdout);  // after what was printed before it, also through a pipe
   std::fprintf(stderr,
                "hsr: warning: %d of %zu timings spread wider than %.1fx between their fastest and slowest run (widest: %s, "
-               "%.2fx): the machine was busy while measuring, so orders within that spread are noise; measure again on a "
-               "quiet machine or with more runs (%s)\n",
+               "%.2fx): something else took the machine's time while measuring (another program, or the machine was "
+               "busy), so orders within that spread are noise; measure again on a quiet machine or with more runs (%s)\n",
                wide, timings.size(), kBusySpread, widest->first.c_str(), widest->second.spread(), moreRuns.c_str());
   return true;
 }

@@ -59,9 +59,9 @@ Verdict allOf(const std::vector<Verdict>& verdicts);
 // When some timings (in seconds) spread wider than kBusySpread, one line on stderr: how
 // many, the widest (named), that the machine was busy, and how to measure again
 // (`moreRuns`, an option with a larger value, such as "--repeat 9"). Runs less than
-// kNoiseFloor apart are not counted: under a tenth of a millisecond, a timer tick or a
-// cold cache line is the whole difference, not a busy machine. Returns whether it warned.
-constexpr double kNoiseFloor = 1e-4;
+// kNoiseFloor apart are not counted: under half a millisecond, waking the worker threads
+// or a timer tick can be the whole difference on a quiet machine. Returns whether it warned.
+constexpr double kNoiseFloor = 5e-4;
 bool warnIfBusy(const std::vector<std::pair<std::string, Timing>>& timings, const std::string& moreRuns);
 
 template <typename Result>

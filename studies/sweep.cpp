@@ -22,6 +22,7 @@ namespace hsr::studies {
 namespace {
 
 constexpr const char* kSizeKnob = "size";  // not an algorithm's knob: the image resolution
+constexpr std::size_t kLabelledPoints = 12;  // a sweep plot names every point up to this many
 
 struct Axis {
   std::string name;
@@ -205,6 +206,9 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       label += name == "variant" || row.swept.size() == 1 ? value : name + "=" + value;
     }
     if (row.errorValue() == 0) label += " (error 0)";
+    // Past a dozen points their labels overprint: then only the front is named (the CSV
+    // and the table name every row).
+    if (rows.size() > kLabelledPoints && !row.pareto) label.clear();
     char line[256];
     // Labels alternate above and below their points, so neighbours do not overprint;
     // the time's range is the point's horizontal bar.

@@ -112,7 +112,7 @@ TEST(Timing, ARendersTimeSplitsIntoTheAlgorithmsOwnPassesAndTheSharedOnes) {
 TEST(Timing, WarnsOfABusyMachineOnlyForAWideSpreadAboveTheNoiseFloor) {
   EXPECT_FALSE(warnIfBusy({{"steady", summarize({0.010, 0.011, 0.012})}}, "--repeat 9"));
   EXPECT_TRUE(warnIfBusy({{"steady", summarize({0.010, 0.011})}, {"busy", summarize({0.010, 0.016})}}, "--repeat 9"));
-  EXPECT_FALSE(warnIfBusy({{"tiny", summarize({20e-6, 60e-6})}}, "--repeat 9")) << "3x, but 40 us apart: a timer tick";
+  EXPECT_FALSE(warnIfBusy({{"short", summarize({0.2e-3, 0.6e-3})}}, "--repeat 9")) << "3x, but 0.4 ms apart: thread wake-ups";
 }
 
 }  // namespace
