@@ -86,12 +86,17 @@ oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figu
 ./build/hsr render scenes/hard/cull_big_floor.toml --cull frustum:triangle -o "$study/right.png"
 ./build/hsr render scenes/hard/cull_big_floor.toml --cull frustum:any-vertex -o "$study/wrong.png"
 oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figures/culling/any-vertex.png
-./build/hsr study culling-combos --out "$study" > /dev/null
+./build/hsr study culling-combos --threads 1 --out "$study" > /dev/null
 cp "$study/culling_combos.png" images/figures/culling/culling-combos.png
+# Occlusion culling: the hierarchical-Z resolution and the occluder fraction.
+./build/hsr study hzb-resolution --threads 1 --out "$study" > /dev/null
+cp "$study/hzb_resolution.png" images/figures/culling/hzb_resolution.png
+./build/hsr study occluder-fraction --threads 1 --out "$study" > /dev/null
+cp "$study/occluder_fraction.png" images/figures/culling/occluder_fraction.png
 # Effects: the showcase with each effect added in turn and the time of each pass, and
 # the shadow map's resolution x bias against exact shadow rays.
 mkdir -p images/figures/effects
-./build/hsr study effects --out "$study" > /dev/null
+./build/hsr study effects --threads 1 --out "$study" > /dev/null
 cp "$study/effects_steps.png" images/figures/effects/steps.png
 cp "$study/effects.png" images/figures/effects/passes.png
 ./build/hsr study shadow-map --out "$study" > /dev/null
