@@ -67,7 +67,8 @@ void objects(benchmark::State& state, const std::string& variant) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// Registered before main (bench_main.cpp), from the lists of variants and scenes.
+const bool registered = [] {
   for (const char* scene : {"dragons", "counters"}) {
     for (const char* variant : {"object", "screen", "view-direction"})
       benchmark::RegisterBenchmark((std::string("backface/") + variant + "/" + scene).c_str(), sceneStage,
@@ -83,7 +84,5 @@ int main(int argc, char** argv) {
         ->RangeMultiplier(10)
         ->Range(10000, 1000000)
         ->Unit(benchmark::kMicrosecond);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-}
+  return true;
+}();

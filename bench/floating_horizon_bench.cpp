@@ -41,4 +41,3 @@ BENCHMARK(floatingHorizon)
     ->Args({100, 100, 1})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(exactDrawing)->Arg(0)->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();

@@ -103,4 +103,3 @@ BENCHMARK_CAPTURE(appelWarm, dragon, std::string("dragon"))->Unit(benchmark::kMi
 BENCHMARK_CAPTURE(appelCold, dragon, std::string("dragon"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(lineReference, bunny, std::string("bunny"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(lineReference, dragon, std::string("dragon"))->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();

@@ -81,7 +81,8 @@ void zbufferDepth(benchmark::State& state) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// Registered before main (bench_main.cpp), from the lists of variants and scenes.
+const bool registered = [] {
   for (const auto& [name, rule] : {std::pair("center", Rule::center), std::pair("conservative", Rule::conservative)})
     for (const auto& [width, height] : {std::pair(256, 128), std::pair(1920, 1080)})
       benchmark::RegisterBenchmark(("occluders/" + std::string(name) + "/" + std::to_string(width) + "x" + std::to_string(height)).c_str(),
@@ -90,7 +91,5 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("occludees/flat", occludees, false)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("occludees/pyramid", occludees, true)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("zbuffer-depth", zbufferDepth)->Unit(benchmark::kMillisecond);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-}
+  return true;
+}();

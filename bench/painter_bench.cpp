@@ -111,4 +111,3 @@ BENCHMARK(orderAndPaint)->Arg(int(Variant::sort))->Arg(int(Variant::newell))->Un
 BENCHMARK(bspBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bspWalkAndPaint)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(newellWorstCase)->RangeMultiplier(2)->Range(16, 128)->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity();
-BENCHMARK_MAIN();

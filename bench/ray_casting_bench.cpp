@@ -11,7 +11,6 @@
 
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "bench_scenes.hpp"
-#include "renderer/memory.hpp"
 
 namespace {
 
@@ -65,12 +64,3 @@ double maximum(const std::vector<double>& v) { return *std::max_element(v.begin(
 BENCHMARK(primaryRays)->ArgsProduct({{0, 1}, {0, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(bvhBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-int main(int argc, char** argv) {
-  hsr::keepFreedMemoryForReuse();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

@@ -15,7 +15,6 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "bench_scenes.hpp"
-#include "renderer/memory.hpp"
 #include "renderer/reference.hpp"
 #include "renderer/shading.hpp"
 
@@ -91,19 +90,14 @@ double maximum(const std::vector<double>& v) { return *std::max_element(v.begin(
 
 }  // namespace
 
+const bool contextAdded = [] {
+  benchmark::AddCustomContext("threads", "as in each benchmark's name (1 or 2)");
+  return true;
+}();
+
 BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(reference)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
-
-int main(int argc, char** argv) {
-  hsr::keepFreedMemoryForReuse();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::AddCustomContext("threads", "as in each benchmark's name (1 or 2)");
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
