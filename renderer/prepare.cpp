@@ -120,14 +120,35 @@ const VertexTriangles& PreparedScene::trianglesAroundVertices(Stats& stats) cons
   std::call_once(aroundBuilt_, [&] {
     PhaseTimer timer(stats, "vertex triangles");
     trianglesAroundVertices_ = buildVertexTriangles(positions_.size(), triangles_);
+    faceStates_ = std::make_unique<std::atomic<std::uint8_t>[]>(triangles_.size());  // all kFaceAbsent
+    faceGeometries_ = std::make_unique_for_overwrite<FaceGeometry[]>(triangles_.size());  // written before it is read
   });
   return trianglesAroundVertices_;
+}
+
+PreparedScene::FaceGeometry PreparedScene::faceGeometry(std::uint32_t triangle) const {
+  std::atomic<std::uint8_t>& state = faceStates_[triangle];
+  if (state.load(std::memory_order_acquire) == kFaceWritten) return faceGeometries_[triangle];
+  FaceGeometry computed{faceNormal(triangle), {}};
+  const Triangle& t = triangles_[triangle];
+  for (std::size_t corner = 0; corner < 3; ++corner) {
+    const dvec3 e1 = positions_[t[(corner + 1) % 3]] - positions_[t[corner]], e2 = positions_[t[(corner + 2) % 3]] - positions_[t[corner]];
+    computed.angles[corner] = std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
+  }
+  // Only the thread that claims the entry writes it; one that finds it claimed keeps its
+  // own copy, which has the same bits.
+  std::uint8_t absent = kFaceAbsent;
+  if (state.compare_exchange_strong(absent, kFaceBeingWritten, std::memory_order_relaxed)) {
+    faceGeometries_[triangle] = computed;
+    state.store(kFaceWritten, std::memory_order_release);
+  }
+  return computed;
 }
 
 int PreparedScene::cornerNormals(std::uint32_t triangle, const VertexTriangles& around, std::array<dvec3, 3>& normals) const {
   const Instance& instance = instanceOf(triangle);
   const Mesh& mesh = *scene_->objects[instance.object].mesh;
-  const dvec3 face = faceNormal(triangle);
+  const dvec3 face = faceGeometry(triangle).normal;
   static const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180);
   int fromMesh = 0;
   for (int k = 0; k < 3; ++k) {
@@ -146,12 +167,10 @@ int PreparedScene::cornerNormals(std::uint32_t triangle, const VertexTriangles& 
     const std::uint32_t v = triangles_[triangle][std::size_t(k)];
     dvec3 sum(0);
     for (const std::uint32_t other : around.around(v)) {
-      const dvec3 otherFace = faceNormal(other);
-      if (glm::dot(otherFace, face) < creaseCosine) continue;
+      const FaceGeometry neighbour = faceGeometry(other);
+      if (glm::dot(neighbour.normal, face) < creaseCosine) continue;
       const Triangle& t = triangles_[other];
-      const int corner = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-      const dvec3 e1 = positions_[t[std::size_t(corner + 1) % 3]] - positions_[v], e2 = positions_[t[std::size_t(corner + 2) % 3]] - positions_[v];
-      sum += otherFace * std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
+      sum += neighbour.normal * neighbour.angles[t[0] == v ? 0 : t[1] == v ? 1 : 2];
     }
     const double length = glm::length(sum);
     normals[std::size_t(k)] = length > 0 ? sum / length : face;

@@ -3,7 +3,10 @@
 // counted in Stats, so a scene that does not need them provably does not pay).
 #pragma once
 
+#include <array>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -91,6 +94,16 @@ class PreparedScene {
   // The triangles around each vertex, built on first use (phase "vertex triangles"):
   // what corner normals average over.
   const VertexTriangles& trianglesAroundVertices(Stats& stats) const;
+  // A triangle's unit normal (faceNormal) and its angle at each corner, what a corner
+  // normal weighs its neighbours by. Computed the first time any corner normal needs it
+  // and kept: each triangle is a neighbour of every triangle sharing one of its vertices,
+  // about eighteen asks on a closed mesh. Safe from any thread once
+  // trianglesAroundVertices has been built.
+  struct FaceGeometry {
+    dvec3 normal;
+    std::array<double, 3> angles;
+  };
+  FaceGeometry faceGeometry(std::uint32_t triangle) const;
   // One triangle's three unit corner normals: the mesh file's own where it gave one (OBJ
   // vn, carried by Instance::normalFromObject), and elsewhere the angle-weighted average
   // of the face normals around the corner's vertex that lie within kCreaseDegrees of this
@@ -138,6 +151,11 @@ class PreparedScene {
   std::vector<Instance> instances_;
   mutable std::once_flag aroundBuilt_;
   mutable VertexTriangles trianglesAroundVertices_;
+  // faceGeometry's memo, made with trianglesAroundVertices_: per triangle, whether its
+  // entry is absent, being written by the one thread that claimed it, or written.
+  enum FaceState : std::uint8_t { kFaceAbsent, kFaceBeingWritten, kFaceWritten };
+  mutable std::unique_ptr<std::atomic<std::uint8_t>[]> faceStates_;
+  mutable std::unique_ptr<FaceGeometry[]> faceGeometries_;
   mutable std::once_flag bvhBuilt_;
   mutable Bvh triangleBvh_;
   mutable std::vector<LeafTriangle> leafTriangles_;

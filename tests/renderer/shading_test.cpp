@@ -10,6 +10,7 @@
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/shadow_maps.hpp"
+#include "renderer/parallel.hpp"
 #include "renderer/shading.hpp"
 #include "test_support.hpp"
 
@@ -66,6 +67,37 @@ TEST(Shading, SinglePrecisionMovesAChannelByAtMostOneLevelOnEveryShippedScene) {
   EXPECT_LT(fraction, 1e-4) << total.differing << " of " << total.channels << " channels differ";
   std::printf("float against double shading: %lld of %lld channels differ (%.5f%%), by at most %d level\n",
               static_cast<long long>(total.differing), static_cast<long long>(total.channels), 100 * fraction, total.largestLevels);
+}
+
+// Corner normals keep each neighbouring face's normal and corner angles once computed
+// (PreparedScene::faceGeometry), filled in by whichever shading thread asks first: the
+// normals must have the same bits cold or warm, asked in any order, from any number of
+// threads racing to fill the same entries.
+TEST(Shading, CornerNormalsAreTheSameColdOrWarmInAnyOrderFromAnyThread) {
+  const test::LoadedScene racing(test::sourcePath("scenes/bunny.toml")), backwards(test::sourcePath("scenes/bunny.toml"));
+  Stats stats;
+  const std::size_t count = racing.prepared.triangleCount();
+  std::vector<std::array<dvec3, 3>> cold(count), warm(count), reversed(count);
+  const VertexTriangles& around = racing.prepared.trianglesAroundVertices(stats);
+  // Two threads, each over every triangle from its own end, so both ask for the same
+  // faces at about the same time.
+  parallelFor(2, 2, [&](std::size_t thread, int) {
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto t = static_cast<std::uint32_t>(thread == 0 ? k : count - 1 - k);
+      std::array<dvec3, 3> normals;
+      racing.prepared.cornerNormals(t, around, normals);
+      if ((thread == 0) == (t < count / 2)) cold[t] = normals;
+    }
+  });
+  for (std::uint32_t t = 0; t < count; ++t) racing.prepared.cornerNormals(t, around, warm[t]);
+  const VertexTriangles& aroundBackwards = backwards.prepared.trianglesAroundVertices(stats);
+  for (std::uint32_t t = static_cast<std::uint32_t>(count); t-- > 0;) backwards.prepared.cornerNormals(t, aroundBackwards, reversed[t]);
+  for (std::size_t t = 0; t < count; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      ASSERT_EQ(cold[t][k], warm[t][k]) << "triangle " << t << " corner " << k;
+      ASSERT_EQ(cold[t][k], reversed[t][k]) << "triangle " << t << " corner " << k;
+      ASSERT_NEAR(glm::length(cold[t][k]), 1, 1e-12);
+    }
 }
 
 }  // namespace
