@@ -178,19 +178,21 @@ void PixelShader<Real>::interpolateRun(const TriangleSetUp& setUp, int y, int fi
   const Vec n0 = setUp.normal[0], n1 = setUp.normal[1], n2 = setUp.normal[2], face = setUp.face;
   const Real facingStart = setUp.facingAt0 + Real(conventions::pixelCenter(firstX)) * setUp.facingPerX +
                            Real(conventions::pixelCenter(y)) * setUp.facingPerY;
+  const auto side = [&](int i) { return facingStart + Real(i) * setUp.facingPerX < 0 ? Real(-1) : Real(1); };
+  if (!smooth_) {
+    for (int i = 0; i < count; ++i) points.nx[i] = side(i) * face.x, points.ny[i] = side(i) * face.y, points.nz[i] = side(i) * face.z;
+    return;
+  }
   for (int i = 0; i < count; ++i) {
-    Real x = face.x, yy = face.y, z = face.z;
-    if (smooth_) {
-      const Real sx = b0[i] * n0.x + b1[i] * n1.x + b2[i] * n2.x, sy = b0[i] * n0.y + b1[i] * n1.y + b2[i] * n2.y,
-                 sz = b0[i] * n0.z + b1[i] * n1.z + b2[i] * n2.z;
-      const Real length = std::sqrt(sx * sx + sy * sy + sz * sz);
-      // Corner normals that cancel (a fold) leave no direction: the face's serves.
-      const bool none = !(length > 0);
-      const Real inverse = 1 / (none ? Real(1) : length);
-      x = none ? x : sx * inverse, yy = none ? yy : sy * inverse, z = none ? z : sz * inverse;
-    }
-    const Real side = facingStart + Real(i) * setUp.facingPerX < 0 ? Real(-1) : Real(1);
-    points.nx[i] = side * x, points.ny[i] = side * yy, points.nz[i] = side * z;
+    const Real sx = b0[i] * n0.x + b1[i] * n1.x + b2[i] * n2.x, sy = b0[i] * n0.y + b1[i] * n1.y + b2[i] * n2.y,
+               sz = b0[i] * n0.z + b1[i] * n1.z + b2[i] * n2.z;
+    const Real length = std::sqrt(sx * sx + sy * sy + sz * sz);
+    // Corner normals that cancel (a fold) leave no direction: the face's serves.
+    const bool none = !(length > 0);
+    const Real inverse = side(i) / (none ? Real(1) : length);
+    points.nx[i] = none ? side(i) * face.x : sx * inverse;
+    points.ny[i] = none ? side(i) * face.y : sy * inverse;
+    points.nz[i] = none ? side(i) * face.z : sz * inverse;
   }
 }
 
@@ -205,12 +207,14 @@ typename PixelShader<Real>::Vec PixelShader<Real>::toViewer(const Vec& position)
 }
 
 template <class Real>
-void PixelShader<Real>::shadeRun(const TriangleSetUp& setUp, int y, int firstX, int count, Color* colors,
+void PixelShader<Real>::shadeRun(const TriangleSetUp& setUp, int y, int firstX, int count, RunColors& colors,
                                  ShadingCounts& counts) const {
   HSR_CHECK(count >= 1 && count <= kRun);
   counts.invocations += count;
   if (!lit_) {
-    std::fill_n(colors, count, setUp.color);
+    std::fill_n(colors.r, count, setUp.color.x);
+    std::fill_n(colors.g, count, setUp.color.y);
+    std::fill_n(colors.b, count, setUp.color.z);
     return;
   }
   RunPoints points;
@@ -249,14 +253,18 @@ void PixelShader<Real>::shadeRun(const TriangleSetUp& setUp, int y, int firstX, 
       }
     }
   }
-  for (int i = 0; i < count; ++i) colors[i] = setUp.color * diffuse[i] + Color(highlight[i]);
+  for (int i = 0; i < count; ++i) {
+    colors.r[i] = setUp.color.x * diffuse[i] + highlight[i];
+    colors.g[i] = setUp.color.y * diffuse[i] + highlight[i];
+    colors.b[i] = setUp.color.z * diffuse[i] + highlight[i];
+  }
 }
 
 template <class Real>
 typename PixelShader<Real>::Color PixelShader<Real>::shade(std::uint32_t triangle, int x, int y, ShadingCounts& counts) const {
-  Color color;
-  shadeRun(setUpOf(triangle), y, x, 1, &color, counts);
-  return color;
+  RunColors colors;
+  shadeRun(setUpOf(triangle), y, x, 1, colors, counts);
+  return colors.at(0);
 }
 
 template <class Real>
@@ -281,7 +289,7 @@ void shadeFrame(const PreparedScene& scene, Frame& frame, PixelShader<Real>& sha
     ShadingCounts rowCounts;
     // Run by run of pixels showing one triangle, which share its set-up.
     constexpr int kBatch = PixelShader<Real>::kRun;
-    typename PixelShader<Real>::Color colors[kBatch];
+    typename PixelShader<Real>::RunColors colors;
     for (int runStart = 0, runEnd; runStart < frame.width; runStart = runEnd) {
       const std::uint32_t id = ids[runStart];
       for (runEnd = runStart + 1; runEnd < frame.width && ids[runEnd] == id;) ++runEnd;
@@ -293,10 +301,12 @@ void shadeFrame(const PreparedScene& scene, Frame& frame, PixelShader<Real>& sha
       for (int batchStart = runStart; batchStart < runEnd; batchStart += kBatch) {
         const int count = std::min(kBatch, runEnd - batchStart);
         shader.shadeRun(setUp, static_cast<int>(row), batchStart, count, colors, rowCounts);
+        std::uint8_t* const pixels = rgba + 4 * batchStart;
         for (int i = 0; i < count; ++i) {
-          std::uint8_t* const pixel = rgba + 4 * (batchStart + i);
-          for (int c = 0; c < 3; ++c) pixel[c] = channelByte(colors[i][c]);
-          pixel[3] = 255;
+          pixels[4 * i] = channelByte(colors.r[i]);
+          pixels[4 * i + 1] = channelByte(colors.g[i]);
+          pixels[4 * i + 2] = channelByte(colors.b[i]);
+          pixels[4 * i + 3] = 255;
         }
       }
     }

@@ -93,7 +93,11 @@ class PixelShader {
   // on, all showing one set-up triangle. A run at a time, so that each step is one loop
   // over the run's pixels that the compiler turns into vector instructions.
   static constexpr int kRun = 64;
-  void shadeRun(const TriangleSetUp& setUp, int y, int firstX, int count, Color* colors, ShadingCounts& counts) const;
+  struct RunColors {  // one array per channel, so that the conversion to bytes is one vector loop too
+    Real r[kRun], g[kRun], b[kRun];
+    Color at(int i) const { return {r[i], g[i], b[i]}; }
+  };
+  void shadeRun(const TriangleSetUp& setUp, int y, int firstX, int count, RunColors& colors, ShadingCounts& counts) const;
   // One pixel of a set-up triangle.
   Color shade(std::uint32_t triangle, int x, int y, ShadingCounts& counts) const;
   SurfacePoint surfacePoint(std::uint32_t triangle, int x, int y) const;
