@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
@@ -280,8 +282,14 @@ template <class Real>
 void shadeFrame(const PreparedScene& scene, Frame& frame, PixelShader<Real>& shader, int threads, Stats& stats) {
   PhaseTimer timer(stats, "shading");
   shader.setUpShownIn(frame, threads, stats);
-  std::uint8_t background[4] = {0, 0, 0, 255};
-  for (int c = 0; c < 3; ++c) background[c] = channelByte(scene.scene().background[c]);
+  // Each pixel's four bytes are written as one 32-bit store (R first in memory).
+  static_assert(std::endian::native == std::endian::little);
+  const auto rgbaWord = [](std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    return std::uint32_t(r) | std::uint32_t(g) << 8 | std::uint32_t(b) << 16 | std::uint32_t(255) << 24;
+  };
+  const glm::dvec3& backgroundColor = scene.scene().background;
+  const std::uint32_t background =
+      rgbaWord(channelByte(backgroundColor.x), channelByte(backgroundColor.y), channelByte(backgroundColor.z));
   std::vector<ShadingCounts> counts(static_cast<std::size_t>(frame.height));
   parallelFor(static_cast<std::size_t>(frame.height), threads, [&](std::size_t row, int) {
     const std::uint32_t* const ids = frame.ids.data() + row * std::size_t(frame.width);
@@ -294,7 +302,7 @@ void shadeFrame(const PreparedScene& scene, Frame& frame, PixelShader<Real>& sha
       const std::uint32_t id = ids[runStart];
       for (runEnd = runStart + 1; runEnd < frame.width && ids[runEnd] == id;) ++runEnd;
       if (id == conventions::kBackgroundId) {
-        for (int x = runStart; x < runEnd; ++x) std::copy(background, background + 4, rgba + 4 * x);
+        for (int x = runStart; x < runEnd; ++x) std::memcpy(rgba + 4 * x, &background, 4);
         continue;
       }
       const auto& setUp = shader.setUpOf(id - 1);
@@ -303,10 +311,8 @@ void shadeFrame(const PreparedScene& scene, Frame& frame, PixelShader<Real>& sha
         shader.shadeRun(setUp, static_cast<int>(row), batchStart, count, colors, rowCounts);
         std::uint8_t* const pixels = rgba + 4 * batchStart;
         for (int i = 0; i < count; ++i) {
-          pixels[4 * i] = channelByte(colors.r[i]);
-          pixels[4 * i + 1] = channelByte(colors.g[i]);
-          pixels[4 * i + 2] = channelByte(colors.b[i]);
-          pixels[4 * i + 3] = 255;
+          const std::uint32_t word = rgbaWord(channelByte(colors.r[i]), channelByte(colors.g[i]), channelByte(colors.b[i]));
+          std::memcpy(pixels + 4 * i, &word, 4);
         }
       }
     }
