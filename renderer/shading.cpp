@@ -163,17 +163,19 @@ void PixelShader<Real>::interpolateRun(const TriangleSetUp& setUp, int y, int fi
   Real* const b2 = points.b2;
   for (int i = 0; i < count; ++i) {
     const Real w0 = start.x + Real(i) * step.x, w1 = start.y + Real(i) * step.y, w2 = start.z + Real(i) * step.z;
-    const Real sum = w0 + w1 + w2;
-    // Seen edge-on the weights cancel: then any point of the triangle is as good as another.
-    const bool edgeOn = !(std::abs(sum) > Real(0x1p-60) * (std::abs(w0) + std::abs(w1) + std::abs(w2)));
-    const Real inverse = 1 / (edgeOn ? Real(1) : sum);
     // A pixel center may sit a hair outside the triangle (it was covered after snapping
-    // to 1/256 pixel; the ray march's triangle may not cover it at all): clamp to the
-    // triangle. The clamped weights sum to at least 1.
-    const auto clamped = [&](Real w) { return edgeOn ? Real(1) : std::min(std::max(w * inverse, Real(0)), Real(1)); };
-    const Real c0 = clamped(w0), c1 = clamped(w1), c2 = clamped(w2);
-    const Real normalize = 1 / (c0 + c1 + c2);
-    b0[i] = c0 * normalize, b1[i] = c1 * normalize, b2[i] = c2 * normalize;
+    // to 1/256 pixel; the ray march's triangle may not cover it at all): each weight,
+    // over the three's sum, is clamped to [0, 1], which clamps the point to the
+    // triangle; done before the division (to between 0 and the sum), so that one
+    // division normalizes what is left. Seen edge-on the weights nearly cancel, but
+    // the clamped ones still name a point of the triangle, as good as any other there;
+    // only when none is left (all zero) does the centroid serve.
+    const Real sum = w0 + w1 + w2, low = std::min(sum, Real(0)), high = std::max(sum, Real(0));
+    const Real c0 = std::min(std::max(w0, low), high), c1 = std::min(std::max(w1, low), high), c2 = std::min(std::max(w2, low), high);
+    const Real total = c0 + c1 + c2;
+    const bool none = !(std::abs(total) > 0);
+    const Real normalize = none ? Real(1) / 3 : 1 / total;
+    b0[i] = none ? normalize : c0 * normalize, b1[i] = none ? normalize : c1 * normalize, b2[i] = none ? normalize : c2 * normalize;
   }
   // Step 2: the normal, interpolated (Phong shading) or the face's (flat), turned
   // toward the side the pixel's ray sees.
