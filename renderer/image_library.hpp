@@ -30,6 +30,8 @@ struct ImageLibrary {
   // Draws `text` into an RGBA canvas with its baseline at y, in the TrueType `font`.
   std::string (*drawText)(Image& canvas, int x, int baseline, const std::string& text, int size, const std::string& font,
                           const float (&rgba)[4]);
+  // How wide drawText would draw `text`, in pixels.
+  std::string (*textWidth)(const std::string& text, int size, const std::string& font, int& width);
 };
 
 // The module, loaded on the first call; throws InputError when it cannot be loaded.

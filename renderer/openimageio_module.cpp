@@ -70,7 +70,14 @@ std::string drawText(Image& canvas, int x, int baseline, const std::string& text
   return "";
 }
 
-const ImageLibrary kLibrary{writeDepthExr, readImage, compare, resize, drawText};
+std::string textWidth(const std::string& text, int size, const std::string& font, int& width) {
+  const OIIO::ROI box = OIIO::ImageBufAlgo::text_size(text, size, font);
+  if (!box.defined()) return "cannot measure text in that font";
+  width = box.width();
+  return "";
+}
+
+const ImageLibrary kLibrary{writeDepthExr, readImage, compare, resize, drawText, textWidth};
 
 }  // namespace
 }  // namespace hsr

@@ -62,6 +62,37 @@ void text(Image& canvas, int x, int baseline, const std::string& line, float gre
     throw InputError(std::string("contact sheet: cannot draw text with ") + kFont + ": " + error);
 }
 
+int textWidth(const std::string& line) {
+  int width = 0;
+  if (const std::string error = imageLibrary().textWidth(line, kFontSize, kFont, width); !error.empty())
+    throw InputError(std::string("contact sheet: cannot measure text with ") + kFont + ": " + error);
+  return width;
+}
+
+// A caption's lines broken at spaces where one is wider than a thumbnail, so that no
+// text runs into the next tile (a single word wider than that keeps a line of its own).
+std::vector<std::string> fitted(const std::vector<std::string>& caption) {
+  std::vector<std::string> lines;
+  for (const std::string& line : caption) {
+    std::string current;
+    std::size_t start = 0;
+    while (start <= line.size()) {
+      const std::size_t space = std::min(line.find(' ', start), line.size());
+      const std::string word = line.substr(start, space - start);
+      const std::string longer = current.empty() ? word : current + " " + word;
+      if (!current.empty() && textWidth(longer) > kThumbnailWidth) {
+        lines.push_back(current);
+        current = word;
+      } else {
+        current = longer;
+      }
+      start = space + 1;
+    }
+    lines.push_back(current);
+  }
+  return lines;
+}
+
 int captionHeight(const std::vector<SheetImage>& images) {
   std::size_t lines = 0;
   for (const SheetImage& image : images) lines = std::max(lines, image.caption.size());
@@ -76,7 +107,11 @@ int rowHeight(const std::vector<SheetImage>& images) {
 
 }  // namespace
 
-Image composeContactSheet(const std::vector<SheetSection>& sections) {
+Image composeContactSheet(const std::vector<SheetSection>& given) {
+  std::vector<SheetSection> sections = given;
+  for (SheetSection& section : sections)
+    for (auto* row : {&section.images, &section.heatMaps})
+      for (SheetImage& shown : *row) shown.caption = fitted(shown.caption);
   std::size_t columns = 1;
   int height = kMargin;
   for (const SheetSection& section : sections) {

@@ -25,7 +25,8 @@ struct SheetSection {
 };
 
 // Thumbnails are kThumbnailWidth wide. Heat maps are shrunk so that no marked pixel
-// disappears: a thumbnail pixel is red (or blue) if any pixel it covers is.
+// disappears: a thumbnail pixel is red (or blue) if any pixel it covers is. Caption lines
+// wider than a thumbnail are broken at spaces.
 constexpr int kThumbnailWidth = 256;
 Image composeContactSheet(const std::vector<SheetSection>& sections);
 

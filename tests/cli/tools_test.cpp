@@ -167,6 +167,31 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
 }
 
+// A scene narrower than a thumbnail (256 pixels): its images and heat maps are enlarged,
+// and every thumbnail pixel is filled (none transparent); the line algorithms' long
+// captions are broken into lines that stay inside their tile, so the 10-pixel gaps
+// between tiles hold nothing but the sheet's background below the heading.
+TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles) {
+  const auto folder = freshFolder("compare-small");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " compare " + kScenes +
+                                                      "cube.toml --size 200x200 --repeat 1 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const Image sheet = readImage(folder / "contact_sheet.png");
+  constexpr int kMargin = 10, kThumbnail = 256, kHeading = 40;
+  const int columns = (sheet.width - kMargin) / (kThumbnail + kMargin);
+  ASSERT_EQ(columns, 6) << "the reference, three surface and two line algorithms";
+  std::int64_t transparent = 0, inGaps = 0;
+  for (int y = 0; y < sheet.height; ++y)
+    for (int x = 0; x < sheet.width; ++x) {
+      const std::uint8_t* pixel = &sheet.pixels[4 * (std::size_t(y) * std::size_t(sheet.width) + std::size_t(x))];
+      transparent += pixel[3] != 255;
+      const bool gap = x >= kMargin && (x - kMargin) % (kThumbnail + kMargin) >= kThumbnail;
+      if (gap && y >= kHeading) inGaps += pixel[0] != 23 || pixel[1] != 23 || pixel[2] != 26;
+    }
+  EXPECT_EQ(transparent, 0);
+  EXPECT_EQ(inGaps, 0) << "pixels of text or image spilled into the gaps between tiles";
+}
+
 TEST(Study, CullingCombosWritesItsTableAndCountsTheWorkEachModeSaves) {
   const auto folder = freshFolder("study");
   const test::CommandResult result =
