@@ -37,6 +37,9 @@ void forEachStroke(const Pen& pen, double length, double begin, double end, Part
   }
 }
 
+// The z component of the cross product of two vectors in the image plane.
+double cross(const dvec2& a, const dvec2& b) { return a.x * b.y - a.y * b.x; }
+
 // The pieces in drawing order: hidden ones first, so visible lines lie on top.
 std::vector<const LineSegment*> drawingOrder(const LineSet& lines) {
   std::vector<const LineSegment*> order;
@@ -51,20 +54,57 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(lines.width) + "\" height=\"" +
                     std::to_string(lines.height) + "\" viewBox=\"0 0 " + std::to_string(lines.width) + " " +
                     std::to_string(lines.height) + "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  char element[320];
+  // Strokes that continue one another (each solid, in the same grey, starting where the
+  // last ended) become one <polyline>, a point dropped where it lies on the straight line
+  // between its neighbours: the floating horizon draws a curve as hundreds of pieces a
+  // pixel long, which as one <line> each made a drawing megabytes large.
+  std::vector<dvec2> path;
+  Pen pathPen;
+  char text[160];
+  const auto stroke = [](const Pen& pen) {
+    char attributes[128];
+    std::snprintf(attributes, sizeof attributes, "\" stroke=\"rgb(%d,%d,%d)\" stroke-width=\"%g\" stroke-linecap=\"round\"", pen.grey,
+                  pen.grey, pen.grey, kLineWidthPixels);
+    return std::string(attributes);
+  };
+  const auto flush = [&] {
+    if (path.size() == 2) {
+      std::snprintf(text, sizeof text, "<line x1=\"%.3f\" y1=\"%.3f\" x2=\"%.3f\" y2=\"%.3f", path[0].x, path[0].y, path[1].x,
+                    path[1].y);
+      svg += text;
+      svg += stroke(pathPen) + "/>\n";
+    } else if (path.size() > 2) {
+      svg += "<polyline points=\"";
+      for (std::size_t i = 0; i < path.size(); ++i) {
+        std::snprintf(text, sizeof text, "%s%.3f,%.3f", i ? " " : "", path[i].x, path[i].y);
+        svg += text;
+      }
+      svg += "\" fill=\"none" + stroke(pathPen) + " stroke-linejoin=\"round\"/>\n";
+    }
+    path.clear();
+  };
   for (const LineSegment* segment : drawingOrder(lines)) {
     const Pen pen = penFor(segment->qi, style);
     if (!pen.draw) continue;
     const FeatureEdge& edge = lines.edges[segment->edge];
     forEachStroke(pen, edge.lengthPixels(), segment->begin, segment->end, [&](double from, double to) {
       const dvec2 a = edge.pixelAt(from), b = edge.pixelAt(to);
-      std::snprintf(element, sizeof element,
-                    "<line x1=\"%.3f\" y1=\"%.3f\" x2=\"%.3f\" y2=\"%.3f\" stroke=\"rgb(%d,%d,%d)\" stroke-width=\"%g\" "
-                    "stroke-linecap=\"round\"/>\n",
-                    a.x, a.y, b.x, b.y, pen.grey, pen.grey, pen.grey, kLineWidthPixels);
-      svg += element;
+      const bool continues = !path.empty() && !pen.dashed && !pathPen.dashed && pen.grey == pathPen.grey &&
+                             glm::length(path.back() - a) < 1e-6;
+      if (!continues) {
+        flush();
+        path = {a};
+        pathPen = pen;
+      }
+      const std::size_t n = path.size();
+      const bool straightOn = n >= 2 && std::abs(cross(path[n - 1] - path[n - 2], b - path[n - 1])) <=
+                                            1e-12 * glm::length(path[n - 1] - path[n - 2]) * glm::length(b - path[n - 1]) &&
+                              glm::dot(path[n - 1] - path[n - 2], b - path[n - 1]) > 0;
+      if (straightOn) path.back() = b;
+      else path.push_back(b);
     });
   }
+  flush();
   svg += "</svg>\n";
   return svg;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "algorithms/appel/appel.hpp"
 #include "algorithms/registry.hpp"
@@ -219,19 +220,65 @@ TEST(LineInfrastructure, TheLineRuleCoversPixelsWithinHalfTheWidth) {
   EXPECT_EQ(covered, expected);
 }
 
+// The length an SVG drawing strokes in one grey ("rgb(G,G,G)"), over its <line> and
+// <polyline> elements, and how many elements it took.
+std::pair<double, std::size_t> strokedLength(const std::string& svg, int grey) {
+  const std::string pen = "stroke=\"rgb(" + std::to_string(grey) + "," + std::to_string(grey) + "," + std::to_string(grey) + ")\"";
+  double length = 0;
+  std::size_t elements = 0;
+  for (std::size_t at = svg.find('<'); at != std::string::npos; at = svg.find('<', at + 1)) {
+    const std::string element = svg.substr(at, svg.find('>', at) - at);
+    if (element.find(pen) == std::string::npos) continue;
+    std::vector<double> numbers;
+    if (element.rfind("<line ", 0) == 0) {
+      for (const char* name : {"x1=\"", "y1=\"", "x2=\"", "y2=\""}) numbers.push_back(std::stod(element.substr(element.find(name) + 4)));
+    } else if (element.rfind("<polyline ", 0) == 0) {
+      std::string points = element.substr(element.find("points=\"") + 8);
+      points = points.substr(0, points.find('"'));
+      for (char& c : points) c = c == ',' ? ' ' : c;
+      std::istringstream read(points);
+      for (double value; read >> value;) numbers.push_back(value);
+    } else {
+      continue;
+    }
+    ++elements;
+    for (std::size_t i = 2; i + 1 < numbers.size(); i += 2) length += std::hypot(numbers[i] - numbers[i - 2], numbers[i + 1] - numbers[i - 1]);
+  }
+  return {length, elements};
+}
+
+// The visible pieces' total length in pixels.
+double visibleLength(const LineSet& lines) {
+  double length = 0;
+  for (const LineSegment& segment : lines.segments)
+    if (segment.visible()) length += (segment.end - segment.begin) * lines.edges[segment.edge].lengthPixels();
+  return length;
+}
+
 TEST(LineInfrastructure, SvgDrawsVisibleSolidAndHiddenDashed) {
   const test::LoadedScene loaded(test::sourcePath("scenes/blocks.toml"));
   const LineSet lines = draw("appel", loaded.prepared);
   const std::string visible = lineSetSvg(lines, LineStyle::visible), hidden = lineSetSvg(lines, LineStyle::hidden);
-  const auto count = [](const std::string& svg, const std::string& what) {
-    std::size_t n = 0;
-    for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
-    return n;
-  };
+  const auto [black, elements] = strokedLength(visible, 0);
+  EXPECT_NEAR(black, visibleLength(lines), 1e-2 * double(elements)) << "every visible piece drawn, once (to the 3 decimals written)";
+  EXPECT_EQ(strokedLength(visible, 136).second, 0u);
   const std::size_t visiblePieces = std::count_if(lines.segments.begin(), lines.segments.end(), [](const LineSegment& s) { return s.visible(); });
-  EXPECT_EQ(count(visible, "<line"), visiblePieces);
-  EXPECT_EQ(count(visible, "rgb(136"), 0u);
-  EXPECT_GT(count(hidden, "rgb(136"), visiblePieces / 4);  // dashes of the hidden parts
+  EXPECT_GT(strokedLength(hidden, 136).second, visiblePieces / 4);  // dashes of the hidden parts
+  EXPECT_NEAR(strokedLength(hidden, 0).first, black, 1e-9) << "the same visible lines in both styles";
+}
+
+// The floating horizon draws each curve as pieces about a pixel long; the SVG joins the
+// pieces that continue one another into polylines, so it stays small, drawing the same length.
+TEST(LineInfrastructure, SvgJoinsPiecesThatContinueOneAnother) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/ripple.toml"));
+  const LineSet lines = draw("floating_horizon", loaded.prepared);
+  const std::string svg = lineSetSvg(lines, LineStyle::visible);
+  const auto [black, elements] = strokedLength(svg, 0);
+  const std::size_t visiblePieces = std::count_if(lines.segments.begin(), lines.segments.end(), [](const LineSegment& s) { return s.visible(); });
+  ASSERT_GT(visiblePieces, 10000u);
+  EXPECT_LT(elements, visiblePieces / 50) << elements << " elements for " << visiblePieces << " pieces";
+  EXPECT_NEAR(black, visibleLength(lines), 1e-3 * visibleLength(lines));
+  EXPECT_LT(svg.size(), 600000u);
 }
 
 }  // namespace
