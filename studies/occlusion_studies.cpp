@@ -342,7 +342,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
     data += "\n";
   }
   data += "EOD\nset title 'Occluder fraction: frame time (culling + depth pass, median; bars: fastest to slowest)'\nset ylabel 'ms'\n"
-          "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\nset boxwidth 0.9\n"
+          "set yrange [0:*]\nset style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\nset boxwidth 0.9\n"
           "set grid ytics\nset key below horizontal maxcols 4 font ',9'\nplot ";
   std::vector<std::string> titles;
   for (const auto& choice : choices) titles.push_back(choice.first);
