@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The main job on the built-in default: set up, build, render every shipped scene with
-# the z-buffer into out/, then run hsr compare's default study (every algorithm against
-# the exact reference) into out/compare/, and say where everything is.
+# The main job on the built-in default: set up, build, render every shipped scene into
+# out/ (with the z-buffer, and as a line drawing by each line algorithm that takes the
+# scene: Roberts on convex bodies, Appel on closed meshes, the floating horizon on the
+# ripple), then run hsr compare's default study (every surface algorithm against the
+# exact reference) into out/compare/, and say where everything is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -10,6 +12,17 @@ for scene in scenes/*.toml; do
   name=$(basename "$scene" .toml)
   ./build/hsr render "$scene" -o "out/$name.png" --ids "out/$name-ids.png" --depth "out/$name-depth.exr"
   echo "rendered $scene -> out/$name.png (ids: out/$name-ids.png, depth: out/$name-depth.exr)"
+  for algorithm in roberts appel floating_horizon; do
+    # Exit status 2 is hsr refusing the scene (its one-line reason is shown); anything
+    # else that fails stops the demo.
+    status=0
+    reason=$(./build/hsr render "$scene" --algo "$algorithm" -o "out/$name-$algorithm.svg" 2>&1 >/dev/null) || status=$?
+    case $status in
+      0) echo "drew $scene with $algorithm -> out/$name-$algorithm.svg" ;;
+      2) echo "  $algorithm does not draw $scene: ${reason#hsr: error: }" ;;
+      *) echo "$reason" >&2; exit "$status" ;;
+    esac
+  done
 done
 ./build/hsr compare --out out/compare
 echo "images are in $(pwd)/out; the study's contact sheet is out/compare/contact_sheet.png"
