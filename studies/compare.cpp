@@ -1,6 +1,7 @@
 // hsr compare: every applicable algorithm on each scene against the exact reference,
 // time and error side by side, as a table, CSV, JSON and a contact sheet.
 #include <cstdio>
+#include <utility>
 
 #include "studies/studies.hpp"
 #include "studies/common.hpp"
@@ -114,7 +115,7 @@ int compare(const CompareOptions& options) {
   }
 
   warnIfBusy(rows, options.repeat);
-  const Image sheet = composeContactSheet(sections);
+  const Image sheet = composeContactSheet(std::move(sections));
   const std::filesystem::path out = options.out;
   OutputFiles files;
   files.addRgbaPng(out / "contact_sheet.png", sheet.width, sheet.height, sheet.pixels);

@@ -107,8 +107,7 @@ int rowHeight(const std::vector<SheetImage>& images) {
 
 }  // namespace
 
-Image composeContactSheet(const std::vector<SheetSection>& given) {
-  std::vector<SheetSection> sections = given;
+Image composeContactSheet(std::vector<SheetSection> sections) {
   for (SheetSection& section : sections)
     for (auto* row : {&section.images, &section.heatMaps})
       for (SheetImage& shown : *row) shown.caption = fitted(shown.caption);

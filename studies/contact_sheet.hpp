@@ -28,6 +28,6 @@ struct SheetSection {
 // disappears: a thumbnail pixel is red (or blue) if any pixel it covers is. Caption lines
 // wider than a thumbnail are broken at spaces.
 constexpr int kThumbnailWidth = 256;
-Image composeContactSheet(const std::vector<SheetSection>& sections);
+Image composeContactSheet(std::vector<SheetSection> sections);  // taken by value: its captions are re-broken in place
 
 }  // namespace hsr::studies

@@ -168,8 +168,8 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     ResultRow row = measureConfiguration(scene.name, *scene.prepared, references[size], configuration, options.repeat,
                                          options.threads).row;
     row.swept = swept;
-    std::printf("  %zu/%zu %s: visibility %.3f ms [%.3f-%.3f]\n", rows.size() + 1, plan.size(), label.c_str(),
-                row.visibility.median * 1e3, row.visibility.min * 1e3, row.visibility.max * 1e3);
+    std::printf("  %zu/%zu %s: visibility %s ms\n", rows.size() + 1, plan.size(), label.c_str(),
+                formattedRange(row.visibility, 1e3, "%.3f").c_str());
     std::fflush(stdout);
     rows.push_back(std::move(row));
   }
@@ -329,8 +329,8 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     row.swept = {{options.scale, value}};
     sizes.push_back(options.scale == "pixels" ? double(step) * step : double(prepared->triangleCount()));
     times.push_back(row.visibility.median);
-    std::printf("  %zu/%zu %s %s: visibility %.3f ms [%.3f-%.3f]\n", rows.size() + 1, steps.size(), options.scale.c_str(), value.c_str(),
-                row.visibility.median * 1e3, row.visibility.min * 1e3, row.visibility.max * 1e3);
+    std::printf("  %zu/%zu %s %s: visibility %s ms\n", rows.size() + 1, steps.size(), options.scale.c_str(), value.c_str(),
+                formattedRange(row.visibility, 1e3, "%.3f").c_str());
     std::fflush(stdout);
     rows.push_back(std::move(row));
   }
