@@ -6,17 +6,18 @@
 
 namespace hsr::studies {
 
+namespace {
+
+double medianOfSorted(const std::vector<double>& sorted) {
+  const std::size_t n = sorted.size();
+  return n % 2 ? sorted[n / 2] : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
+}
+
+}  // namespace
+
 Timing summarize(std::vector<double> values) {
   std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  // The value at fraction q of the way from the fastest to the slowest (q = 0.5: the median).
-  const auto quantile = [&](double q) {
-    const double rank = q * double(n - 1);
-    const auto below = std::size_t(rank);
-    const std::size_t above = std::min(below + 1, n - 1);
-    return values[below] + (rank - double(below)) * (values[above] - values[below]);
-  };
-  return {quantile(0.5), values.front(), values.back(), quantile(0.25), quantile(0.75), int(n)};
+  return {medianOfSorted(values), values.front(), values.back()};
 }
 
 Order compareTimings(const Timing& a, const Timing& b) {
@@ -31,7 +32,7 @@ Interval medianWithConfidence(std::vector<double> values) {
   // Ranks k and n - 1 - k hold the median between them with 95% probability (the
   // binomial's normal approximation: k = (n - 1.96 sqrt(n)) / 2, rounded down).
   const auto k = std::size_t(std::max(0.0, std::floor((n - 1.96 * std::sqrt(n)) / 2)));
-  return {summarize(values).median, values[k], values[values.size() - 1 - k]};
+  return {medianOfSorted(values), values[k], values[values.size() - 1 - k]};
 }
 
 Verdict below(const Interval& interval, double bound) {

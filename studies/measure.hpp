@@ -22,8 +22,6 @@ namespace hsr::studies {
 // The spread of repeated timings of one thing, in whatever unit they were given.
 struct Timing {
   double median = 0, min = 0, max = 0;
-  double lowerQuartile = 0, upperQuartile = 0;  // linear between the order statistics
-  int runs = 0;
   // Slowest over fastest; above kBusySpread the runs disagree more than a quiet machine makes them.
   double spread() const { return min > 0 ? max / min : 1; }
 };

@@ -87,9 +87,9 @@ void splitTimes(ResultRow& row, const std::vector<Stats>& runs, const std::vecto
     double visibility = times.empty() ? runs[run].seconds("reference") : 0;
     for (const pipeline::PassTime& pass : times) {
       if (pass.visibility) visibility += pass.seconds;
-      if (run == 0) passes.emplace_back(pass.pass, std::vector<double>());
-      const auto same = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.first == pass.pass; });
-      if (same != passes.end()) same->second.push_back(pass.seconds);
+      auto same = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.first == pass.pass; });
+      if (same == passes.end()) same = passes.insert(passes.end(), {pass.pass, {}});
+      same->second.push_back(pass.seconds);
     }
     own.push_back(visibility);
     after.push_back(std::max(0.0, seconds[run] - visibility));
