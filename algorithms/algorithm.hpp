@@ -23,6 +23,7 @@
 #include "renderer/pieces.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/steps.hpp"
 #include "renderer/visible_set.hpp"
 
 namespace hsr {
@@ -42,6 +43,7 @@ struct VisibilityRequest {
   const VisibleSet* triangles;   // only these (what culling kept, or the opaque ones); nullptr: all
   int threads;                   // 0 = all cores; the answer is the same bits for any count
   Stats& stats;
+  StepRecorder* steps = nullptr;  // where the algorithm records its steps; null: not asked (renderer/steps.hpp)
 };
 
 // A surface algorithm's answer, written into a frame of the view's size (which a caller
@@ -88,7 +90,8 @@ struct AlgorithmEntry {
   std::function<PaintedPieces(const VisibilityRequest&, const KnobValues&)> order;
 
   // Line algorithms: the drawing, and how it is judged.
-  std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&)> drawLines;
+  // steps: where it records its steps, or null (renderer/steps.hpp).
+  std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&, StepRecorder* steps)> drawLines;
   std::function<LineJudgement(const PreparedScene&, const KnobValues&, const LineSet&, int threads, Stats&)> judgeLines;
 
   // The reference: its whole image, visibility and effects both exact.
@@ -127,9 +130,9 @@ void setOrder(AlgorithmEntry& entry, PaintedPieces (*order)(const VisibilityRequ
   entry.order = [order](const VisibilityRequest& request, const KnobValues& knobs) { return order(request, knobs.as<Knobs>()); };
 }
 template <typename Knobs>
-void setDrawing(AlgorithmEntry& entry, LineSet (*draw)(const PreparedScene&, const Knobs&, Stats&)) {
-  entry.drawLines = [draw](const PreparedScene& scene, const KnobValues& knobs, int, Stats& stats) {
-    return draw(scene, knobs.as<Knobs>(), stats);
+void setDrawing(AlgorithmEntry& entry, LineSet (*draw)(const PreparedScene&, const Knobs&, Stats&, StepRecorder*)) {
+  entry.drawLines = [draw](const PreparedScene& scene, const KnobValues& knobs, int, Stats& stats, StepRecorder* steps) {
+    return draw(scene, knobs.as<Knobs>(), stats, steps);
   };
 }
 template <typename Knobs>

@@ -291,7 +291,7 @@ int main(int argc, char** argv) try {
   const hsr::KnobValues knobs = hsr::resolveKnobs(appel, {{"surfaces", "any"}, {"crease", std::to_string(options.crease)}});
   hsr::Stats stats;
   hsr::LineSet drawing;
-  const double hsrMilliseconds = millisecondsOf([&] { drawing = appel.drawLines(prepared, knobs, 1, stats); });
+  const double hsrMilliseconds = millisecondsOf([&] { drawing = appel.drawLines(prepared, knobs, 1, stats, nullptr); });
   std::vector<hsr::EdgeVisibility> truth;
   const double referenceMilliseconds =
       millisecondsOf([&] { truth = hsr::traceLineReference(prepared, drawing.edges, 0, stats); });

@@ -38,6 +38,10 @@ int main(int argc, char** argv) {
   renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
   renderCommand->add_flag("--stats", render.stats, "print counters and phase times");
+  renderCommand->add_option("--steps", render.steps,
+                            "folder: the algorithm's steps as step-NNNN.png, captions.txt and the animation steps.gif");
+  renderCommand->add_option("--every", render.every, "with --steps: record every Nth repeated step (default: about 40 per run)")
+      ->check(CLI::NonNegativeNumber);
   renderCommand->add_flag("--explain", render.explain,
                           "print the passes the scene's effects call for and why, then what was decided and the time of each pass");
 

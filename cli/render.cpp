@@ -15,6 +15,7 @@
 #include "renderer/frame.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/line_drawing.hpp"
+#include "renderer/steps.hpp"
 #include "studies/common.hpp"
 #include "studies/results.hpp"
 
@@ -131,6 +132,45 @@ void printDecisions(const Stats& stats, double seconds) {
     std::printf("  %-14s %8.2f ms\n", pass.pass.c_str(), pass.seconds * 1e3);
 }
 
+// The folder --steps names: made if absent (its parent must exist), and removed again if
+// the command fails before writing into it; a previous run's frames beyond this run's
+// count are removed once this run's are in place, so the folder holds one run.
+class StepsFolder {
+ public:
+  explicit StepsFolder(const std::filesystem::path& folder) : folder_(folder) {
+    std::error_code error;
+    if (std::filesystem::is_directory(folder_, error)) return;
+    if (std::filesystem::exists(folder_, error)) throw InputError("--steps " + folder_.string() + ": exists and is not a folder");
+    const std::filesystem::path parent = folder_.has_parent_path() ? folder_.parent_path() : ".";
+    if (!std::filesystem::is_directory(parent, error))
+      throw InputError("--steps " + folder_.string() + ": the folder it would go in (" + parent.string() + ") does not exist");
+    if (!std::filesystem::create_directory(folder_, error))
+      throw InputError("--steps " + folder_.string() + ": cannot make the folder: " + error.message());
+    made_ = true;
+  }
+  StepsFolder(const StepsFolder&) = delete;
+  StepsFolder& operator=(const StepsFolder&) = delete;
+  ~StepsFolder() {
+    std::error_code error;
+    if (made_ && !written_) std::filesystem::remove_all(folder_, error);
+  }
+
+  void write(const std::vector<Step>& steps) {
+    writeSteps(folder_, steps);
+    written_ = true;
+    std::error_code error;
+    for (std::size_t stale = steps.size() + 1;; ++stale) {
+      char name[32];
+      std::snprintf(name, sizeof name, "step-%04zu.png", stale);
+      if (!std::filesystem::remove(folder_ / name, error)) break;
+    }
+  }
+
+ private:
+  std::filesystem::path folder_;
+  bool made_ = false, written_ = false;
+};
+
 }  // namespace
 
 int render(const RenderOptions& options) {
@@ -152,12 +192,19 @@ int render(const RenderOptions& options) {
     throw InputError(std::string(options.depth.empty() ? "--ids" : "--depth") + ": " + algorithm.name +
                      " draws lines, which have no depth or id image");
 
+  if (options.every > 0 && options.steps.empty()) throw InputError("--every " + std::to_string(options.every) + ": applies only with --steps DIR");
+  std::optional<StepsFolder> stepsFolder;
+  if (!options.steps.empty()) stepsFolder.emplace(options.steps);
+
   const LoadedScene scene = studies::loadPrepared(options.scene, options.size);
   studies::checkRenders(configuration, scene.name, *scene.prepared);
   if (options.explain) printPlan(scene, configuration);
+  std::optional<StepRecorder> steps;
+  if (stepsFolder) steps.emplace(std::size_t(options.every));
   const auto start = std::chrono::steady_clock::now();
   Stats stats;
-  const pipeline::Rendered rendered = pipeline::render(*scene.prepared, configuration, options.threads, stats);
+  const pipeline::Rendered rendered =
+      pipeline::render(*scene.prepared, configuration, options.threads, stats, nullptr, steps ? &*steps : nullptr);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Frame& frame = rendered.frame;
   OutputFiles outputs;
@@ -167,6 +214,12 @@ int render(const RenderOptions& options) {
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
   if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
   outputs.commit();
+  if (stepsFolder) {
+    const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
+    steps->record(lines ? "the finished drawing" : "the finished image, after the passes that follow visibility (hsr render --explain)",
+                  Image{shown.width, shown.height, 4, shown.color});
+    stepsFolder->write(steps->steps());
+  }
   // Why the image or drawing may be wrong somewhere, as the algorithm says.
   const std::string& partial = lines ? rendered.drawing.partial : frame.partial;
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());

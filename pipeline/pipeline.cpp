@@ -30,6 +30,7 @@ struct Context {
   int threads;
   Stats& stats;
   const culling::PreviousFrame* previous;
+  StepRecorder* steps;             // null unless steps were asked for
   std::optional<VisibleSet> kept;  // what the culling stages kept
   Visibility& visibility;          // the frame, and the painter's order
   LineSet drawing = {};
@@ -82,7 +83,8 @@ Decision decideCulling(const Facts& facts) {
 }
 
 void runCulling(Context& context) {
-  context.kept = culling::runPipeline(context.scene, context.configuration.culling, context.threads, context.stats, context.previous);
+  context.kept =
+      culling::runPipeline(context.scene, context.configuration.culling, context.threads, context.stats, context.previous, context.steps);
 }
 
 Decision decideVisibility(const Facts& facts) {
@@ -100,7 +102,7 @@ void runVisibility(Context& context) {
       context.visibility.frame = algorithm.renderExactly(scene, context.threads, context.stats);
       return;
     case AlgorithmKind::line:
-      context.drawing = algorithm.drawLines(scene, context.configuration.knobs, context.threads, context.stats);
+      context.drawing = algorithm.drawLines(scene, context.configuration.knobs, context.threads, context.stats, context.steps);
       return;
     case AlgorithmKind::surface: {
       const VisibleSet* triangles = context.kept ? &*context.kept : nullptr;
@@ -108,8 +110,8 @@ void runVisibility(Context& context) {
       if (Facts{scene, context.configuration}.opaqueFirst) triangles = &opaque.emplace(trianglesByOpacity(scene, triangles, true));
       if (context.visibility.frame.width != scene.width() || context.visibility.frame.height != scene.height())
         context.visibility.frame = Frame(scene.width(), scene.height());
-      algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats}, context.configuration.knobs,
-                           context.visibility);
+      algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats, context.steps},
+                           context.configuration.knobs, context.visibility);
       return;
     }
   }
@@ -294,9 +296,9 @@ std::vector<PlannedPass> plan(const PreparedScene& scene, const Configuration& c
 }
 
 Rendered render(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
-                const culling::PreviousFrame* previous) {
+                const culling::PreviousFrame* previous, StepRecorder* steps) {
   Visibility visibility;
-  Context context{scene, scene.camera(), configuration, threads, stats, previous, std::nullopt, visibility};
+  Context context{scene, scene.camera(), configuration, threads, stats, previous, steps, std::nullopt, visibility};
   runPasses(context, passes().size());
   return {std::move(visibility.frame), std::move(context.drawing)};
 }
@@ -304,7 +306,7 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
                             Visibility& visibility, const culling::PreviousFrame* previous) {
   HSR_CHECK(configuration.algorithm->kind == AlgorithmKind::surface);
-  Context context{scene, scene.camera(), configuration, threads, stats, previous, std::nullopt, visibility};
+  Context context{scene, scene.camera(), configuration, threads, stats, previous, nullptr, std::nullopt, visibility};
   runPasses(context, kVisibilityPasses);
   return context.kept ? std::move(*context.kept) : VisibleSet::everything(scene);
 }

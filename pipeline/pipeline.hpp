@@ -53,9 +53,11 @@ struct Rendered {
 
 // Renders the scene at its size. threads: 0 = all cores; the image is the same bits for
 // every count. `previous`: the previous frame, for a culling stage that reuses it
-// (occlusion:previous-frame). The configuration must not be refused (refusal()).
+// (occlusion:previous-frame). `steps`: where the culling stages and the algorithm record
+// their steps (renderer/steps.hpp), or null. The configuration must not be refused
+// (refusal()).
 Rendered render(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
-                const culling::PreviousFrame* previous = nullptr);
+                const culling::PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr);
 
 // The culling and visibility passes alone, into `visibility` (its frame reused when it
 // has the scene's size): what the studies time when they compare visibility methods,

@@ -3,6 +3,7 @@
 // place only when all were written, so a failed run leaves no partial output behind.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -23,6 +24,9 @@ struct Frame {
   Frame(int w, int h);
   std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
 };
+
+// A colour, 8 bits per channel.
+using Rgb = std::array<std::uint8_t, 3>;
 
 // Decodes an --ids image pixel: (R << 16 | G << 8 | B) = global triangle index + 1.
 inline std::uint32_t idFromRgb(const std::uint8_t* rgb) {

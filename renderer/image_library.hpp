@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace hsr {
 
@@ -19,6 +20,9 @@ struct ImageComparison {
   int maxX = 0, maxY = 0, maxChannel = 0;
   std::uint64_t failing = 0;  // pixels with a channel differing by more than the tolerance
 };
+
+// The font of every label the suite draws into a picture (contact sheets, steps).
+inline constexpr const char* kLabelFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // Debian: fonts-dejavu-core
 
 // Each operation returns "" on success, or what went wrong (without the path: the
 // caller names it).
@@ -32,6 +36,9 @@ struct ImageLibrary {
                           const float (&rgba)[4]);
   // How wide drawText would draw `text`, in pixels.
   std::string (*textWidth)(const std::string& text, int size, const std::string& font, int& width);
+  // Writes frames of one size as an animation that loops forever (a GIF: every browser
+  // and document viewer plays it, and OpenImageIO writes it with no further tool).
+  std::string (*writeAnimation)(const std::string& path, const std::vector<Image>& frames, int framesPerSecond);
 };
 
 // The module, loaded on the first call; throws InputError when it cannot be loaded.

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "renderer/raster.hpp"
+#include "renderer/steps.hpp"
 
 namespace hsr {
 
@@ -14,14 +15,15 @@ namespace {
 struct Pen {
   bool draw = false;
   bool dashed = false;
-  std::uint8_t grey = 0;  // 0 black .. 255 white
+  Rgb color = {0, 0, 0};
+  bool operator==(const Pen&) const = default;
 };
 
 Pen penFor(int qi, LineStyle style) {
-  if (qi == 0) return {true, false, 0};
+  if (qi == 0) return {true, false, kQiColors[0]};
   if (style == LineStyle::visible) return {};
-  if (style == LineStyle::qi && qi >= 2) return {true, true, 204};
-  return {true, true, 136};
+  if (style == LineStyle::qi && qi > 0) return {true, true, kQiColors[std::min<std::size_t>(std::size_t(qi), kQiColors.size() - 1)]};
+  return {true, true, kHiddenLineColor};
 }
 
 // The drawn parts of [begin, end] of an edge of `length` pixels: all of it, or its dashes,
@@ -63,8 +65,8 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
   char text[160];
   const auto stroke = [](const Pen& pen) {
     char attributes[128];
-    std::snprintf(attributes, sizeof attributes, "\" stroke=\"rgb(%d,%d,%d)\" stroke-width=\"%g\" stroke-linecap=\"round\"", pen.grey,
-                  pen.grey, pen.grey, kLineWidthPixels);
+    std::snprintf(attributes, sizeof attributes, "\" stroke=\"rgb(%d,%d,%d)\" stroke-width=\"%g\" stroke-linecap=\"round\"", pen.color[0],
+                  pen.color[1], pen.color[2], kLineWidthPixels);
     return std::string(attributes);
   };
   const auto flush = [&] {
@@ -89,7 +91,7 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
     const FeatureEdge& edge = lines.edges[segment->edge];
     forEachStroke(pen, edge.lengthPixels(), segment->begin, segment->end, [&](double from, double to) {
       const dvec2 a = edge.pixelAt(from), b = edge.pixelAt(to);
-      const bool continues = !path.empty() && !pen.dashed && !pathPen.dashed && pen.grey == pathPen.grey &&
+      const bool continues = !path.empty() && !pen.dashed && pen == pathPen &&
                              glm::length(path.back() - a) < 1e-6;
       if (!continues) {
         flush();
@@ -105,8 +107,33 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
     });
   }
   flush();
+  if (style == LineStyle::qi) {
+    // The legend, top left: a sample of each pen and what it means.
+    const auto entries = qiLegend();
+    std::snprintf(text, sizeof text, "<rect x=\"0\" y=\"0\" width=\"150\" height=\"%zu\" fill=\"white\" fill-opacity=\"0.8\"/>\n",
+                  10 + 17 * entries.size());
+    svg += text;
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      const double y = 5 + 17 * (double(e) + 0.5);
+      const Pen pen = penFor(int(e), style);
+      std::snprintf(text, sizeof text, "<line x1=\"5\" y1=\"%.1f\" x2=\"27\" y2=\"%.1f", y, y);
+      svg += text;
+      svg += stroke(pen) + (pen.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
+      std::snprintf(text, sizeof text, "<text x=\"32\" y=\"%.1f\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"12\">", y + 4);
+      svg += text + entries[e].second + "</text>\n";
+    }
+  }
   svg += "</svg>\n";
   return svg;
+}
+
+std::vector<std::pair<Rgb, std::string>> qiLegend() {
+  std::vector<std::pair<Rgb, std::string>> entries;
+  for (std::size_t qi = 0; qi < kQiColors.size(); ++qi)
+    entries.emplace_back(kQiColors[qi], qi == 0 ? "QI 0: visible"
+                                        : qi + 1 < kQiColors.size() ? "QI " + std::to_string(qi) + ": behind " + std::to_string(qi) + " surface" + (qi > 1 ? "s" : "")
+                                                                  : "QI " + std::to_string(qi) + " or more");
+  return entries;
 }
 
 Frame lineSetFrame(const LineSet& lines, LineStyle style) {
@@ -119,11 +146,43 @@ Frame lineSetFrame(const LineSet& lines, LineStyle style) {
     forEachStroke(pen, edge.lengthPixels(), segment->begin, segment->end, [&](double from, double to) {
       rasterizeLine(edge.pixelAt(from), edge.pixelAt(to), kLineWidthPixels, lines.width, lines.height, [&](int x, int y) {
         std::uint8_t* pixel = &frame.color[(std::size_t(y) * std::size_t(lines.width) + std::size_t(x)) * 4];
-        pixel[0] = pixel[1] = pixel[2] = pen.grey;
+        pixel[0] = pen.color[0], pixel[1] = pen.color[1], pixel[2] = pen.color[2];
       });
     });
   }
+  if (style == LineStyle::qi) {
+    Image picture{frame.width, frame.height, 4, std::move(frame.color)};
+    drawLegend(picture, qiLegend());
+    frame.color = std::move(picture.pixels);
+  }
   return frame;
+}
+
+}  // namespace hsr
+
+namespace hsr {
+
+Image lineStepPicture(const LineSet& lines, std::span<const std::uint32_t> justDecided, LineStyle style) {
+  constexpr Rgb kJustDecided = {170, 235, 170};
+  constexpr double kLabelMinimumPixels = 24;
+  Image picture = blankPicture(lines.width, lines.height);
+  for (const std::uint32_t e : justDecided) drawSegment(picture, lines.edges[e].pixelFrom, lines.edges[e].pixelTo, kJustDecided, 6);
+  const Frame drawing = lineSetFrame(lines, style);
+  for (std::size_t p = 0; p < drawing.pixelCount(); ++p) {
+    const std::uint8_t* pixel = &drawing.color[4 * p];
+    if (pixel[0] != 255 || pixel[1] != 255 || pixel[2] != 255) std::copy_n(pixel, 4, &picture.pixels[4 * p]);
+  }
+  if (style != LineStyle::qi) return picture;
+  for (const LineSegment& segment : lines.segments) {
+    const FeatureEdge& edge = lines.edges[segment.edge];
+    if (std::find(justDecided.begin(), justDecided.end(), segment.edge) == justDecided.end() ||
+        (segment.end - segment.begin) * edge.lengthPixels() < kLabelMinimumPixels)
+      continue;
+    const dvec2 middle = edge.pixelAt((segment.begin + segment.end) / 2);
+    const Pen pen = penFor(segment.qi, style);
+    drawLabel(picture, int(middle.x) + 3, int(middle.y) - 3, std::to_string(segment.qi), pen.color, 12);
+  }
+  return picture;
 }
 
 }  // namespace hsr

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "renderer/frame.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/raster.hpp"
 
@@ -26,7 +27,6 @@ double strayDrawnLength(const LineSet& lines, std::span<const EdgeVisibility> tr
 // truth[i] describes lines.edges[i].
 std::vector<std::uint8_t> lineErrorMap(const LineSet& lines, std::span<const EdgeVisibility> truth);
 
-using Rgb = std::array<std::uint8_t, 3>;
 inline constexpr Rgb kExactLineGrey = {187, 187, 187}, kWronglyDrawnRed = {220, 30, 30}, kWronglyHiddenBlue = {30, 60, 220};
 inline constexpr double kErrorLineWidth = 3;  // errors drawn wider, so a short one is still seen
 

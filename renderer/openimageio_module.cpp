@@ -77,7 +77,27 @@ std::string textWidth(const std::string& text, int size, const std::string& font
   return "";
 }
 
-const ImageLibrary kLibrary{writeDepthExr, readImage, compare, resize, drawText, textWidth};
+std::string writeAnimation(const std::string& path, const std::vector<Image>& frames, int framesPerSecond) {
+  auto output = OIIO::ImageOutput::create(path);
+  if (!output) return "no writer for this extension";
+  if (!output->supports("multiimage")) return "this format holds one image, not an animation";
+  std::vector<OIIO::ImageSpec> specs;
+  for (const Image& frame : frames) {
+    OIIO::ImageSpec& spec = specs.emplace_back(frame.width, frame.height, frame.channels, OIIO::TypeDesc::UINT8);
+    const int rate[2] = {framesPerSecond, 1};
+    spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
+    spec.attribute("oiio:LoopCount", 0);  // play forever
+  }
+  if (!output->open(path, int(specs.size()), specs.data())) return output->geterror();
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    if (f > 0 && !output->open(path, specs[f], OIIO::ImageOutput::AppendSubimage)) return output->geterror();
+    if (!output->write_image(OIIO::TypeDesc::UINT8, frames[f].pixels.data())) return output->geterror();
+  }
+  if (!output->close()) return output->geterror();
+  return "";
+}
+
+const ImageLibrary kLibrary{writeDepthExr, readImage, compare, resize, drawText, textWidth, writeAnimation};
 
 }  // namespace
 }  // namespace hsr

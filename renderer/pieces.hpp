@@ -59,11 +59,14 @@ struct PieceFragment {
 
 // Tile by tile in parallel, each tile on one thread and its pieces in order, so that
 // every pixel sees its pieces in order whatever the thread count: startTile(tile, rect)
-// once per tile, then fragment(tile, f) for every pixel of every piece in the tile.
-// Returns the cut tests made.
-template <typename StartTile, typename Fragment>
+// once per tile, then fragment(tile, f) for every pixel of every piece in the tile, and
+// after each piece pieceDone(tile, index into the order). Returns the cut tests made.
+struct NothingAfterAPiece {
+  void operator()(std::size_t, std::uint32_t) const {}
+};
+template <typename StartTile, typename Fragment, typename PieceDone = NothingAfterAPiece>
 std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& painted, const TileGrid& tiles, int threads,
-                          StartTile&& startTile, Fragment&& fragment);
+                          StartTile&& startTile, Fragment&& fragment, PieceDone&& pieceDone = {});
 
 // ---- implementation ----
 
@@ -77,9 +80,9 @@ struct Plane {
 Plane planeOf(const PreparedScene& scene, std::uint32_t triangle);
 }  // namespace pieces_detail
 
-template <typename StartTile, typename Fragment>
+template <typename StartTile, typename Fragment, typename PieceDone>
 std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& painted, const TileGrid& tiles, int threads,
-                          StartTile&& startTile, Fragment&& fragment) {
+                          StartTile&& startTile, Fragment&& fragment, PieceDone&& pieceDone) {
   using pieces_detail::Plane;
   const PaintOrder& order = painted.order;
   const ScreenGeometry& geometry = painted.geometry;
@@ -120,6 +123,7 @@ std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& paint
               camera.distanceFromScreenAffine(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
           fragment(tile, PieceFragment{tri.triangle, x, y, std::size_t(y) * std::size_t(tiles.width) + std::size_t(x), depth});
         });
+      pieceDone(tile, index);
     }
   });
   std::int64_t total = 0;

@@ -13,11 +13,13 @@ namespace hsr {
 
 struct TileGrid {
   static constexpr int kTileSize = 64;  // pixels per side of a tile
-  int width, height, tilesX, tilesY;
+  int width, height, tileSize, tilesX, tilesY;
 
-  TileGrid(int imageWidth, int imageHeight)
-      : width(imageWidth), height(imageHeight), tilesX((imageWidth + kTileSize - 1) / kTileSize),
-        tilesY((imageHeight + kTileSize - 1) / kTileSize) {}
+  // tileSize: kTileSize, or a tile as large as the image to draw it in one submission-ordered
+  // pass (what a step-by-step recording watches).
+  TileGrid(int imageWidth, int imageHeight, int tileSize_ = kTileSize)
+      : width(imageWidth), height(imageHeight), tileSize(tileSize_), tilesX((imageWidth + tileSize - 1) / tileSize),
+        tilesY((imageHeight + tileSize - 1) / tileSize) {}
   std::size_t count() const { return std::size_t(tilesX) * std::size_t(tilesY); }
 
   // A tile's pixels: [x0, x1) x [y0, y1).
@@ -25,8 +27,8 @@ struct TileGrid {
     int x0, y0, x1, y1;
   };
   Rect rect(std::size_t tile) const {
-    const int x0 = int(tile % std::size_t(tilesX)) * kTileSize, y0 = int(tile / std::size_t(tilesX)) * kTileSize;
-    return {x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height)};
+    const int x0 = int(tile % std::size_t(tilesX)) * tileSize, y0 = int(tile / std::size_t(tilesX)) * tileSize;
+    return {x0, y0, std::min(x0 + tileSize, width), std::min(y0 + tileSize, height)};
   }
 
   // Binning: for each tile, the indices of the items whose screen triangle's pixel box
@@ -36,8 +38,8 @@ struct TileGrid {
     std::vector<std::vector<std::uint32_t>> bins(count());
     for (std::uint32_t i = 0; i < items; ++i) {
       const ScreenTriangle& tri = triangleOf(i);
-      for (int ty = tri.minY / kTileSize; ty <= tri.maxY / kTileSize; ++ty)
-        for (int tx = tri.minX / kTileSize; tx <= tri.maxX / kTileSize; ++tx) bins[std::size_t(ty * tilesX + tx)].push_back(i);
+      for (int ty = tri.minY / tileSize; ty <= tri.maxY / tileSize; ++ty)
+        for (int tx = tri.minX / tileSize; tx <= tri.maxX / tileSize; ++tx) bins[std::size_t(ty * tilesX + tx)].push_back(i);
     }
     return bins;
   }

@@ -9,7 +9,6 @@ namespace hsr::studies {
 namespace {
 
 constexpr int kMargin = 10, kHeadingHeight = 30, kCaptionLine = 17, kFontSize = 14;
-constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // Debian: fonts-dejavu-core
 
 int thumbnailHeight(const Image& image) {
   return std::max(1, image.height * kThumbnailWidth / std::max(1, image.width));
@@ -58,14 +57,14 @@ void paste(Image& canvas, int x, int y, const Image& image) {
 
 void text(Image& canvas, int x, int baseline, const std::string& line, float grey) {
   const float color[4] = {grey, grey, grey, 1};
-  if (const std::string error = imageLibrary().drawText(canvas, x, baseline, line, kFontSize, kFont, color); !error.empty())
-    throw InputError(std::string("contact sheet: cannot draw text with ") + kFont + ": " + error);
+  if (const std::string error = imageLibrary().drawText(canvas, x, baseline, line, kFontSize, kLabelFont, color); !error.empty())
+    throw InputError(std::string("contact sheet: cannot draw text with ") + kLabelFont + ": " + error);
 }
 
 int textWidth(const std::string& line) {
   int width = 0;
-  if (const std::string error = imageLibrary().textWidth(line, kFontSize, kFont, width); !error.empty())
-    throw InputError(std::string("contact sheet: cannot measure text with ") + kFont + ": " + error);
+  if (const std::string error = imageLibrary().textWidth(line, kFontSize, kLabelFont, width); !error.empty())
+    throw InputError(std::string("contact sheet: cannot measure text with ") + kLabelFont + ": " + error);
   return width;
 }
 

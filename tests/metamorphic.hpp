@@ -144,7 +144,7 @@ inline std::optional<LineSet> draw(const PreparedScene& scene, const char* algor
   const KnobValues knobs = resolveKnobs(entry, settings);
   if (!entry.refusal(scene, knobs).empty()) return std::nullopt;
   Stats stats;
-  return entry.drawLines(scene, knobs, 1, stats);
+  return entry.drawLines(scene, knobs, 1, stats, nullptr);
 }
 
 inline DepthTie depthTieOf(const PreparedScene& scene, const Configuration& configuration) {

@@ -8,6 +8,7 @@
 #include "renderer/camera.hpp"
 #include "renderer/error.hpp"
 #include "renderer/image_grid.hpp"
+#include "renderer/line_drawing.hpp"
 #include "renderer/predicates.hpp"
 
 namespace hsr::appel {
@@ -66,8 +67,9 @@ struct Changes {
 
 class QuantitativeInvisibility {
  public:
-  QuantitativeInvisibility(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
-      : scene_(scene),
+  QuantitativeInvisibility(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps)
+      : steps_(steps),
+        scene_(scene),
         camera_(scene.camera()),
         viewer_(camera_),
         stats_(stats),
@@ -132,6 +134,7 @@ class QuantitativeInvisibility {
     conventional_.assign(scene_.positions().size(), 0);
     std::vector<std::vector<LineSegment>> pieces(lines_.edges.size());
     std::vector<std::uint8_t> walked(firstJunction_, 0);
+    std::size_t decided = 0;  // edges whose pieces are known, for the steps
     for (std::uint32_t seed = 0; seed < firstJunction_; ++seed) {
       if (walked[seed]) continue;
       const std::uint32_t start = startVertex(lines_.edges[seed].vertexFrom);
@@ -143,12 +146,19 @@ class QuantitativeInvisibility {
           if (walked[e]) continue;
           walked[e] = 1;
           if (const std::uint32_t reached = walkEdge(e, vertex, pieces[e]); reached != kUnknown) frontier.push_back(reached);
+          if (steps_)
+            recordStep(pieces, e, "step 3: edge " + std::to_string(++decided) + " of " + std::to_string(lines_.edges.size()) +
+                                      " walked from a vertex of QI " + std::to_string(baseQi_[vertex]) + ", its QI changing by +1 or -1 where it passes behind a contour");
         }
       }
     }
     // Step 4: the intersection lines.
-    for (std::uint32_t e = firstJunction_; e < lines_.edges.size(); ++e)
+    for (std::uint32_t e = firstJunction_; e < lines_.edges.size(); ++e) {
       drawJunction(e, intersections_.junctions[e - firstJunction_], pieces[e]);
+      if (steps_)
+        recordStep(pieces, e, "step 4: intersection line " + std::to_string(++decided) + " of " + std::to_string(lines_.edges.size()) +
+                                  ": QI of its longest piece by a ray cast, then carried along it");
+    }
     for (auto& edgePieces : pieces) lines_.segments.insert(lines_.segments.end(), edgePieces.begin(), edgePieces.end());
     stats_.add("crossings tested", crossingsTested_);
     stats_.add("QI changes", qiChanges_);
@@ -168,6 +178,18 @@ class QuantitativeInvisibility {
 
  private:
   static constexpr int kUnknownQi = std::numeric_limits<int>::min();
+
+  // A step (renderer/steps.hpp): the pieces known so far, edge e just decided.
+  void recordStep(const std::vector<std::vector<LineSegment>>& pieces, std::uint32_t e, std::string caption) {
+    if (!steps_->due(recorded_++, lines_.edges.size())) return;
+    LineSet sofar;
+    sofar.width = lines_.width, sofar.height = lines_.height, sofar.edges = lines_.edges;
+    for (const auto& edgePieces : pieces) sofar.segments.insert(sofar.segments.end(), edgePieces.begin(), edgePieces.end());
+    steps_->record(std::move(caption), lineStepPicture(sofar, std::span(&e, 1), LineStyle::qi));
+  }
+
+  StepRecorder* steps_;
+  std::size_t recorded_ = 0;
 
   const dvec3& position(std::uint32_t vertex) const { return scene_.positions()[vertex]; }
   std::uint32_t thirdCorner(std::uint32_t triangle, std::uint32_t a, std::uint32_t b) const {
@@ -511,9 +533,9 @@ class QuantitativeInvisibility {
 
 }  // namespace
 
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
   PhaseTimer timer(stats, "appel");
-  return QuantitativeInvisibility(scene, knobs, stats).run();
+  return QuantitativeInvisibility(scene, knobs, stats, steps).run();
 }
 
 AlgorithmEntry entry() {

@@ -79,7 +79,7 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 // "QI mismatches" (an edge's end disagreeing with the QI its vertex already has),
 // "degenerate start rays", "degenerate recounts", "negative QI", and the surface
 // intersections' counters on first use.
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats);
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr);
 
 // The registry's entry (algorithms/algorithm.hpp).
 AlgorithmEntry entry();

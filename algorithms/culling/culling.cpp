@@ -81,11 +81,34 @@ std::string describePipeline(const Pipeline& pipeline) {
   return text;
 }
 
+namespace {
+
+// A stage's step: what it kept (grey) and what it removed (red), as wireframes.
+void recordStage(const PreparedScene& scene, const CameraTransform& camera, const StageChoice& choice, const VisibleSet& in,
+                 const VisibleSet& kept, StepRecorder& steps) {
+  std::vector<std::uint32_t> removed;
+  std::set_difference(in.triangles.begin(), in.triangles.end(), kept.triangles.begin(), kept.triangles.end(), std::back_inserter(removed));
+  Image picture = blankPicture(scene.width(), scene.height());
+  drawWireframe(picture, scene, camera, kept.triangles, {150, 150, 150});
+  drawWireframe(picture, scene, camera, removed, kHighlight);
+  drawLegend(picture, {{{150, 150, 150}, "kept: " + std::to_string(kept.triangles.size())},
+                       {kHighlight, "removed: " + std::to_string(removed.size())}});
+  steps.record("culling stage " + choice.name() + ": kept " + std::to_string(kept.triangles.size()) + " of " +
+                   std::to_string(in.triangles.size()) + " triangles, removed " + std::to_string(removed.size()),
+               std::move(picture));
+}
+
+}  // namespace
+
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
-                       const PreviousFrame* previous) {
+                       const PreviousFrame* previous, StepRecorder* steps) {
   const CameraTransform& camera = scene.camera();
   VisibleSet set = VisibleSet::everything(scene);
-  for (const StageChoice& choice : pipeline) set = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous});
+  for (const StageChoice& choice : pipeline) {
+    VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps});
+    if (steps) recordStage(scene, camera, choice, set, kept, *steps);
+    set = std::move(kept);
+  }
   stats.add("culling: triangles kept", static_cast<std::int64_t>(set.triangles.size()));
   return set;
 }

@@ -25,6 +25,7 @@
 #include "renderer/parallel.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/steps.hpp"
 #include "renderer/visible_set.hpp"
 
 namespace hsr::culling {
@@ -44,6 +45,7 @@ struct StageInput {
   int threads;
   Stats& stats;
   const PreviousFrame* previous;  // nullptr: none (the first frame, or a single image)
+  StepRecorder* steps = nullptr;  // where the stage records its steps; null: not asked (renderer/steps.hpp)
 };
 
 // A stage as the pipeline and `hsr list` see it. Each stage file declares its own
@@ -96,9 +98,10 @@ Pipeline parsePipeline(const std::string& text, const std::string& where = "--cu
 std::string describePipeline(const Pipeline& pipeline);  // "backface:object,frustum:sphere"
 
 // Runs the stages in order on the scene's camera and size. threads: 0 = all cores; the
-// result is the same for every thread count. Counts "culling: triangles kept".
+// result is the same for every thread count. Counts "culling: triangles kept". With
+// steps, records after each stage what it kept and what it removed.
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
-                       const PreviousFrame* previous = nullptr);
+                       const PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr);
 
 // The machinery the stages share. The triangles of `in` for which a test holds, in
 // order, tested in parallel chunks: makeTest() gives each chunk its own test (a callable

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <span>
 
 #include "algorithms/floating_horizon/curve_comparison.hpp"
 #include "algorithms/floating_horizon/curves.hpp"
+#include "renderer/line_drawing.hpp"
+#include "renderer/steps.hpp"
 
 namespace hsr::floating_horizon {
 
@@ -74,6 +77,18 @@ class Horizons {
     });
   }
 
+  // For the steps: the horizons drawn over a picture as lines through their column
+  // centers, upper in blue and lower in orange, where a curve has reached the column.
+  void drawOver(Image& picture) const {
+    for (std::size_t column = 0; column + 1 < upper_.size(); ++column) {
+      const double x0 = (first_ + double(column) + 0.5) * spacing_, x1 = x0 + spacing_;
+      if (upper_[column] < kNothingDrawn && upper_[column + 1] < kNothingDrawn)
+        drawSegment(picture, {x0, upper_[column]}, {x1, upper_[column + 1]}, kSecondHighlight, 2.0);
+      if (keepLower_ && lower_[column] > -kNothingDrawn && lower_[column + 1] > -kNothingDrawn)
+        drawSegment(picture, {x0, lower_[column]}, {x1, lower_[column + 1]}, kQiColors[2], 2.0);
+    }
+  }
+
  private:
   // Far beyond any image: "nothing drawn in this column yet". Finite, so interpolating
   // toward it stays arithmetic.
@@ -131,8 +146,8 @@ int countOf(const KnobNumber& knob, int width, int minimum) {
 
 class FloatingHorizon {
  public:
-  FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
-      : view_(scene), knobs_(knobs), stats_(stats), layout_(view_.layout(knobs.mesh)),
+  FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps)
+      : view_(scene), knobs_(knobs), stats_(stats), steps_(steps), layout_(view_.layout(knobs.mesh)),
         columns_(countOf(knobs.columns, scene.width(), 1)), samples_(countOf(knobs.samples, scene.width(), 2)) {
     lines_.width = scene.width();
     lines_.height = scene.height();
@@ -198,6 +213,7 @@ class FloatingHorizon {
   // Steps 3 to 5 for one curve: every segment is tested against the horizons as the
   // curves in front left them, and only then does the curve raise them.
   void drawCurve(const CurveFamily& family, double position, std::size_t curve, std::span<const Sample> samples) {
+    const auto firstEdge = static_cast<std::uint32_t>(lines_.edges.size());
     std::vector<std::pair<dvec2, dvec2>> drawn;
     for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
       const Sample &a = samples[i], &b = samples[i + 1];
@@ -221,6 +237,26 @@ class FloatingHorizon {
       drawn.emplace_back(a.pixel, b.pixel);
     }
     for (const auto& [a, b] : drawn) horizons_->raise(a, b);
+    if (steps_ && steps_->due(curvesDrawn_, curvesToDraw())) recordCurve(firstEdge);
+    ++curvesDrawn_;
+  }
+
+  // How many times drawCurve runs: each row, and each cross curve's piece between two rows.
+  std::size_t curvesToDraw() const {
+    const std::size_t rows = layout_.rows.positions.size();
+    return rows + (rows > 0 ? (rows - 1) * layout_.cross.positions.size() : 0);
+  }
+
+  // A step: the drawing so far, the curve just drawn in green, the horizons it raised.
+  void recordCurve(std::uint32_t firstEdge) {
+    std::vector<std::uint32_t> curveEdges(lines_.edges.size() - firstEdge);
+    std::iota(curveEdges.begin(), curveEdges.end(), firstEdge);
+    Image picture = lineStepPicture(lines_, curveEdges, LineStyle::hidden);
+    horizons_->drawOver(picture);
+    drawLegend(picture, {{kSecondHighlight, "upper horizon"}, {kQiColors[2], "lower horizon"}, {{170, 235, 170}, "curve just drawn"}});
+    steps_->record("steps 3-5: curve " + std::to_string(curvesDrawn_ + 1) + " of " + std::to_string(curvesToDraw()) +
+                       " tested against the horizons, then raising them (front to back)",
+                   std::move(picture));
   }
 
   // The segment a-b as an edge of the drawing: its visible parts, and hidden ones between.
@@ -234,6 +270,8 @@ class FloatingHorizon {
   SurfaceView view_;
   const Knobs& knobs_;
   Stats& stats_;
+  StepRecorder* steps_;
+  std::size_t curvesDrawn_ = 0;
   CurveLayout layout_;
   int columns_, samples_;
   std::optional<Horizons> horizons_;  // once the drawing's extent is known
@@ -243,9 +281,9 @@ class FloatingHorizon {
 
 }  // namespace
 
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
   const PhaseTimer timer(stats, "floating horizon");
-  return FloatingHorizon(scene, knobs, stats).run();
+  return FloatingHorizon(scene, knobs, stats, steps).run();
 }
 
 AlgorithmEntry entry() {

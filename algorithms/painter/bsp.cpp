@@ -280,4 +280,59 @@ PaintOrder BspTree::backToFront(const PreparedScene& scene, const ScreenGeometry
   return order;
 }
 
+std::string BspTree::diagram(const PreparedScene& scene, const CameraTransform& camera, int levels) const {
+  std::string graph = "digraph bsp {\n  node [shape=box, fontname=\"DejaVu Sans\", fontsize=11];\n  edge [fontname=\"DejaVu Sans\", fontsize=10];\n";
+  if (nodes_.empty()) return graph + "  empty [label=\"no triangles\"];\n}\n";
+  ExactPredicates predicates;
+  const auto subtreeSize = [&](std::int32_t root) {
+    std::size_t count = 0;
+    std::vector<std::int32_t> pending = {root};
+    while (!pending.empty()) {
+      const Node& node = nodes_[std::size_t(pending.back())];
+      pending.pop_back();
+      ++count;
+      for (const std::int32_t child : {node.positive, node.negative})
+        if (child >= 0) pending.push_back(child);
+    }
+    return count;
+  };
+  struct Visit {
+    std::int32_t node;
+    int level;
+  };
+  std::vector<Visit> pending = {{0, 0}};
+  while (!pending.empty()) {
+    const auto [index, level] = pending.back();
+    pending.pop_back();
+    const Node& node = nodes_[std::size_t(index)];
+    std::string name = "n";
+    name += std::to_string(index);
+    if (level == levels) {
+      graph += "  " + name + " [label=\"" + std::to_string(subtreeSize(index)) + " more nodes\", style=dashed];\n";
+      continue;
+    }
+    std::uint32_t split = 0;
+    for (std::uint32_t f = node.firstFragment; f < node.firstFragment + node.fragmentCount; ++f) split += fragments_[f].cutCount > 0;
+    graph += "  " + name + " [label=\"";
+    graph += node.plane == kNoPlane ? "no plane (zero area)" : "plane of triangle " + std::to_string(node.plane);
+    graph += "\\n" + std::to_string(node.fragmentCount) + " fragments";
+    if (split) {
+      graph += ", ";
+      graph += std::to_string(split) + " split\", color=red, fontcolor=red";
+    } else {
+      graph += "\"";
+    }
+    graph += "];\n";
+    const bool eyePositive = node.plane == kNoPlane || eyeSide(scene, camera, node.plane, predicates) >= 0;
+    for (const std::int32_t child : {eyePositive ? node.negative : node.positive, eyePositive ? node.positive : node.negative}) {
+      if (child < 0) continue;
+      const bool far = child == (eyePositive ? node.negative : node.positive);
+      graph += "  " + name + " -> n";
+      graph += std::to_string(child) + " [label=\"" + (far ? "far" : "near") + "\"];\n";
+      pending.push_back({child, level + 1});
+    }
+  }
+  return graph + "}\n";
+}
+
 }  // namespace hsr::painter

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "algorithms/painter/order.hpp"
@@ -26,6 +27,12 @@ class BspTree {
   // geometry's screen triangles. The scene must hold the triangles the tree was built
   // from (any camera). Phase "bsp traversal", counter "bsp nodes visited".
   PaintOrder backToFront(const PreparedScene& scene, const ScreenGeometry& geometry, Stats& stats) const;
+
+  // The tree's top `levels` levels as a Graphviz graph, for the steps: each node its
+  // plane's triangle and how many fragments lie in it (red when some are pieces of a
+  // split), each subtree edge marked far or near as the camera sees the node's plane (the
+  // walk draws far, node, near), deeper subtrees summed up in one box.
+  std::string diagram(const PreparedScene& scene, const CameraTransform& camera, int levels) const;
 
   std::size_t nodeCount() const { return nodes_.size(); }
   std::size_t fragmentCount() const { return fragments_.size(); }

@@ -63,8 +63,8 @@ enum class Side { behind, inFront, straddles, coplanar };
 
 class Newell {
  public:
-  Newell(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats)
-      : scene_(scene), geometry_(geometry), knobs_(knobs), stats_(stats) {
+  Newell(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats, StepRecorder* steps)
+      : scene_(scene), geometry_(geometry), knobs_(knobs), stats_(stats), steps_(steps) {
     const std::size_t count = geometry.triangles.size();
     planes_.resize(count);
     winding_.resize(count);
@@ -97,11 +97,16 @@ class Newell {
       const Polygon &p = pool_[candidate], &q = pool_[*hidden];
       const bool canMove = isBehindOrIn(side(q, p.screenTriangle)) || isInFrontOrIn(side(p, q.screenTriangle));
       if (canMove && !q.moved) {
+        recordConflict(candidate, *hidden, "step 3: the candidate P (red) hides part of Q (blue), so Q must be painted first: Q moves to the head of the list "
+                                           "(reorder " + std::to_string(reorders_ + 1) + ")");
         moveToFront(*hidden);
         ++movesSinceLastPaint;
         continue;
       }
       const bool outOfSplits = double(splits_) >= knobs_.splitCap;
+      if (!outOfSplits)
+        recordConflict(candidate, *hidden, std::string(q.moved ? "step 4: Q (blue) was moved already: a cycle" : "steps 3-4: P (red) and Q (blue) pierce each other") +
+                                               ", so one is split by the other's plane (split " + std::to_string(splits_ + 1) + ")");
       if (outOfSplits || !splitSomething(candidate, *hidden)) {
         // Out of splits, or no plane left to split by: paint out of order and say so,
         // rather than loop. The second happens in about 1 random scene in 300 (the
@@ -335,6 +340,24 @@ class Newell {
     insertSorted(static_cast<std::uint32_t>(pool_.size() - 1));
   }
 
+  // A step (renderer/steps.hpp): the candidate P in red and the polygon Q it may hide in
+  // blue, over the outlines of every screen triangle.
+  void recordConflict(std::uint32_t p, std::uint32_t q, const std::string& caption) {
+    if (!steps_ || !steps_->due(conflictsRecorded_++)) return;
+    const CameraTransform& camera = geometry_.camera;
+    Image picture = blankPicture(camera.width(), camera.height());
+    const auto outline = [&](const std::vector<dvec3>& vertices, Rgb color, double width) {
+      for (std::size_t k = 0; k < vertices.size(); ++k) {
+        const dvec3 &a = vertices[k], &b = vertices[(k + 1) % vertices.size()];
+        drawSegment(picture, {a.x, a.y}, {b.x, b.y}, color, width);
+      }
+    };
+    for (const auto& corners : planes_) outline({corners.begin(), corners.end()}, {205, 205, 205}, 1.0);
+    outline(pool_[q].vertices, kSecondHighlight, 2.5);
+    outline(pool_[p].vertices, kHighlight, 2.5);
+    steps_->record(caption, std::move(picture));
+  }
+
   void moveToFront(std::uint32_t q) {
     ++reorders_;
     remove(q);
@@ -370,6 +393,8 @@ class Newell {
   const ScreenGeometry& geometry_;
   const Knobs& knobs_;
   Stats& stats_;
+  StepRecorder* steps_;
+  std::size_t conflictsRecorded_ = 0;
   ExactPredicates predicates_;
   std::vector<std::array<dvec3, 3>> planes_;  // each screen triangle's corners in (x, y, z)
   std::vector<int> winding_;                  // orient2d of those corners: 0 = no area on screen
@@ -385,9 +410,10 @@ class Newell {
 
 }  // namespace
 
-PaintOrder newellOrder(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats) {
+PaintOrder newellOrder(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats,
+                       StepRecorder* steps) {
   PhaseTimer timer(stats, "ordering");
-  return Newell(scene, geometry, knobs, stats).run();
+  return Newell(scene, geometry, knobs, stats, steps).run();
 }
 
 }  // namespace hsr::painter

@@ -24,7 +24,9 @@ SplitPolygon splitPolygon(const std::vector<dvec3>& vertices, const std::vector<
 
 // The orders (sort.cpp, newell.cpp; the BSP tree's is in bsp.hpp).
 PaintOrder sortOrder(const ScreenGeometry& geometry, SortKey key, Stats& stats);
-PaintOrder newellOrder(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats);
+// steps: where Newell records its reorders and splits (renderer/steps.hpp), or null.
+PaintOrder newellOrder(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats,
+                       StepRecorder* steps = nullptr);
 
 // Which side of the triangle's plane the eye is on, in the sign convention of Cut:
 // +1, -1, or 0 when the plane passes through the eye (seen edge-on). Under orthographic

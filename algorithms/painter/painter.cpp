@@ -54,16 +54,28 @@ PaintedPieces order(const VisibilityRequest& request, const Knobs& knobs) {
   // Step 2: back to front.
   switch (knobs.variant) {
     case Variant::sort: painted.order = sortOrder(painted.geometry, knobs.key, request.stats); break;
-    case Variant::newell: painted.order = newellOrder(scene, painted.geometry, knobs, request.stats); break;
-    case Variant::bsp: painted.order = BspTree(scene, knobs, request.stats).backToFront(scene, painted.geometry, request.stats); break;
+    case Variant::newell: painted.order = newellOrder(scene, painted.geometry, knobs, request.stats, request.steps); break;
+    case Variant::bsp: {
+      const BspTree tree(scene, knobs, request.stats);
+      if (request.steps) {
+        constexpr int kLevelsDrawn = 5;
+        request.steps->record("step 2: the BSP tree, built once for every eye (its top " + std::to_string(kLevelsDrawn) + " of " +
+                                  std::to_string(tree.depth()) + " levels); the walk draws each node's far side, the node, then its near side",
+                              graphvizPicture(tree.diagram(scene, request.view, kLevelsDrawn)));
+      }
+      painted.order = tree.backToFront(scene, painted.geometry, request.stats);
+      break;
+    }
   }
   return painted;
 }
 
-void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats) {
+void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats, StepRecorder* steps) {
   // With no depth test, a pixel shows whatever was drawn there last.
   PhaseTimer timer(stats, "painting");
-  const TileGrid tiles(frame.width, frame.height);
+  // Steps watch the whole image painted in order: one tile, on one thread.
+  const TileGrid tiles(frame.width, frame.height, steps ? std::max(frame.width, frame.height) : TileGrid::kTileSize);
+  const std::size_t pieceCount = painted.order.pieces.size();
   std::vector<std::int64_t> writes(tiles.count(), 0);
   const std::int64_t cutTests = paintInOrder(
       scene, painted, tiles, threads,
@@ -78,6 +90,17 @@ void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads
         ++writes[tile];
         frame.ids[fragment.pixel] = fragment.triangle + 1;
         frame.depth[fragment.pixel] = fragment.depth;
+      },
+      [&](std::size_t, std::uint32_t index) {
+        if (!steps || !steps->due(index, pieceCount)) return;
+        const Piece& piece = painted.order.pieces[index];
+        const std::uint32_t triangle = painted.geometry.triangles[piece.screenTriangle].triangle;
+        Image picture = surfacePicture(scene, painted.geometry.camera, frame.ids, frame.width, frame.height);
+        drawWireframe(picture, scene, painted.geometry.camera, std::span(&triangle, 1), kHighlight);
+        steps->record("step 3: piece " + std::to_string(index + 1) + " of " + std::to_string(pieceCount) +
+                          " painted over what is behind it (red: its triangle" +
+                          (piece.cutCount ? ", of which it is the part cut out by " + std::to_string(piece.cutCount) + " planes)" : ")"),
+                      std::move(picture));
       });
   std::int64_t written = 0;
   for (const std::int64_t count : writes) written += count;
@@ -89,7 +112,7 @@ void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads
 void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
   visibility.painted = order(request, knobs);
   // Step 3: paint the pieces in order, each over what is already there.
-  paint(request.scene, *visibility.painted, request.threads, visibility.frame, request.stats);
+  paint(request.scene, *visibility.painted, request.threads, visibility.frame, request.stats, request.steps);
   visibility.frame.partial = visibility.painted->order.partial;
 }
 

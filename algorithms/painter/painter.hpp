@@ -91,7 +91,8 @@ PaintedPieces order(const VisibilityRequest& request, const Knobs& knobs);
 
 // Step 3: the pieces painted in order into `frame` (ids and depth), each over what is
 // already there. Stats: "pieces painted", "fragments written", "cut tests"; phase "painting".
-void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats);
+void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats,
+           StepRecorder* steps = nullptr);
 
 // The whole algorithm: the order, then step 3, painting it into visibility.frame (ids and
 // depth; the frame is labelled partial when the order is known to be wrong somewhere).

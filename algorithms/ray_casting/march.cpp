@@ -107,6 +107,8 @@ class Marcher {
       voxelsSearched += other.voxelsSearched;
       return *this;
     }
+    static constexpr const char* kCostUnit = "march samples per ray";
+    double cost() const { return double(samples); }
   };
 
   Marcher(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
@@ -276,10 +278,10 @@ double marchSamplesPerRay(const PreparedScene& scene, const KnobNumber& step) {
 }
 
 void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform& camera, int threads, Frame& frame,
-           Stats& stats) {
+           Stats& stats, const Recording* recording) {
   const Marcher marcher(scene, knobs, stats);
   PhaseTimer timer(stats, "ray casting");
-  const auto counters = castRays(marcher, camera, threads, frame);
+  const auto counters = castRays(marcher, camera, threads, frame, recording);
   stats.add("march samples", counters.samples);
   stats.add("inside tests", counters.insideTests);
   stats.add("refinement steps", counters.refinementSteps);

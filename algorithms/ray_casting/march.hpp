@@ -1,6 +1,7 @@
 // Variant march: fixed-step ray marching with point-inside tests (see march.cpp).
 #pragma once
 
+#include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "renderer/camera.hpp"
 
@@ -12,8 +13,9 @@ double marchStepLength(const PreparedScene& scene, const KnobNumber& step);
 // The most samples one ray can take: the march box's diagonal over the step, plus one.
 double marchSamplesPerRay(const PreparedScene& scene, const KnobNumber& step);
 
-// Fills frame.ids and frame.depth; leaves frame.color alone.
+// Fills frame.ids and frame.depth; leaves frame.color alone. With a recording, records
+// rows as castRays does (cast.hpp).
 void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform& camera, int threads, Frame& frame,
-           Stats& stats);
+           Stats& stats, const Recording* recording = nullptr);
 
 }  // namespace hsr::ray_casting

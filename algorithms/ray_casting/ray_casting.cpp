@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/march.hpp"
@@ -84,6 +85,8 @@ class NaiveTracer {
       triangleTests += other.triangleTests;
       return *this;
     }
+    static constexpr const char* kCostUnit = "ray-triangle tests per ray";
+    double cost() const { return double(triangleTests); }
   };
 
   // The BVH's leaf order is as good an order as any: the answer does not depend on it.
@@ -111,6 +114,8 @@ class BvhTracer {
       triangleTests += other.triangleTests;
       return *this;
     }
+    static constexpr const char* kCostUnit = "BVH nodes visited per ray";
+    double cost() const { return double(nodesVisited); }
   };
 
   BvhTracer(const PreparedScene& scene, Stats& stats) : bvh_(scene.triangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
@@ -196,24 +201,27 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   const CameraTransform& camera = request.view;
   Stats& stats = request.stats;
   stats.add("primary rays", static_cast<std::int64_t>(frame.pixelCount()));
+  std::optional<Recording> steps;
+  if (request.steps) steps.emplace(*request.steps, scene);
+  const Recording* recording = steps ? &*steps : nullptr;
   switch (knobs.variant) {
     case Variant::naive: {
       const NaiveTracer tracer(scene, stats);
       PhaseTimer timer(stats, "ray casting");
-      const auto counters = castRays(tracer, camera, request.threads, frame);
+      const auto counters = castRays(tracer, camera, request.threads, frame, recording);
       stats.add("ray-triangle tests", counters.triangleTests);
       break;
     }
     case Variant::bvh: {
       const BvhTracer tracer(scene, stats);
       PhaseTimer timer(stats, "ray casting");
-      const auto counters = castRays(tracer, camera, request.threads, frame);
+      const auto counters = castRays(tracer, camera, request.threads, frame, recording);
       stats.add("bvh nodes visited", counters.nodesVisited);
       stats.add("ray-triangle tests", counters.triangleTests);
       break;
     }
     case Variant::march:
-      march(scene, knobs, camera, request.threads, frame, stats);
+      march(scene, knobs, camera, request.threads, frame, stats, recording);
       break;
   }
 }

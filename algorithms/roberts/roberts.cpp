@@ -7,6 +7,7 @@
 
 #include "renderer/camera.hpp"
 #include "renderer/image_grid.hpp"
+#include "renderer/line_drawing.hpp"
 #include "renderer/metrics.hpp"
 
 namespace hsr::roberts {
@@ -126,8 +127,8 @@ struct Body {
 
 class Roberts {
  public:
-  Roberts(const PreparedScene& scene, const Knobs& knobs, Stats& stats)
-      : scene_(scene), knobs_(knobs), camera_(scene.camera()), stats_(stats) {}
+  Roberts(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps)
+      : scene_(scene), knobs_(knobs), camera_(scene.camera()), stats_(stats), steps_(steps) {}
 
   LineSet run() {
     const std::vector<std::int8_t> facing = viewFacing(scene_, camera_, stats_);
@@ -155,6 +156,7 @@ class Roberts {
     for (std::uint32_t e = 0; e < lines.edges.size(); ++e) {
       const FeatureEdge& edge = lines.edges[e];
       std::vector<Interval> hidden;
+      const std::int64_t testsBefore = bodyTests_;
       if (selfHidden[e]) {
         stats_.add("back-face edges");
         hidden.push_back({0, 1});
@@ -167,6 +169,12 @@ class Roberts {
         });
       }
       appendPieces(e, std::move(hidden), lines.segments);
+      if (steps_ && steps_->due(e, lines.edges.size()))
+        steps_->record("step 2: edge " + std::to_string(e + 1) + " of " + std::to_string(lines.edges.size()) + " (green) " +
+                           (selfHidden[e] ? "lies between two back faces: hidden by its own body (step 1)"
+                                          : "tested in full against " + std::to_string(bodyTests_ - testsBefore) +
+                                                " bodies the minimax boxes could not rule out"),
+                       lineStepPicture(lines, std::span(&e, 1), LineStyle::hidden));
     }
     stats_.add("edge-body pairs", pairs_);
     stats_.add("minimax rejections", minimaxRejections_);
@@ -369,6 +377,7 @@ class Roberts {
   const Knobs& knobs_;
   CameraTransform camera_;
   Stats& stats_;
+  StepRecorder* steps_;
   std::vector<Body> bodies_;
   std::optional<ImageGrid> grid_;
   std::vector<std::uint32_t> seen_;
@@ -379,9 +388,9 @@ class Roberts {
 
 }  // namespace
 
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats) {
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
   PhaseTimer timer(stats, "roberts");
-  return Roberts(scene, knobs, stats).run();
+  return Roberts(scene, knobs, stats, steps).run();
 }
 
 AlgorithmEntry entry() {

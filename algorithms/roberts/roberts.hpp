@@ -71,7 +71,7 @@ std::string refusal(const PreparedScene& scene);
 // Stats: "bodies", "body faces" (planes after merging), "back-face edges" (step 1),
 // "edge-body pairs" (considered), "minimax rejections", "body tests" (linear programs
 // solved), "hidden intervals", "junction lines".
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats);
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr);
 
 // The registry's entry (algorithms/algorithm.hpp).
 AlgorithmEntry entry();

@@ -2,14 +2,36 @@
 // Rows are processed top to bottom; an active-triangle list holds the triangles that
 // span the current row, so each row touches only those (Watkins-style row coherence).
 #include <algorithm>
+#include <limits>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/parallel.hpp"
 
 namespace hsr::zbuffer {
+namespace {
+
+// A step: the rows finished so far (the rest shown empty), the active triangles outlined
+// in red, the row in blue.
+void recordRow(const Recording& recording, const CameraTransform& view, const Frame& frame, std::size_t y,
+               const std::vector<ScreenTriangle>& triangles, const std::vector<std::uint32_t>& active, std::size_t entering) {
+  const std::size_t done = (y + 1) * std::size_t(frame.width);
+  std::vector<std::uint32_t> ids(frame.ids.begin(), frame.ids.begin() + std::ptrdiff_t(done));
+  std::vector<float> depth(frame.depth.begin(), frame.depth.begin() + std::ptrdiff_t(done));
+  ids.resize(frame.pixelCount(), conventions::kBackgroundId);
+  depth.resize(frame.pixelCount(), std::numeric_limits<float>::infinity());
+  std::vector<std::uint32_t> activeTriangles;
+  for (const std::uint32_t i : active) activeTriangles.push_back(triangles[i].triangle);
+  Image picture = buffersPicture(recording, view, ids, depth, frame.width, frame.height, activeTriangles);
+  drawSegment(picture, {0, double(y) + 0.5}, {double(frame.width), double(y) + 0.5}, kSecondHighlight, 1.0);
+  recording.steps.record("step 4: row " + std::to_string(y) + " resolved with " + std::to_string(active.size()) +
+                             " active triangles (red; " + std::to_string(entering) + " entered on this row)",
+                         std::move(picture));
+}
+
+}  // namespace
 
 void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                    bool depthTest) {
+                    bool depthTest, const Recording* recording) {
   PhaseTimer timer(stats, "rasterization");
   const auto& triangles = geometry.triangles;
 
@@ -19,7 +41,8 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
 
   // Rows are split into bands, one per worker; each band keeps its own row buffer and
   // active list, and writes only its own rows.
-  const int workers = std::min(resolveThreadCount(threads), frame.height);
+  // A recording watches the rows in order, on one thread.
+  const int workers = recording ? 1 : std::min(resolveThreadCount(threads), frame.height);
   const DepthEncoding encoding = depthEncoding(format, geometry.camera);
   withDepthTest(format, depthTest, [&]<typename Format>() {
     std::vector<DepthTest<Format>> bandResults(static_cast<std::size_t>(workers));
@@ -52,6 +75,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
         // Step 5: the row is final: decode its depth into the frame before the buffer is reused.
         for (int x = 0; x < frame.width; ++x)
           frame.depth[row + std::size_t(x)] = test.distance(frame.ids[row + std::size_t(x)], depthRow[std::size_t(x)], geometry.camera);
+        if (recording && recording->steps.due(y, last)) recordRow(*recording, geometry.camera, frame, y, triangles, active, starting.size());
       }
       bandResults[band] = test;
     });

@@ -3,17 +3,25 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 
 #include "renderer/parallel.hpp"
 #include "renderer/screen_triangles.hpp"
 #include "renderer/tiles.hpp"
 
 namespace hsr::zbuffer {
+Image buffersPicture(const Recording& recording, const CameraTransform& view, std::span<const std::uint32_t> ids,
+                     std::span<const float> depth, int width, int height, std::span<const std::uint32_t> justDrawn) {
+  Image surfaces = surfacePicture(recording.scene, view, ids, width, height);
+  drawWireframe(surfaces, recording.scene, view, justDrawn, kHighlight);
+  return besideEachOther({surfaces, depthPicture(depth, width, height)});
+}
+
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                     bool depthTest) {
+                     bool depthTest, const Recording* recording) {
   // Binning: each tile gets the triangles whose pixel box overlaps it, in submission
   // order, so that within a tile triangles are drawn in the same order as on one thread.
-  const TileGrid tiles(frame.width, frame.height);
+  const TileGrid tiles(frame.width, frame.height, recording ? std::max(frame.width, frame.height) : TileGrid::kTileSize);
   std::vector<std::vector<std::uint32_t>> bins;
   {
     PhaseTimer timer(stats, "binning");
@@ -25,6 +33,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     const DepthEncoding encoding = depthEncoding(format, geometry.camera);
     // Left uninitialized here: each tile clears its own part, on the thread that will use it.
     const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(frame.pixelCount());
+    std::vector<double> testedAt(recording ? frame.pixelCount() : 0);  // fragments tested per pixel, for the steps
     std::vector<DepthTest<Format>> tileResults(bins.size());
     parallelFor(bins.size(), threads, [&](std::size_t tile, int) {
       const auto [tileX0, tileY0, tileX1, tileY1] = tiles.rect(tile);
@@ -37,12 +46,25 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
       }
       // Step 2: for every triangle and every pixel it covers, keep the fragment if it is
       // nearer than what the pixel holds.
-      for (const std::uint32_t index : bins[tile]) {
-        const ScreenTriangle& tri = geometry.triangles[index];
+      for (std::size_t drawn = 0; drawn < bins[tile].size(); ++drawn) {
+        const ScreenTriangle& tri = geometry.triangles[bins[tile][drawn]];
         const int x0 = std::max(tri.minX, tileX0), x1 = std::min(tri.maxX + 1, tileX1);
         for (int y = std::max(tri.minY, tileY0); y < std::min(tri.maxY + 1, tileY1); ++y) {
           const std::size_t row = pixel(0, y);
           rasterizeSpan(tri, y, x0, x1, [&](int x) { test.test(tri, x, y, depth[row + std::size_t(x)], frame.ids[row + std::size_t(x)]); });
+        }
+        if (recording) {
+          // Overdraw: every pixel the triangle covered was one more fragment tested there.
+          for (int y = tri.minY; y <= tri.maxY; ++y) rasterizeSpan(tri, y, tri.minX, tri.maxX + 1, [&](int x) { ++testedAt[pixel(x, y)]; });
+          if (recording->steps.due(drawn, bins[tile].size())) {
+            std::vector<float> distances(frame.pixelCount());
+            for (std::size_t p = 0; p < distances.size(); ++p) distances[p] = test.distance(frame.ids[p], depth[p], geometry.camera);
+            recording->steps.record("step 2, depth test: triangle " + std::to_string(drawn + 1) + " of " + std::to_string(bins[tile].size()) +
+                                        " drawn (red); " + std::to_string(test.written) + " of " + std::to_string(test.tested) +
+                                        " fragments so far were nearer and kept",
+                                    buffersPicture(*recording, geometry.camera, frame.ids, distances, frame.width, frame.height,
+                                                   std::span(&tri.triangle, 1)));
+          }
         }
       }
       // Step 3: the frame's depth is what the format stored, decoded to a view distance.
@@ -50,6 +72,10 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
         for (int x = tileX0; x < tileX1; ++x) frame.depth[pixel(x, y)] = test.distance(frame.ids[pixel(x, y)], depth[pixel(x, y)], geometry.camera);
       tileResults[tile] = test;
     });
+    if (recording)
+      recording->steps.record("overdraw: fragments tested per pixel (" + std::to_string(tileResults[0].tested) + " in all, " +
+                                  std::to_string(tileResults[0].written) + " written)",
+                              heatMapPicture(testedAt, frame.width, frame.height, "fragments tested per pixel"));
     for (const auto& test : tileResults) {
       stats.add("fragments tested", test.tested);
       stats.add("fragments written", test.written);
@@ -63,10 +89,13 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   const bool clipFar = clipsFarPlane(knobs.depthFormat, request.view.camera().projection);
   const ScreenGeometry geometry =
       buildScreenTriangles(request.scene, request.view, {.clipFar = clipFar, .submitted = request.triangles}, request.threads, request.stats);
+  std::optional<Recording> recording;
+  if (request.steps) recording.emplace(*request.steps, request.scene);
+  const Recording* steps = recording ? &*recording : nullptr;
   if (knobs.variant == Variant::full)
-    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest);
+    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps);
   else
-    renderScanline(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest);
+    renderScanline(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps);
 }
 
 AlgorithmEntry entry() {

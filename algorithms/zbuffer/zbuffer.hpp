@@ -7,6 +7,7 @@
 #pragma once
 
 #include <limits>
+#include <span>
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
@@ -16,6 +17,7 @@
 #include "renderer/prepare.hpp"
 #include "renderer/screen_triangles.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/steps.hpp"
 
 namespace hsr::zbuffer {
 
@@ -57,12 +59,26 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
 // The registry's entry (algorithms/algorithm.hpp).
 AlgorithmEntry entry();
 
+// Where a variant records its steps (renderer/steps.hpp), and the scene its ids index.
+struct Recording {
+  StepRecorder& steps;
+  const PreparedScene& scene;
+};
+
 // The variants' visibility passes: they overwrite every pixel of frame.ids and
 // frame.depth (a Frame of the scene's size may be reused) and leave frame.color alone.
+// With a recording, the full frame draws the whole image as one tile (every triangle in
+// submission order, one thread) and records after triangles; the scanline variant runs
+// its rows on one thread and records after rows. Same image and counters either way.
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                     bool depthTest = true);
+                     bool depthTest = true, const Recording* recording = nullptr);
 void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                    bool depthTest = true);
+                    bool depthTest = true, const Recording* recording = nullptr);
+
+// A step's picture: the surfaces the ids show so far beside the depth buffer, the
+// triangles just drawn outlined in red.
+Image buffersPicture(const Recording& recording, const CameraTransform& view, std::span<const std::uint32_t> ids,
+                     std::span<const float> depth, int width, int height, std::span<const std::uint32_t> justDrawn);
 
 // A format whose test always passes: the buffer still records each fragment's depth
 // (the frame's depth is that of the triangle shown), but nothing is ever rejected.

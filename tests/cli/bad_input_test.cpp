@@ -92,6 +92,10 @@ INSTANTIATE_TEST_SUITE_P(
         // Found by the scene fuzz target: toml++ converted the float to an integer with undefined behaviour.
         Case{"integer-given-a-huge-float", write("float-height.toml", "[image]\nheight = 4e80\n" + kCamera + "[[objects]]\nshape = \"box\"\n") + " -o OUT",
              "float-height.toml:2:10: image.height: expected an integer in [1, 16384], got 4e+80"},
+        Case{"steps-folder-in-a-missing-folder", kCube + " -o OUT --steps /no/such/folder/steps",
+             "--steps /no/such/folder/steps: the folder it would go in (/no/such/folder) does not exist"},
+        Case{"steps-folder-is-a-file", kCube + " -o OUT --steps " + kCube, "exists and is not a folder"},
+        Case{"every-without-steps", kCube + " -o OUT --every 3", "--every 3: applies only with --steps DIR"},
         Case{"size-zero", kCube + " --size 0x100 -o OUT", "--size 0x100: image size 0x100 is out of range"},
         Case{"size-absurd", kCube + " --size 100000x100 -o OUT", "image size 100000x100 is out of range; expected 1 to 16384"},
         Case{"size-too-many-pixels", kCube + " --size 16384x16385 -o OUT", "at most 256 Mpixel"},

@@ -24,7 +24,7 @@ Judged judge(const PreparedScene& scene, const KnobSettings& knobs = {}) {
   const KnobValues values = resolveKnobs(entry, knobs);
   EXPECT_EQ(entry.refusal(scene, values), "");
   Judged judged;
-  judged.lines = entry.drawLines(scene, values, 1, judged.stats);
+  judged.lines = entry.drawLines(scene, values, 1, judged.stats, nullptr);
   Stats referenceStats;
   judged.error = entry.judgeLines(scene, values, judged.lines, 2, referenceStats).error;
   return judged;

@@ -91,7 +91,7 @@ std::string everyWrongPixelExplained(const GoldenCase&, const PreparedScene& sce
 std::string lineErrorWithinATenthOfAPercent(const GoldenCase& golden, const PreparedScene& scene, const Frame&) {
   Stats stats;
   const pipeline::Configuration configuration = golden.configuration();
-  const LineSet lines = configuration.algorithm->drawLines(scene, configuration.knobs, 1, stats);
+  const LineSet lines = configuration.algorithm->drawLines(scene, configuration.knobs, 1, stats, nullptr);
   const std::vector<EdgeVisibility> truth = traceLineReference(scene, lines.edges, 2, stats);
   const LineError error = lineError(edgeVisibility(lines), truth);
   const double stray = strayDrawnLength(lines, truth);
@@ -106,7 +106,7 @@ std::string lineErrorWithinATenthOfAPercent(const GoldenCase& golden, const Prep
 std::string curveErrorWithinItsDocumentedBound(const GoldenCase& golden, const PreparedScene& scene, const Frame&) {
   Stats stats;
   const pipeline::Configuration configuration = golden.configuration();
-  const LineSet lines = configuration.algorithm->drawLines(scene, configuration.knobs, 1, stats);
+  const LineSet lines = configuration.algorithm->drawLines(scene, configuration.knobs, 1, stats, nullptr);
   const LineError error = configuration.algorithm->judgeLines(scene, configuration.knobs, lines, 2, stats).error;
   return error.error <= 0.10 ? "" : "line error " + std::to_string(100 * error.error) + "% against the exact drawing";
 }

@@ -23,7 +23,7 @@ namespace {
 LineSet draw(const std::string& algorithm, const PreparedScene& scene, const KnobSettings& knobs = {}) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm);
   Stats stats;
-  return entry.drawLines(scene, resolveKnobs(entry, knobs), 1, stats);
+  return entry.drawLines(scene, resolveKnobs(entry, knobs), 1, stats, nullptr);
 }
 
 bool refuses(const std::string& algorithm, const PreparedScene& scene, const KnobSettings& knobs = {}) {
@@ -84,7 +84,7 @@ TEST(Appel, QuantitativeInvisibilityInvariants) {
     const test::LoadedScene loaded(test::sourcePath(std::string("scenes/") + name));
     const AlgorithmEntry& appel = findAlgorithm("appel");
     Stats stats;
-    const LineSet lines = appel.drawLines(loaded.prepared, resolveKnobs(appel, {}), 1, stats);
+    const LineSet lines = appel.drawLines(loaded.prepared, resolveKnobs(appel, {}), 1, stats, nullptr);
     const test::QiCheck check = test::checkQiInvariants(loaded.prepared, lines, stats);
     EXPECT_EQ(check.violations, 0) << name << ": " << check.firstViolation;
     EXPECT_GT(check.counted, 20) << name;

@@ -26,7 +26,7 @@ Frame render(const PreparedScene& scene, const std::string& algorithm, const Kno
 
 LineError lineErrorOf(const PreparedScene& scene, const std::string& algorithm, Stats& stats, LineSet* drawing = nullptr) {
   const AlgorithmEntry& entry = findAlgorithm(algorithm);
-  const LineSet lines = entry.drawLines(scene, resolveKnobs(entry, {}), 1, stats);
+  const LineSet lines = entry.drawLines(scene, resolveKnobs(entry, {}), 1, stats, nullptr);
   if (drawing) *drawing = lines;
   Stats referenceStats;
   return lineError(edgeVisibility(lines), traceLineReference(scene, lines.edges, 2, referenceStats));

@@ -135,7 +135,7 @@ TEST(RandomScenes, AppelQuantitativeInvisibilityKeepsItsInvariants) {
     const PreparedScene prepared(random.scene);
     if (!appel.refusal(prepared, knobs).empty()) continue;  // not separate closed solids
     Stats stats;
-    const LineSet lines = appel.drawLines(prepared, knobs, 1, stats);
+    const LineSet lines = appel.drawLines(prepared, knobs, 1, stats, nullptr);
     const test::QiCheck check = test::checkQiInvariants(prepared, lines, stats);
     EXPECT_EQ(check.violations, 0) << "seed " << seed << ": " << check.firstViolation;
     ++drawings;

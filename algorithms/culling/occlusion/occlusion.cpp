@@ -38,7 +38,7 @@ StageEntry stage() {
                : std::string();
   };
   entry.run = [](const KnobValues& knobs, const StageInput& input) {
-    return cull(input.scene, input.camera, knobs.as<Knobs>(), input.in, input.previous, input.stats);
+    return cull(input.scene, input.camera, knobs.as<Knobs>(), input.in, input.previous, input.stats, input.steps);
   };
   return entry;
 }
@@ -151,8 +151,22 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
   return map;
 }
 
+namespace {
+
+// A map as a step's picture: its depths (nearest white), each texel enlarged to whole
+// pixels so that a small map is seen at about the image's width.
+void recordMap(const DepthMap& map, int imageWidth, const std::string& caption, StepRecorder& steps) {
+  const int scale = std::max(1, int(std::lround(double(imageWidth) / std::max(1, map.width))));
+  std::vector<float> enlarged(std::size_t(map.width * scale) * std::size_t(map.height * scale));
+  for (int y = 0; y < map.height * scale; ++y)
+    for (int x = 0; x < map.width * scale; ++x) enlarged[std::size_t(y) * std::size_t(map.width * scale) + std::size_t(x)] = map.at(x / scale, y / scale);
+  steps.record(caption, depthPicture(enlarged, map.width * scale, map.height * scale));
+}
+
+}  // namespace
+
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
-                const PreviousFrame* previous, Stats& stats) {
+                const PreviousFrame* previous, Stats& stats, StepRecorder* steps) {
   PhaseTimer timer(stats, "culling: occlusion");
   // Occlusion culling pays only where objects hide one another: a cheap estimate first.
   if (knobs.minDepthComplexity > 0) {
@@ -177,6 +191,22 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const
                                       : occluderDepthMap(scene, view, knobs, chooseOccluders(scene, camera, knobs, in), stats);
   std::optional<Pyramid> pyramid;
   if (knobs.pyramid) pyramid.emplace(map);
+  if (steps) {
+    recordMap(map, scene.width(),
+              std::string(previousCamera ? "the previous frame's depth" : "the occluders' depth") + " as a " + std::to_string(map.width) + "x" +
+                  std::to_string(map.height) + " map (nearest white, empty black)",
+              *steps);
+    for (std::size_t level = 1; pyramid && level < pyramid->levels().size(); ++level) {
+      const DepthMap& texels = pyramid->levels()[level];
+      const bool empty = std::none_of(texels.keys.begin(), texels.keys.end(), [](float key) { return std::isfinite(key); });
+      recordMap(texels, scene.width(),
+                "pyramid level " + std::to_string(level) + ", " + std::to_string(texels.width) + "x" + std::to_string(texels.height) +
+                    (empty ? ": every texel empty (some texel below it was), so this level and those above hide nothing"
+                           : ": each texel the farthest of the four below it"),
+                *steps);
+      if (empty) break;
+    }
+  }
 
   PhaseTimer testing(stats, "occlusion: test occludees");
   std::int64_t tested = 0, culled = 0, texelsRead = 0;

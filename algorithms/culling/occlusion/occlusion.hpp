@@ -106,7 +106,8 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame);
 // The stage: the triangles of the objects in `in` not proven hidden. Counts
 // "occlusion: occludees tested", "occlusion: occludees culled", "occlusion: texels read",
 // and "occlusion: no previous frame" when previous-frame has none (it then keeps all).
+// With steps, records the map and each level of the pyramid above it.
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
-                const PreviousFrame* previous, Stats& stats);
+                const PreviousFrame* previous, Stats& stats, StepRecorder* steps = nullptr);
 
 }  // namespace hsr::culling::occlusion

@@ -1,0 +1,237 @@
+#include "renderer/steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <unistd.h>
+
+#include "renderer/error.hpp"
+#include "renderer/image_library.hpp"
+#include "renderer/raster.hpp"
+
+namespace hsr {
+
+bool StepRecorder::due(std::size_t index, std::size_t count) const {
+  const std::size_t stride = every_ > 0 ? every_ : std::max<std::size_t>(1, (count + kFramesPerRun - 1) / kFramesPerRun);
+  return index + 1 == count || (index + 1) % stride == 0;
+}
+
+bool StepRecorder::due(std::size_t index) const { return every_ > 0 ? (index + 1) % every_ == 0 : index < kFramesPerRun; }
+
+void StepRecorder::record(std::string caption, Image picture) {
+  const std::lock_guard lock(mutex_);
+  steps_.push_back({std::move(caption), std::move(picture)});
+}
+
+namespace {
+
+std::uint8_t* pixelAt(Image& picture, int x, int y) {
+  return &picture.pixels[(std::size_t(y) * std::size_t(picture.width) + std::size_t(x)) * 4];
+}
+
+void put(Image& picture, int x, int y, Rgb color) {
+  std::uint8_t* pixel = pixelAt(picture, x, y);
+  pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2], pixel[3] = 255;
+}
+
+// The heat ramp: black -> red -> yellow -> white as t goes from 0 to 1.
+Rgb heat(double t) {
+  const auto channel = [&](double from) { return std::uint8_t(std::lround(255 * std::clamp(3 * t - from, 0.0, 1.0))); };
+  return {channel(0), channel(1), channel(2)};
+}
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+}  // namespace
+
+Image blankPicture(int width, int height, Rgb color) {
+  Image picture{width, height, 4, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4, 255)};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) put(picture, x, y, color);
+  return picture;
+}
+
+Image surfacePicture(const PreparedScene& scene, const CameraTransform& view, std::span<const std::uint32_t> ids, int width,
+                     int height) {
+  Image picture = blankPicture(width, height, {235, 235, 235});
+  // A light above, to the right of and behind the eye: floors, fronts and sides of a box
+  // come out in three different shades.
+  const dvec3 light = glm::normalize(0.8 * view.up() - view.forward() + 0.4 * view.right());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::uint32_t id = ids[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      if (id == 0) continue;
+      const std::uint32_t triangle = id - 1;
+      // Facing the light (either side): full colour; edge-on: 35% of it.
+      const double facing = std::abs(glm::dot(scene.faceNormal(triangle), light));
+      const vec3 color = scene.instanceOf(triangle).color * float(0.35 + 0.65 * facing);
+      const auto channel = [](float c) { return std::uint8_t(std::lround(255 * std::clamp(c, 0.0f, 1.0f))); };
+      put(picture, x, y, {channel(color.x), channel(color.y), channel(color.z)});
+    }
+  return picture;
+}
+
+Image depthPicture(std::span<const float> depth, int width, int height) {
+  float nearest = INFINITY, farthest = 0;
+  for (const float d : depth)
+    if (std::isfinite(d)) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+  Image picture = blankPicture(width, height, {0, 0, 0});
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float d = depth[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      if (!std::isfinite(d)) continue;
+      const double t = farthest > nearest ? (d - nearest) / (farthest - nearest) : 0;
+      const auto grey = std::uint8_t(std::lround(255 - 195 * t));
+      put(picture, x, y, {grey, grey, grey});
+    }
+  return picture;
+}
+
+Image heatMapPicture(std::span<const double> values, int width, int height, const std::string& unit) {
+  constexpr int kLegendHeight = 36, kRampHeight = 10, kMargin = 6;
+  const double largest = std::max(1e-300, *std::max_element(values.begin(), values.end()));
+  Image picture = blankPicture(width, height + kLegendHeight);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) put(picture, x, y, heat(values[std::size_t(y) * std::size_t(width) + std::size_t(x)] / largest));
+  // The legend: the ramp across the width, 0 under its left end, the largest under its right.
+  for (int y = height + kMargin; y < height + kMargin + kRampHeight; ++y)
+    for (int x = kMargin; x < width - kMargin; ++x) put(picture, x, y, heat(double(x - kMargin) / std::max(1, width - 2 * kMargin - 1)));
+  const int baseline = height + kLegendHeight - 5;
+  drawLabel(picture, kMargin, baseline, "0", {0, 0, 0}, 12);
+  const std::string top = number(largest) + " " + unit;
+  int topWidth = 0;
+  if (const std::string error = imageLibrary().textWidth(top, 12, kLabelFont, topWidth); !error.empty())
+    throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
+  drawLabel(picture, std::max(kMargin + 20, width - kMargin - topWidth), baseline, top, {0, 0, 0}, 12);
+  return picture;
+}
+
+Image besideEachOther(const std::vector<Image>& pictures) {
+  constexpr int kGap = 6;
+  int width = 0, height = 0;
+  for (const Image& picture : pictures) width += picture.width + (width ? kGap : 0), height = std::max(height, picture.height);
+  Image combined = blankPicture(width, height);
+  int left = 0;
+  for (const Image& picture : pictures) {
+    for (int y = 0; y < picture.height; ++y)
+      std::copy_n(&picture.pixels[std::size_t(y) * std::size_t(picture.width) * 4], std::size_t(picture.width) * 4,
+                  pixelAt(combined, left, y));
+    left += picture.width + kGap;
+  }
+  return combined;
+}
+
+void drawSegment(Image& picture, const dvec2& a, const dvec2& b, Rgb color, double width) {
+  rasterizeLine(a, b, width, picture.width, picture.height, [&](int x, int y) { put(picture, x, y, color); });
+}
+
+void drawWireframe(Image& picture, const PreparedScene& scene, const CameraTransform& view, std::span<const std::uint32_t> triangles,
+                   Rgb color) {
+  const double near = view.camera().near;
+  const auto along = [](const ClipVertex& a, const ClipVertex& b, double t) {
+    return ClipVertex{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.d + t * (b.d - a.d), a.w + t * (b.w - a.w)};
+  };
+  for (const std::uint32_t triangle : triangles) {
+    const Triangle& corners = scene.triangles()[triangle];
+    for (int e = 0; e < 3; ++e) {
+      ClipVertex a = view.clipFromWorld(scene.positions()[corners[e]]), b = view.clipFromWorld(scene.positions()[corners[(e + 1) % 3]]);
+      if (a.d < near && b.d < near) continue;
+      if (a.d < near) a = along(a, b, (near - a.d) / (b.d - a.d));
+      if (b.d < near) b = along(b, a, (near - b.d) / (a.d - b.d));
+      drawSegment(picture, view.pixelFromClip(a), view.pixelFromClip(b), color, 1.0);
+    }
+  }
+}
+
+void drawLabel(Image& picture, int x, int baseline, const std::string& text, Rgb color, int size) {
+  const float rgba[4] = {color[0] / 255.0f, color[1] / 255.0f, color[2] / 255.0f, 1.0f};
+  if (const std::string error = imageLibrary().drawText(picture, x, baseline, text, size, kLabelFont, rgba); !error.empty())
+    throw InputError(std::string("steps: cannot draw text with ") + kLabelFont + ": " + error);
+}
+
+void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& entries) {
+  constexpr int kLine = 17, kSample = 22, kPad = 5;
+  int widest = 0;
+  for (const auto& [color, text] : entries) {
+    int width = 0;
+    if (const std::string error = imageLibrary().textWidth(text, 12, kLabelFont, width); !error.empty())
+      throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
+    widest = std::max(widest, width);
+  }
+  const int boxWidth = std::min(picture.width, kPad * 3 + kSample + widest), boxHeight = std::min(picture.height, kPad * 2 + kLine * int(entries.size()));
+  for (int y = 0; y < boxHeight; ++y)
+    for (int x = 0; x < boxWidth; ++x) {
+      std::uint8_t* pixel = pixelAt(picture, x, y);
+      // A translucent white box, so the legend reads over any drawing.
+      for (int c = 0; c < 3; ++c) pixel[c] = std::uint8_t(255 - (255 - pixel[c]) / 5);
+    }
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const double y = kPad + kLine * (double(e) + 0.5);
+    drawSegment(picture, {kPad, y}, {kPad + kSample, y}, entries[e].first, 2.5);
+    drawLabel(picture, kPad * 2 + kSample, int(y) + 5, entries[e].second, {0, 0, 0}, 12);
+  }
+}
+
+Image graphvizPicture(const std::string& graph) {
+  const std::filesystem::path drawn = std::filesystem::temp_directory_path() / ("hsr-diagram-" + std::to_string(::getpid()) + ".png");
+  const std::string command = "dot -Tpng -Gdpi=72 -o '" + drawn.string() + "' 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "w");
+  if (pipe) std::fwrite(graph.data(), 1, graph.size(), pipe);
+  const int status = pipe ? pclose(pipe) : -1;
+  Image picture;
+  const std::string error = status == 0 ? imageLibrary().readImage(drawn.string(), picture) : "dot failed";
+  std::error_code ignored;
+  std::filesystem::remove(drawn, ignored);
+  if (!error.empty())
+    throw InputError("steps: cannot draw a diagram with Graphviz's dot (is it installed? scripts/setup.sh installs graphviz): " + error);
+  if (picture.channels == 4) return picture;
+  // dot's PNG may come without alpha: made RGBA.
+  Image rgba = blankPicture(picture.width, picture.height);
+  for (std::size_t p = 0; p < std::size_t(picture.width) * std::size_t(picture.height); ++p)
+    for (int c = 0; c < 3; ++c) rgba.pixels[4 * p + std::size_t(c)] = picture.pixels[std::size_t(picture.channels) * p + std::size_t(std::min(c, picture.channels - 1))];
+  return rgba;
+}
+
+Image withCaption(const Image& picture, const std::string& caption) {
+  constexpr int kBand = 22;
+  Image framed = blankPicture(picture.width, picture.height + kBand);
+  std::copy(picture.pixels.begin(), picture.pixels.end(), pixelAt(framed, 0, kBand));
+  drawLabel(framed, 4, kBand - 6, caption, {0, 0, 0}, 13);
+  return framed;
+}
+
+void writeSteps(const std::filesystem::path& folder, const std::vector<Step>& steps, int framesPerSecond) {
+  OutputFiles outputs;
+  std::string captions;
+  std::vector<Image> frames;
+  int width = 0, height = 0;
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%04zu", s + 1);
+    outputs.addRgbaPng(folder / ("step-" + std::string(name) + ".png"), steps[s].picture.width, steps[s].picture.height,
+                       steps[s].picture.pixels);
+    captions += std::string(name) + " " + steps[s].caption + "\n";
+    frames.push_back(withCaption(steps[s].picture, steps[s].caption));
+    width = std::max(width, frames.back().width), height = std::max(height, frames.back().height);
+  }
+  outputs.addText(folder / "captions.txt", captions);
+  // An animation's frames share one size: each is padded with white to the largest.
+  for (Image& frame : frames) {
+    if (frame.width == width && frame.height == height) continue;
+    Image padded = blankPicture(width, height);
+    for (int y = 0; y < frame.height; ++y)
+      std::copy_n(&frame.pixels[std::size_t(y) * std::size_t(frame.width) * 4], std::size_t(frame.width) * 4, pixelAt(padded, 0, y));
+    frame = std::move(padded);
+  }
+  const std::filesystem::path animation = outputs.addWrittenElsewhere(folder / "steps.gif");
+  if (const std::string error = imageLibrary().writeAnimation(animation.string(), frames, framesPerSecond); !error.empty())
+    throw InputError((folder / "steps.gif").string() + ": cannot write the animation: " + error);
+  outputs.commit();
+}
+
+}  // namespace hsr

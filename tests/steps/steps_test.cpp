@@ -1,0 +1,185 @@
+// Steps (renderer/steps.hpp, hsr render --steps): recording an algorithm's steps changes
+// nothing it computes, records what it says, and writes a folder a person can look at.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "algorithms/culling/culling.hpp"
+#include "algorithms/registry.hpp"
+#include "pipeline/pipeline.hpp"
+#include "renderer/image_library.hpp"
+#include "renderer/steps.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+TEST(Steps, ARunOfRepeatedStepsIsRecordedAboutFortyTimesEndingOnItsLast) {
+  const StepRecorder chosen;
+  for (const std::size_t count : {1u, 7u, 40u, 41u, 1000u, 123457u}) {
+    std::size_t recorded = 0;
+    for (std::size_t i = 0; i < count; ++i) recorded += chosen.due(i, count);
+    EXPECT_TRUE(chosen.due(count - 1, count)) << count;
+    EXPECT_GE(recorded, std::min<std::size_t>(count, StepRecorder::kFramesPerRun / 2)) << count;
+    EXPECT_LE(recorded, StepRecorder::kFramesPerRun + 1) << count;
+  }
+  const StepRecorder everyThird(3);
+  EXPECT_FALSE(everyThird.due(0, 10));
+  EXPECT_TRUE(everyThird.due(2, 10));
+  EXPECT_FALSE(everyThird.due(3, 10));
+  EXPECT_TRUE(everyThird.due(9, 10));  // the last
+  // Events with no known end: the first forty, or every Nth.
+  EXPECT_TRUE(chosen.due(StepRecorder::kFramesPerRun - 1));
+  EXPECT_FALSE(chosen.due(StepRecorder::kFramesPerRun));
+  EXPECT_TRUE(everyThird.due(302));
+  EXPECT_FALSE(everyThird.due(303));
+}
+
+struct Configured {
+  std::string scene, algorithm;
+  KnobSettings knobs;
+  std::string cull;
+};
+
+void PrintTo(const Configured& c, std::ostream* out) {
+  *out << c.algorithm << " on " << c.scene;
+  for (const auto& [name, value] : c.knobs) *out << " " << name << "=" << value;
+  if (!c.cull.empty()) *out << " --cull " << c.cull;
+}
+
+class EveryAlgorithmsSteps : public testing::TestWithParam<Configured> {};
+
+// Not every pixel of the picture the same colour.
+bool showsSomething(const Image& picture) {
+  for (std::size_t i = 4; i < picture.pixels.size(); ++i)
+    if (picture.pixels[i] != picture.pixels[i % 4]) return true;
+  return false;
+}
+
+// The counters of a render: what the algorithm did, without its times.
+std::map<std::string, std::int64_t> countersOf(const Stats& stats) {
+  std::map<std::string, std::int64_t> counters;
+  for (const std::string& name : stats.counterNames()) counters[name] = stats.counter(name);
+  return counters;
+}
+
+TEST_P(EveryAlgorithmsSteps, ChangeNoCounterAndNoPixelAndShowTheAlgorithmsOwnSteps) {
+  const Configured& c = GetParam();
+  pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm(c.algorithm), c.knobs);
+  if (!c.cull.empty()) configuration.culling = culling::parsePipeline(c.cull);
+  // One thread without steps (a recording runs its loops on one thread), and two; each
+  // on a scene of its own, so that each builds what the scene builds on first use.
+  const auto renderFresh = [&](int threads, Stats& stats, StepRecorder* steps) {
+    const test::LoadedScene loaded(test::sourcePath(c.scene), 160);
+    return pipeline::render(loaded.prepared, configuration, threads, stats, nullptr, steps);
+  };
+  Stats plainOne, plainTwo, recorded;
+  const pipeline::Rendered one = renderFresh(1, plainOne, nullptr);
+  const pipeline::Rendered two = renderFresh(2, plainTwo, nullptr);
+  StepRecorder steps;
+  const pipeline::Rendered watched = renderFresh(2, recorded, &steps);
+  EXPECT_EQ(watched.frame.color, one.frame.color);
+  EXPECT_EQ(watched.frame.ids, one.frame.ids);
+  EXPECT_EQ(watched.frame.color, two.frame.color);
+  EXPECT_EQ(countersOf(recorded), countersOf(plainOne));
+  EXPECT_EQ(watched.drawing.segments.size(), one.drawing.segments.size());
+
+  // Steps were recorded, each a picture with a caption, and a run of repeated steps
+  // stays near kFramesPerRun frames however many triangles, rows or edges there are.
+  ASSERT_FALSE(steps.steps().empty());
+  EXPECT_LE(steps.steps().size(), 3 * StepRecorder::kFramesPerRun);
+  for (const Step& step : steps.steps()) {
+    EXPECT_FALSE(step.caption.empty());
+    EXPECT_EQ(step.caption.find('\n'), std::string::npos) << step.caption;
+    ASSERT_GT(step.picture.width, 0) << step.caption;
+    EXPECT_EQ(step.picture.pixels.size(), std::size_t(step.picture.width) * std::size_t(step.picture.height) * 4) << step.caption;
+    const bool meantEmpty = step.caption.find("every texel empty") != std::string::npos;
+    EXPECT_EQ(showsSomething(step.picture), !meantEmpty) << step.caption;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Steps, EveryAlgorithmsSteps,
+    testing::Values(Configured{"scenes/counters.toml", "zbuffer", {}, ""},
+                    Configured{"scenes/counters.toml", "zbuffer", {{"variant", "scanline"}}, ""},
+                    Configured{"scenes/counters.toml", "painter", {}, ""},
+                    Configured{"scenes/hard/cyclic_overlap.toml", "painter", {{"variant", "newell"}}, ""},
+                    Configured{"scenes/counters.toml", "painter", {{"variant", "sort"}}, ""},
+                    Configured{"scenes/counters.toml", "ray_casting", {}, ""},
+                    Configured{"scenes/cube.toml", "ray_casting", {{"variant", "naive"}}, ""},
+                    Configured{"scenes/cube.toml", "ray_casting", {{"variant", "march"}}, ""},
+                    Configured{"scenes/blocks.toml", "roberts", {}, ""},
+                    Configured{"scenes/blocks.toml", "appel", {}, ""},
+                    Configured{"scenes/ripple.toml", "floating_horizon", {}, ""},
+                    Configured{"scenes/city.toml", "zbuffer", {}, "backface,frustum,occlusion:pyramid=on"}));
+
+// What each algorithm records, in its own words.
+std::vector<Step> stepsOf(const std::string& scene, const std::string& algorithm, const KnobSettings& knobs = {},
+                          const std::string& cull = "") {
+  const test::LoadedScene loaded(test::sourcePath(scene), 160);
+  pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm(algorithm), knobs);
+  if (!cull.empty()) configuration.culling = culling::parsePipeline(cull);
+  Stats stats;
+  StepRecorder steps;
+  pipeline::render(loaded.prepared, configuration, 1, stats, nullptr, &steps);
+  return steps.steps();
+}
+
+std::size_t countCaptions(const std::vector<Step>& steps, const std::string& text) {
+  return std::size_t(std::count_if(steps.begin(), steps.end(), [&](const Step& s) { return s.caption.find(text) != std::string::npos; }));
+}
+
+TEST(Steps, TheZBufferEndsOnItsOverdrawWhoseTotalIsItsFragmentsTested) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/counters.toml"), 160);
+  Stats stats;
+  StepRecorder steps;
+  pipeline::render(loaded.prepared, pipeline::configurationOf(findAlgorithm("zbuffer"), {}), 1, stats, nullptr, &steps);
+  const Step& overdraw = steps.steps().back();
+  EXPECT_NE(overdraw.caption.find("overdraw: fragments tested per pixel (" + std::to_string(stats.counter("fragments tested")) + " in all"),
+            std::string::npos)
+      << overdraw.caption;
+  // Below the heat map, its legend: the picture is taller than the image.
+  EXPECT_GT(overdraw.picture.height, loaded.prepared.height());
+  EXPECT_GT(countCaptions(steps.steps(), "step 2, depth test"), 10u);
+}
+
+TEST(Steps, NewellShowsItsSplitsAndEachCullingStageWhatItRemoved) {
+  EXPECT_GT(countCaptions(stepsOf("scenes/hard/cyclic_overlap.toml", "painter", {{"variant", "newell"}}), "split"), 0u);
+  const std::vector<Step> culled = stepsOf("scenes/city.toml", "zbuffer", {}, "frustum,occlusion:pyramid=on");
+  EXPECT_EQ(countCaptions(culled, "culling stage frustum"), 1u);
+  EXPECT_EQ(countCaptions(culled, "culling stage occlusion"), 1u);
+  EXPECT_EQ(countCaptions(culled, "the occluders' depth as a"), 1u);
+  EXPECT_GT(countCaptions(culled, "pyramid level"), 3u);
+}
+
+TEST(Steps, TheCommandWritesFramesCaptionsAndAnAnimationOfThem) {
+  const auto folder = test::outputPath("steps-folder");
+  std::filesystem::remove_all(folder);
+  const auto image = test::outputPath("steps-image.png");
+  const std::string command = std::string(HSR_BINARY) + " render " + test::sourcePath("scenes/cube.toml").string() +
+                              " --size 96x72 --algo ray_casting -o " + image.string() + " --steps " + folder.string();
+  const test::CommandResult result = test::runCommand(command + " --every 8");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::vector<std::string> captions;
+  std::ifstream in(folder / "captions.txt");
+  for (std::string line; std::getline(in, line);) captions.push_back(line);
+  // Rows 8, 16, ..., 72 and the finished image.
+  ASSERT_EQ(captions.size(), 72u / 8 + 1);
+  for (std::size_t s = 0; s < captions.size(); ++s) {
+    char name[32];
+    std::snprintf(name, sizeof name, "step-%04zu.png", s + 1);
+    EXPECT_TRUE(std::filesystem::exists(folder / name)) << name;
+    EXPECT_EQ(captions[s].substr(0, 5), std::string(name).substr(5, 4) + " ");
+  }
+  EXPECT_NE(captions.front().find("row 8 of 72"), std::string::npos) << captions.front();
+  Image animation;
+  ASSERT_EQ(imageLibrary().readImage((folder / "steps.gif").string(), animation), "");
+  EXPECT_GT(animation.width, 2 * 96);  // the image beside its cost heat map
+  // A second run recording fewer frames leaves none of the first run's behind.
+  ASSERT_EQ(test::runCommand(command + " --every 36").exitCode, 0);
+  EXPECT_TRUE(std::filesystem::exists(folder / "step-0003.png"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "step-0004.png"));
+}
+
+}  // namespace
+}  // namespace hsr
