@@ -178,9 +178,17 @@ Image lineStepPicture(const LineSet& lines, std::span<const std::uint32_t> justD
     if (std::find(justDecided.begin(), justDecided.end(), segment.edge) == justDecided.end() ||
         (segment.end - segment.begin) * edge.lengthPixels() < kLabelMinimumPixels)
       continue;
-    const dvec2 middle = edge.pixelAt((segment.begin + segment.end) / 2);
-    const Pen pen = penFor(segment.qi, style);
-    drawLabel(picture, int(middle.x) + 3, int(middle.y) - 3, std::to_string(segment.qi), pen.color, 12);
+    // Beside the piece's middle, off the line by 10 pixels, on a white patch.
+    const dvec2 along = glm::normalize(edge.pixelTo - edge.pixelFrom);
+    dvec2 side{along.y, -along.x};
+    if (side.y > 0) side = -side;  // above the line
+    const dvec2 at = edge.pixelAt((segment.begin + segment.end) / 2) + 10.0 * side;
+    const std::string label = std::to_string(segment.qi);
+    for (int y = int(at.y) - 11; y <= int(at.y) + 2; ++y)
+      for (int x = int(at.x) - 2; x <= int(at.x) + 8 * int(label.size()); ++x)
+        if (x >= 0 && y >= 0 && x < picture.width && y < picture.height)
+          std::fill_n(&picture.pixels[(std::size_t(y) * std::size_t(picture.width) + std::size_t(x)) * 4], 3, std::uint8_t{255});
+    drawLabel(picture, int(at.x), int(at.y), label, penFor(segment.qi, style).color, 12);
   }
   return picture;
 }

@@ -74,6 +74,8 @@ Image depthPicture(std::span<const float> depth, int width, int height);
 Image heatMapPicture(std::span<const double> values, int width, int height, const std::string& unit);
 // Pictures placed left to right, tops aligned, on white.
 Image besideEachOther(const std::vector<Image>& pictures);
+// Some pixels (row-major indices) blended half-way toward a colour: what a step just drew.
+void tint(Image& picture, std::span<const std::size_t> pixels, Rgb color);
 // Draws a segment of the given width in pixels (renderer/raster's line rule).
 void drawSegment(Image& picture, const dvec2& a, const dvec2& b, Rgb color, double width = 1.5);
 // The edges of some triangles, seen from the view (the parts nearer than the near plane cut off).
@@ -89,8 +91,9 @@ Image graphvizPicture(const std::string& graph);
 Image withCaption(const Image& picture, const std::string& caption);
 
 // The steps written to a folder: step-0001.png..., captions.txt (one line per frame,
-// "0001 caption"), and steps.gif (the frames with their captions, padded to one size,
-// at `framesPerSecond`). Through OutputFiles, so a failed write leaves nothing behind.
+// "0001 caption"), and steps.gif (the frames with their captions, at most 720 pixels
+// wide, padded to one size, at `framesPerSecond`). Through OutputFiles, so a failed
+// write leaves nothing behind.
 void writeSteps(const std::filesystem::path& folder, const std::vector<Step>& steps, int framesPerSecond = 4);
 
 }  // namespace hsr

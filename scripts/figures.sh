@@ -14,6 +14,26 @@ done
 study=$(mktemp -d)
 ./build/hsr compare scenes/bunny.toml scenes/hard/coplanar.toml --out "$study" > /dev/null
 cp "$study/contact_sheet.png" images/figures/compare.png
+# Each algorithm's own steps (hsr render --steps), as the README's animations; and the
+# occlusion stage's steps side by side: what it removed, its depth map, a pyramid level.
+mkdir -p images/figures/steps
+steps() {
+  local name=$1
+  shift
+  ./build/hsr render "$@" -o "$study/$name.png" --steps "$study/steps-$name"
+  cp "$study/steps-$name/steps.gif" "images/figures/steps/$name.gif"
+}
+steps zbuffer scenes/counters.toml --size 320x180 --every 100
+steps newell scenes/hard/cyclic_overlap.toml --algo painter --variant newell --size 320x240
+steps bsp scenes/hard/cyclic_overlap.toml --algo painter --size 320x240
+steps ray_casting scenes/counters.toml --algo ray_casting --size 320x180 --every 12
+steps floating_horizon scenes/ripple.toml --algo floating_horizon --size 400x300
+steps appel scenes/blocks.toml --algo appel --size 400x300 --every 4
+./build/hsr render scenes/city.toml --cull frustum,occlusion:pyramid=on --size 480x270 --every 100000 -o "$study/occlusion.png" \
+  --steps "$study/steps-occlusion"
+frame() { echo "$study/steps-occlusion/step-$(grep -m1 "$1" "$study/steps-occlusion/captions.txt" | cut -c1-4).png"; }
+oiiotool "$(frame "culling stage occlusion")" "$(frame "occluders' depth")" --resize 480x240 \
+  "$(frame "pyramid level 3")" --resize 480x240 --mosaic:pad=8 3x1 -o images/figures/steps/occlusion.png
 ./build/hsr sweep scenes/hard/coplanar.toml --algo zbuffer \
   --knob depth-format=unorm16,unorm24,float32,reversed-float32 --repeat 5 --out "$study" > /dev/null
 cp "$study/sweep.png" images/figures/sweep-coplanar-depth.png

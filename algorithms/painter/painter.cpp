@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <span>
+#include <string>
 
 #include "algorithms/painter/bsp.hpp"
 #include "algorithms/painter/order.hpp"
@@ -70,12 +72,31 @@ PaintedPieces order(const VisibilityRequest& request, const Knobs& knobs) {
   return painted;
 }
 
+namespace {
+
+// A step: the image so far, the piece just painted tinted red and its triangle outlined.
+void recordPiece(const PreparedScene& scene, const PaintedPieces& painted, std::uint32_t index, const Frame& frame,
+                 std::span<const std::size_t> piecePixels, StepRecorder& steps) {
+  const Piece& piece = painted.order.pieces[index];
+  const std::uint32_t triangle = painted.geometry.triangles[piece.screenTriangle].triangle;
+  Image picture = surfacePicture(scene, painted.geometry.camera, frame.ids, frame.width, frame.height);
+  tint(picture, piecePixels, kHighlight);
+  drawWireframe(picture, scene, painted.geometry.camera, std::span(&triangle, 1), kHighlight);
+  std::string caption = "step 3: piece " + std::to_string(index + 1) + " of " + std::to_string(painted.order.pieces.size()) +
+                        " painted over what is behind it (tinted red; outlined: its triangle";
+  if (piece.cutCount > 0) caption += ", of which the piece is the part cut out by " + std::to_string(piece.cutCount) + (piece.cutCount == 1 ? " plane" : " planes");
+  steps.record(caption + ")", std::move(picture));
+}
+
+}  // namespace
+
 void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats, StepRecorder* steps) {
   // With no depth test, a pixel shows whatever was drawn there last.
   PhaseTimer timer(stats, "painting");
   // Steps watch the whole image painted in order: one tile, on one thread.
   const TileGrid tiles(frame.width, frame.height, steps ? std::max(frame.width, frame.height) : TileGrid::kTileSize);
   const std::size_t pieceCount = painted.order.pieces.size();
+  std::vector<std::size_t> piecePixels;  // the pixels the piece being painted wrote, for the steps
   std::vector<std::int64_t> writes(tiles.count(), 0);
   const std::int64_t cutTests = paintInOrder(
       scene, painted, tiles, threads,
@@ -90,17 +111,12 @@ void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads
         ++writes[tile];
         frame.ids[fragment.pixel] = fragment.triangle + 1;
         frame.depth[fragment.pixel] = fragment.depth;
+        if (steps) piecePixels.push_back(fragment.pixel);
       },
       [&](std::size_t, std::uint32_t index) {
-        if (!steps || !steps->due(index, pieceCount)) return;
-        const Piece& piece = painted.order.pieces[index];
-        const std::uint32_t triangle = painted.geometry.triangles[piece.screenTriangle].triangle;
-        Image picture = surfacePicture(scene, painted.geometry.camera, frame.ids, frame.width, frame.height);
-        drawWireframe(picture, scene, painted.geometry.camera, std::span(&triangle, 1), kHighlight);
-        steps->record("step 3: piece " + std::to_string(index + 1) + " of " + std::to_string(pieceCount) +
-                          " painted over what is behind it (red: its triangle" +
-                          (piece.cutCount ? ", of which it is the part cut out by " + std::to_string(piece.cutCount) + " planes)" : ")"),
-                      std::move(picture));
+        if (!steps) return;
+        if (steps->due(index, pieceCount)) recordPiece(scene, painted, index, frame, piecePixels, *steps);
+        piecePixels.clear();
       });
   std::int64_t written = 0;
   for (const std::int64_t count : writes) written += count;
