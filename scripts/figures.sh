@@ -14,6 +14,9 @@ done
 study=$(mktemp -d)
 ./build/hsr compare scenes/bunny.toml scenes/hard/coplanar.toml --out "$study" > /dev/null
 cp "$study/contact_sheet.png" images/figures/compare.png
+# Its report.html as a browser shows it (chromium, headless).
+chromium --headless --no-sandbox --disable-gpu --window-size=1100,900 --screenshot="$PWD/images/figures/report.png" \
+  "file://$study/report.html" 2> /dev/null
 # Each algorithm's own steps (hsr render --steps), as the README's animations; and the
 # occlusion stage's steps side by side: what it removed, its depth map, a pyramid level.
 mkdir -p images/figures/steps

@@ -16,7 +16,8 @@ packages=(
   gnuplot-nox                  # hsr sweep's plots; the floating horizon's peer (bench/gnuplot_peer)
   openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
   graphviz                     # dot: scripts/figures.sh draws the architecture (images/figures/architecture.dot)
-  fonts-dejavu-core            # labels on hsr compare's contact sheet
+  fonts-dejavu-core            # labels on hsr compare's contact sheet and on the steps' pictures
+  chromium                     # tests: report.html loaded in a real browser, headless
   libgtest-dev libgmock-dev    # tests
   clang libclang-rt-14-dev     # the sanitizer build (scripts/sanitize.sh)
   libbenchmark-dev             # bench/

@@ -352,6 +352,10 @@ std::string plot(const std::vector<SceneResult>& scenes) {
 
 }  // namespace
 
+std::filesystem::path studyFolder(const StudyOptions& options) {
+  return options.out.empty() ? std::filesystem::path("out/study") / options.name : std::filesystem::path(options.out);
+}
+
 int study(const StudyOptions& options) {
   const std::vector<std::string> occlusionStudies = {"occlusion-walkthrough", "hzb-resolution", "occluder-fraction"};
   const std::vector<std::string> effectsStudies = {"effects", "shadow-map"};
@@ -363,7 +367,7 @@ int study(const StudyOptions& options) {
                      ": unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects "
                      "or shadow-map");
   if (!options.size.empty()) parseSize(options.size, "--size");
-  const std::filesystem::path folder = options.out.empty() ? std::filesystem::path("out/study") / options.name : std::filesystem::path(options.out);
+  const std::filesystem::path folder = studyFolder(options);
   if (options.name != "culling-combos") {
     if (!options.scenes.empty()) throw InputError("--scenes: study " + options.name + " has its own scenes; --scenes is for culling-combos");
     makeFolder(folder, "--out");

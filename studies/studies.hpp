@@ -45,6 +45,8 @@ struct StudyOptions {
   std::string out;     // "": out/study/NAME
 };
 int study(const StudyOptions& options);
+// Where a study writes: --out, or out/study/NAME.
+std::filesystem::path studyFolder(const StudyOptions& options);
 // The occlusion studies (occlusion_studies.cpp), into `folder`.
 int occlusionStudy(const StudyOptions& options, const std::filesystem::path& folder);
 // The effects studies (effects_studies.cpp), into `folder`.

@@ -1,0 +1,139 @@
+// report.html (studies/report.hpp), loaded in a real browser: Debian's chromium, headless.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "renderer/frame.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// A run's folder, made once for the suite: a compare of two algorithms on the cube and a
+// sweep of two depth formats, each small enough to take well under a second.
+const std::filesystem::path& compareFolder() {
+  static const std::filesystem::path folder = [] {
+    const auto out = test::outputPath("report-compare-" + std::to_string(getpid()));  // tests run in parallel processes
+    std::filesystem::remove_all(out);
+    const test::CommandResult result =
+        test::runCommand(std::string(HSR_BINARY) + " compare " + test::sourcePath("scenes/cube.toml").string() +
+                         " --algos zbuffer,painter --size 96x72 --repeat 1 --out " + out.string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    return out;
+  }();
+  return folder;
+}
+
+const std::filesystem::path& sweepFolder() {
+  static const std::filesystem::path folder = [] {
+    const auto out = test::outputPath("report-sweep-" + std::to_string(getpid()));
+    std::filesystem::remove_all(out);
+    const test::CommandResult result =
+        test::runCommand(std::string(HSR_BINARY) + " sweep " + test::sourcePath("scenes/cube.toml").string() +
+                         " --knob depth-format=float32,unorm16 --size 96x72 --repeat 1 --out " + out.string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    return out;
+  }();
+  return folder;
+}
+
+// Every file the page points at (src= and href=), which must lie beside it.
+std::vector<std::string> referencedFiles(const std::string& html) {
+  std::vector<std::string> files;
+  const std::regex reference(R"((src|href)="([^"#]+)\")");
+  for (auto match = std::sregex_iterator(html.begin(), html.end(), reference); match != std::sregex_iterator(); ++match)
+    files.push_back((*match)[2]);
+  return files;
+}
+
+// The page as chromium leaves it after running its script, and what it logged.
+struct Loaded {
+  std::string dom, log;
+};
+Loaded loadInChromium(const std::filesystem::path& page, const std::string& fragment) {
+  const auto log = test::outputPath("chromium-" + page.parent_path().filename().string() + ".log");  // the folder names the process
+  const std::string command = "chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 --dump-dom 'file://" +
+                              std::filesystem::absolute(page).string() + fragment + "' 2> " + log.string();
+  const test::CommandResult result = test::runCommand(command);
+  EXPECT_EQ(result.exitCode, 0) << "chromium (scripts/setup.sh installs it): " << result.output;
+  return {result.output, readText(log)};
+}
+
+TEST(Report, NamesTheCommandAndTheMachineAndHoldsEveryRowOfTheCsv) {
+  const std::string html = readText(compareFolder() / "report.html");
+  EXPECT_NE(html.find("hsr compare " + test::sourcePath("scenes/cube.toml").string() + " --algos zbuffer,painter"), std::string::npos);
+  EXPECT_NE(html.find("cores available"), std::string::npos);
+  // The reference and the two algorithms: three rows, and the heading row.
+  const std::string csv = readText(compareFolder() / "results.csv");
+  const auto lines = std::count(csv.begin(), csv.end(), '\n');
+  const std::regex row("<tr>");
+  EXPECT_EQ(std::distance(std::sregex_iterator(html.begin(), html.end(), row), std::sregex_iterator()), lines);
+  EXPECT_EQ(lines, 4);
+}
+
+TEST(Report, EveryFileItPointsAtIsBesideItAndItNeedsNoNetwork) {
+  for (const auto& folder : {compareFolder(), sweepFolder()}) {
+    const std::string html = readText(folder / "report.html");
+    const std::vector<std::string> files = referencedFiles(html);
+    EXPECT_FALSE(files.empty());
+    for (const std::string& file : files) {
+      EXPECT_EQ(file.find('/'), std::string::npos) << file;  // beside it: no path, no scheme, no network
+      EXPECT_TRUE(std::filesystem::exists(folder / file)) << folder / file;
+    }
+    EXPECT_EQ(html.find("http"), std::string::npos);
+  }
+  // The sweep's plot is shown once, as its SVG, and its PNG is listed among the files.
+  const std::string sweep = readText(sweepFolder() / "report.html");
+  EXPECT_NE(sweep.find("<img src=\"sweep.svg\""), std::string::npos);
+  EXPECT_EQ(sweep.find("<img src=\"sweep.png\""), std::string::npos);
+}
+
+TEST(Report, LoadsInABrowserWithoutAConsoleMessageAndSortsByAColumn) {
+  const Loaded loaded = loadInChromium(compareFolder() / "report.html", "#sort=time_median_ms:desc");
+  EXPECT_EQ(loaded.log.find("CONSOLE"), std::string::npos) << loaded.log;
+  EXPECT_NE(loaded.dom.find("aria-sort=\"descending\">time_median_ms"), std::string::npos);
+  // The rows' time_median_ms, in the order the browser left them: descending.
+  const std::string csv = readText(compareFolder() / "results.csv");
+  const std::string heading = csv.substr(0, csv.find('\n'));
+  const auto column = std::count(heading.begin(), heading.begin() + std::ptrdiff_t(heading.find("time_median_ms")), ',');
+  std::vector<double> times;
+  const std::regex rowPattern("<tr>((?:<td>[^<]*</td>)+)</tr>");
+  const std::regex cellPattern("<td>([^<]*)</td>");
+  for (auto row = std::sregex_iterator(loaded.dom.begin(), loaded.dom.end(), rowPattern); row != std::sregex_iterator(); ++row) {
+    const std::string cells = (*row)[1];
+    auto cell = std::sregex_iterator(cells.begin(), cells.end(), cellPattern);
+    std::advance(cell, column);
+    times.push_back(std::stod((*cell)[1]));
+  }
+  ASSERT_EQ(times.size(), 3u);
+  EXPECT_TRUE(std::is_sorted(times.rbegin(), times.rend())) << times[0] << " " << times[1] << " " << times[2];
+}
+
+TEST(Report, AScreenshotOfItShowsThePage) {
+  const auto screenshot = test::outputPath("report-screenshot-" + std::to_string(getpid()) + ".png");
+  std::filesystem::remove(screenshot);
+  const test::CommandResult result = test::runCommand("chromium --headless --no-sandbox --disable-gpu --window-size=1000,700 --screenshot=" +
+                                                      screenshot.string() + " 'file://" +
+                                                      std::filesystem::absolute(compareFolder() / "report.html").string() + "' 2>&1");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const Image image = readImage(screenshot);
+  EXPECT_EQ(image.width, 1000);
+  // Text and pictures: far from one colour.
+  std::size_t dark = 0;
+  for (std::size_t p = 0; p < image.pixels.size(); p += std::size_t(image.channels)) dark += image.pixels[p] < 128;
+  EXPECT_GT(dark, 1000u);
+}
+
+}  // namespace
+}  // namespace hsr
