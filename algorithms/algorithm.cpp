@@ -20,7 +20,7 @@ void setRefusal(AlgorithmEntry& entry, std::string (*refusal)(const PreparedScen
 
 LineJudgement judgedByLineReference(const PreparedScene& scene, const KnobValues&, const LineSet& lines, int threads, Stats& stats) {
   const std::vector<EdgeVisibility> exact = traceLineReference(scene, lines.edges, threads, stats);
-  return LineJudgement{lineError(edgeVisibility(lines), exact), lineErrorMap(lines, exact)};
+  return LineJudgement{lineError(edgeVisibility(lines), exact), lineErrorMap(lines, exact), drawingOf(lines, exact)};
 }
 
 }  // namespace hsr

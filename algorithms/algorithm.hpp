@@ -56,11 +56,12 @@ struct Visibility {
   std::optional<PaintedPieces> painted;
 };
 
-// A line drawing judged against the exact one: its line error, and where it is wrong
-// (renderer/line_errors: lineErrorMap's colours).
+// A line drawing judged against the exact one: its line error, where it is wrong
+// (renderer/line_errors: lineErrorMap's colours), and the exact drawing it was judged by.
 struct LineJudgement {
   LineError error;
   std::vector<std::uint8_t> errorMap;
+  LineSet exact;
 };
 
 struct AlgorithmEntry {

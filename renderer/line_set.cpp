@@ -16,6 +16,16 @@ std::vector<EdgeVisibility> edgeVisibility(const LineSet& lines) {
   return result;
 }
 
+LineSet drawingOf(const LineSet& edges, std::span<const EdgeVisibility> visibility) {
+  LineSet drawing;
+  drawing.width = edges.width;
+  drawing.height = edges.height;
+  drawing.edges = edges.edges;
+  drawing.curvePlaces = edges.curvePlaces;
+  for (std::uint32_t e = 0; e < drawing.edges.size(); ++e) appendPieces(drawing, e, visibility[e].visible);
+  return drawing;
+}
+
 void appendPieces(LineSet& lines, std::uint32_t edge, std::span<const Interval> visible) {
   double covered = 0;
   for (const Interval& part : visible) {

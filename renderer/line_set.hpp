@@ -50,6 +50,10 @@ struct LineSet {
 // input, renderer/metrics).
 std::vector<EdgeVisibility> edgeVisibility(const LineSet& lines);
 
+// The drawing of `edges`' edges as `visibility` (one per edge) says: a reference's answer
+// as a LineSet, to draw like any other (its hidden parts kHidden).
+LineSet drawingOf(const LineSet& edges, std::span<const EdgeVisibility> visibility);
+
 // Appends edge `edge`'s pieces covering [0, 1]: the visible parts (sorted, disjoint) with QI
 // 0, the parts between them kHidden.
 void appendPieces(LineSet& lines, std::uint32_t edge, std::span<const Interval> visible);

@@ -1,5 +1,6 @@
 // hsr compare: every applicable algorithm on each scene against the exact reference,
 // time and error side by side, as a table, CSV, JSON and a contact sheet.
+#include <algorithm>
 #include <cstdio>
 #include <utility>
 
@@ -9,6 +10,7 @@
 #include "studies/measure.hpp"
 #include "studies/results.hpp"
 #include "renderer/error.hpp"
+#include "renderer/line_drawing.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/reference.hpp"
 
@@ -84,6 +86,7 @@ int compare(const CompareOptions& options) {
     section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(truth.frame, truth),
                                 {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
 
+    std::vector<std::vector<std::uint8_t>> exactDrawingsShown;  // the line references' tiles so far
     for (const pipeline::Configuration& configuration : configurations) {
       const AlgorithmEntry& algorithm = *configuration.algorithm;
       if (const std::string refusal = pipeline::refusal(prepared, configuration); !refusal.empty()) {
@@ -91,8 +94,19 @@ int compare(const CompareOptions& options) {
                     refusal.c_str());
         continue;
       }
-      const auto [row, frame, lineErrors] =
+      const auto [row, frame, lineErrors, exactLines] =
           measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
+      // A line algorithm is judged by an exact drawing, not by the reference image: that
+      // drawing gets a tile of its own before the first algorithm judged by it.
+      if (row.lines) {
+        Frame exact = lineSetFrame(exactLines, LineStyle::visible);
+        if (std::find(exactDrawingsShown.begin(), exactDrawingsShown.end(), exact.color) == exactDrawingsShown.end()) {
+          exactDrawingsShown.push_back(exact.color);
+          section.images.push_back({prepared.width(), prepared.height(), std::move(exact.color), {"exact lines (reference)", "line errors are measured against it"}});
+          section.heatMaps.push_back({prepared.width(), prepared.height(), lineSetFrame(exactLines, LineStyle::hidden).color,
+                                      {"hidden parts dashed"}});
+        }
+      }
       sceneRows.push_back(row);
       std::snprintf(line, sizeof line, "visibility %.1f ms, %s error %.4f%%%s", row.visibility.median * 1e3, row.lines ? "line" : "pixel",
                     row.errorValue() * 100, frame.partial.empty() ? "" : " (partial)");

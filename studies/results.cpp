@@ -110,10 +110,10 @@ MeasuredConfiguration measureConfiguration(const std::string& scene, const Prepa
     LineJudgement judgement = algorithm.judgeLines(prepared, configuration.knobs, measured.result.drawing, threads, referenceStats);
     row.lines = true;
     row.lineError = judgement.error;
-    return {std::move(row), std::move(measured.result.frame), std::move(judgement.errorMap)};
+    return {std::move(row), std::move(measured.result.frame), std::move(judgement.errorMap), std::move(judgement.exact)};
   }
   row.error = surfaceError(measured.result.frame, truth);
-  return {std::move(row), std::move(measured.result.frame), {}};
+  return {std::move(row), std::move(measured.result.frame), {}, {}};
 }
 
 std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {

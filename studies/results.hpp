@@ -74,6 +74,7 @@ struct MeasuredConfiguration {
   ResultRow row;
   Frame frame;
   std::vector<std::uint8_t> lineErrorMap;  // RGBA8
+  LineSet exactLines;                      // a line algorithm's: the exact drawing it was judged by
 };
 MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
                                            const pipeline::Configuration& configuration, int repeats, int threads);

@@ -300,7 +300,7 @@ AlgorithmEntry entry() {
   entry.judgeLines = [](const PreparedScene& scene, const KnobValues& values, const LineSet& lines, int threads, Stats& stats) {
     const ExactDrawing exact = exactDrawing(scene, values.as<Knobs>().mesh, threads, stats);
     CurveComparison comparison = compareCurveDrawings(lines, exact.lines, exact.visibility);
-    return LineJudgement{comparison.error, std::move(comparison.errorMap)};
+    return LineJudgement{comparison.error, std::move(comparison.errorMap), drawingOf(exact.lines, exact.visibility)};
   };
   return entry;
 }

@@ -163,7 +163,9 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_GT(json.array()[1]["counters"]["fragments tested"].number(), 0);
 
   const Image sheet = readImage(folder / "contact_sheet.png");
-  EXPECT_EQ(sheet.width, 10 + 6 * (256 + 10));  // six columns: the reference, zbuffer, ray_casting, painter, roberts, appel
+  // Seven columns: the reference, zbuffer, ray_casting, painter, the exact line drawing
+  // (what both line algorithms are judged by: one tile), roberts, appel.
+  EXPECT_EQ(sheet.width, 10 + 7 * (256 + 10));
   EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
 }
 
@@ -179,7 +181,7 @@ TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles
   const Image sheet = readImage(folder / "contact_sheet.png");
   constexpr int kMargin = 10, kThumbnail = 256, kHeading = 40;
   const int columns = (sheet.width - kMargin) / (kThumbnail + kMargin);
-  ASSERT_EQ(columns, 6) << "the reference, three surface and two line algorithms";
+  ASSERT_EQ(columns, 7) << "the reference, three surface algorithms, the exact lines, two line algorithms";
   std::int64_t transparent = 0, inGaps = 0;
   for (int y = 0; y < sheet.height; ++y)
     for (int x = 0; x < sheet.width; ++x) {
@@ -190,6 +192,17 @@ TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles
     }
   EXPECT_EQ(transparent, 0);
   EXPECT_EQ(inGaps, 0) << "pixels of text or image spilled into the gaps between tiles";
+  // The fifth tile is the exact line drawing: white paper and black lines, where the
+  // reference's tile is a shaded surface on the scene's background.
+  const auto whiteIn = [&](int column) {
+    std::int64_t white = 0;
+    const int x0 = kMargin + column * (kThumbnail + kMargin);
+    for (int y = kHeading; y < kHeading + kThumbnail; ++y)
+      for (int x = x0; x < x0 + kThumbnail; ++x) white += sheet.pixels[4 * (std::size_t(y) * std::size_t(sheet.width) + std::size_t(x))] == 255;
+    return white;
+  };
+  EXPECT_GT(whiteIn(4), kThumbnail * kThumbnail / 2);
+  EXPECT_LT(whiteIn(0), kThumbnail * kThumbnail / 10);
 }
 
 TEST(Study, CullingCombosWritesItsTableAndCountsTheWorkEachModeSaves) {
