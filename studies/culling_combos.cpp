@@ -342,9 +342,15 @@ std::string plot(const std::vector<SceneResult>& scenes) {
   data += "EOD\n";
   std::vector<std::string> titles;
   for (const Mode& mode : modes()) titles.push_back(mode.name);
+  std::vector<double> shown;
+  for (const SceneResult& scene : scenes)
+    for (const ModeResult& mode : scene.modes) {
+      const FrameTimes times = frameTimes(mode.seconds);
+      shown.insert(shown.end(), {times.best, times.worst});
+    }
   return data +
          "set title 'Culling combinations: mean frame time over a full turn (bars: best and worst 5%)'\n"
-         "set ylabel 'visibility pass per frame (ms)'\nset logscale y\nset grid ytics\n"
+         "set ylabel 'visibility pass per frame (ms)'\n" + timeAxis('y', shown, true) + "set grid ytics\n"
          "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
          "set boxwidth 0.9\nset key below horizontal maxcols 2 font ',10'\nset xtics nomirror\nplot " +
          histogramBars("$frames", titles, 3) + "\n";

@@ -108,7 +108,7 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
   files.commit();
   std::printf("wrote %s/effects_steps.png\n", folder.string().c_str());
   data += "EOD\nset title 'Each effect added in turn: time per pass (z-buffer, median; bar: the total, fastest to slowest)'\n"
-          "set ylabel 'ms'\nset yrange [0:*]\nset style data histogram\nset style histogram rowstacked\nset style fill solid 0.85 border -1\n"
+          "set xlabel 'effects listed (one more per bar)'\nset ylabel 'ms'\nset yrange [0:*]\nset style data histogram\nset style histogram rowstacked\nset style fill solid 0.85 border -1\n"
           "set boxwidth 0.7\nset grid ytics\nset xtics rotate by -25\nset key outside right font ',9'\nplot ";
   data += histogramBars("$steps", passes);
   const std::string total = std::to_string(passes.size() + 2);

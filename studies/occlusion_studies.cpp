@@ -160,8 +160,10 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
     }
     data += "\n";
   }
-  data += "EOD\nset title 'Occlusion walkthrough: visibility pass per frame'\nset xlabel 'frame'\nset ylabel 'ms'\n"
-          "set logscale y\nset grid\nset key below horizontal\nplot ";
+  std::vector<double> shown;
+  for (const Result& r : results) shown.insert(shown.end(), r.ms.begin(), r.ms.end());
+  data += "EOD\nset title 'Occlusion walkthrough: visibility pass per frame'\nset xlabel 'frame'\nset ylabel 'ms'\n" +
+          timeAxis('y', shown, false) + "set grid\nset key below horizontal\nplot ";
   for (std::size_t m = 0; m < modes.size(); ++m) {
     if (m > 0) data += ", ";
     data += "$frames using 1:" + std::to_string(m + 2) + " with lines title '" + modes[m].name + "'";
@@ -273,7 +275,7 @@ int hzbResolution(const StudyOptions& options, const std::filesystem::path& fold
       data += timingColumns(time, 1e9);
     data += "\n";
   }
-  data += "EOD\nset multiplot layout 1,2\nset title 'Culling time by map size (median, bars: fastest to slowest)'\nset ylabel 'ms'\n"
+  data += "EOD\nset multiplot layout 1,2\nset title 'Culling time by map size (median, bars: fastest to slowest)'\nset xlabel 'map (texels)'\nset ylabel 'ms'\n"
           "set style data yerrorlines\nset grid\nset key top left font ',9'\n"
           "plot $sizes using 0:2:3:4:xtic(1) title 'conservative', '' using 0:6:7:8 title 'conservative + pyramid', "
           "'' using 0:10:11:12 title 'center', '' using 0:14:15:16 title 'center + pyramid'\n"
@@ -341,7 +343,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
     }
     data += "\n";
   }
-  data += "EOD\nset title 'Occluder fraction: frame time (culling + depth pass, median; bars: fastest to slowest)'\nset ylabel 'ms'\n"
+  data += "EOD\nset title 'Occluder fraction: frame time (culling + depth pass, median; bars: fastest to slowest)'\nset xlabel 'level'\nset ylabel 'ms'\n"
           "set yrange [0:*]\nset style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\nset boxwidth 0.9\n"
           "set grid ytics\nset key below horizontal maxcols 4 font ',9'\nplot ";
   std::vector<std::string> titles;

@@ -1,5 +1,7 @@
 #include "studies/plot.hpp"
 
+#include <cmath>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -82,6 +84,14 @@ int finishStudy(const std::filesystem::path& folder, const std::string& stem, co
   files.commit();
   std::printf("wrote %s/%s.csv (no plot: the study was cut short)\n", folder.string().c_str(), stem.c_str());
   return kInterruptedExit;
+}
+
+std::string timeAxis(char axis, const std::vector<double>& values, bool bars) {
+  double smallest = INFINITY, largest = 0;
+  for (const double value : values)
+    if (value > 0 && std::isfinite(value)) smallest = std::min(smallest, value), largest = std::max(largest, value);
+  if (largest > kLogarithmicSpan * smallest) return std::string("set logscale ") + axis + "\n";
+  return bars ? std::string("set ") + axis + "range [0:*]\n" : "";
 }
 
 std::string timingColumns(const Timing& time, double scale) {

@@ -14,6 +14,12 @@ namespace hsr::studies {
 // `body` is the gnuplot text after the terminal and output lines, ending in a plot
 // command. Adds stem.gp, stem.png and stem.svg in `folder` to `files`.
 void addPlot(OutputFiles& files, const std::filesystem::path& folder, const std::string& stem, const std::string& body);
+// The rule every plot's time axis follows: logarithmic when the values it shows span
+// more than kLogarithmicSpan (largest over smallest positive), since below that a
+// linear axis reads truer; linear otherwise, and from zero for a bar chart (`bars`),
+// whose bars are read by their lengths. `axis` is 'x' or 'y'. Returns gnuplot lines.
+inline constexpr double kLogarithmicSpan = 20;
+std::string timeAxis(char axis, const std::vector<double>& values, bool bars);
 // A histogram's plot clause over a named data block whose first column labels the
 // x axis and whose next columns are the bars, one title each, `columnsPerBar` columns
 // a bar (3 for a histogram with error bars: the value, its low and its high):

@@ -225,8 +225,10 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     front.push_back(line);
   }
   const std::string sceneFile = std::filesystem::path(options.scene).filename().string();
+  std::vector<double> times;
+  for (const ResultRow& row : rows) times.insert(times.end(), {row.visibility.min * 1e3, row.visibility.max * 1e3});
   const std::string body =
-      dataBlock("points", points) + dataBlock("front", front) + "set title " +
+      dataBlock("points", points) + dataBlock("front", front) + timeAxis('x', times, false) + "set title " +
       quotedLabel(algorithm.name + " on " + sceneFile + ": " + errorName + " against visibility time") +
       "\nset xlabel 'visibility time per frame, median and range of " + std::to_string(options.repeat) + " runs (ms)'\nset ylabel '" +
       (lines ? "line error (% of the visible length, log scale)" : "pixel error (% of non-ambiguous pixels, log scale)") +
