@@ -2,8 +2,9 @@
 # The main job on the built-in default: set up, build, render every shipped scene into
 # out/ (with the z-buffer, and as a line drawing by each line algorithm that takes the
 # scene: Roberts on convex bodies, Appel on closed meshes, the floating horizon on the
-# ripple), then run hsr compare's default study (every surface algorithm against the
-# exact reference) into out/compare/, and say where everything is.
+# ripple), record two algorithms' steps (the z-buffer and Newell's painter) as
+# animations, then run hsr compare's default study (every algorithm against the exact
+# reference) into out/compare/ with its report.html, and say where everything is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -24,5 +25,8 @@ for scene in scenes/*.toml; do
     esac
   done
 done
+./build/hsr render scenes/counters.toml --size 640x360 -o out/counters-steps.png --steps out/steps/zbuffer 2> /dev/null
+./build/hsr render scenes/hard/cyclic_overlap.toml --algo painter --variant newell -o out/newell-steps.png --steps out/steps/newell
+echo "recorded the z-buffer's and Newell's steps -> out/steps/zbuffer/steps.gif, out/steps/newell/steps.gif"
 ./build/hsr compare --out out/compare
-echo "images are in $(pwd)/out; the study's contact sheet is out/compare/contact_sheet.png"
+echo "images are in $(pwd)/out; the study is out/compare/report.html (its contact sheet: out/compare/contact_sheet.png)"

@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
+# The command outputs README quotes.
+python3 scripts/readme_outputs.py
 # The architecture: the layers and the pipeline's passes (README "Architecture").
 dot -Tpng -Gdpi=96 images/figures/architecture.dot -o images/figures/architecture.png
 mkdir -p images/figures/zbuffer
@@ -111,7 +113,10 @@ oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figu
 oiiotool "$study/right.png" "$study/wrong.png" --mosaic:pad=8 2x1 -o images/figures/culling/any-vertex.png
 ./build/hsr study culling-combos --threads 1 --out "$study" > /dev/null
 cp "$study/culling_combos.png" images/figures/culling/culling-combos.png
-# Occlusion culling: the hierarchical-Z resolution and the occluder fraction.
+# Occlusion culling: the walkthrough (about 2 minutes), the hierarchical-Z resolution
+# and the occluder fraction.
+./build/hsr study occlusion-walkthrough --out "$study" > /dev/null
+cp "$study/occlusion_walkthrough.png" images/figures/culling/occlusion_walkthrough.png
 ./build/hsr study hzb-resolution --threads 1 --out "$study" > /dev/null
 cp "$study/hzb_resolution.png" images/figures/culling/hzb_resolution.png
 ./build/hsr study occluder-fraction --threads 1 --out "$study" > /dev/null

@@ -15,7 +15,8 @@ packages=(
   libgmp-dev                   # exact rational arithmetic in the reference
   gnuplot-nox                  # hsr sweep's plots; the floating horizon's peer (bench/gnuplot_peer)
   openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
-  graphviz                     # dot: scripts/figures.sh draws the architecture (images/figures/architecture.dot)
+  graphviz                     # dot: the BSP tree in the painter's steps; scripts/figures.sh draws the architecture
+  python3                      # scripts/readme_outputs.py: README's quoted outputs, checked by a test
   fonts-dejavu-core            # labels on hsr compare's contact sheet and on the steps' pictures
   chromium                     # tests: report.html loaded in a real browser, headless
   libgtest-dev libgmock-dev    # tests

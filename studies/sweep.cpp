@@ -285,7 +285,8 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
   const pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
   LoadedScene scene = loadPrepared(options.scene, options.size);
 
-  // The sizes: resolutions 256^2 ... 4096^2, or n x n copies with 1k ... 1M triangles.
+  // The sizes: resolutions 256^2 ... 4096^2, or n x n copies, n doubling from the first
+  // that gives 1,000 triangles while the copies stay under 1.1 million.
   std::vector<int> steps;
   const auto baseTriangles = static_cast<double>(scene.prepared->triangleCount());
   if (options.scale == "pixels") {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "json_reader.hpp"
@@ -120,6 +121,15 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   expected.push_back("counters");
   expected.push_back("pass_ms");
   EXPECT_EQ(header, expected);
+  // Every column is in README's table of them: a row of a Markdown table naming it.
+  std::set<std::string> documented;
+  std::istringstream readme(readText(std::string(HSR_SOURCE_DIR) + "/README.md"));
+  const std::regex named("`([a-z_]+)`");
+  for (std::string line; std::getline(readme, line);)
+    if (line.rfind("| `", 0) == 0)
+      for (auto match = std::sregex_iterator(line.begin(), line.end(), named); match != std::sregex_iterator(); ++match)
+        documented.insert((*match)[1]);
+  for (const std::string& column : header) EXPECT_TRUE(documented.count(column)) << column << " is not in README's table of columns";
   // Per scene: the reference, then every algorithm that accepts it at its defaults: the
   // three surface algorithms on both, the line algorithms (roberts, appel) on the closed
   // cube but not on coplanar's open quads.
