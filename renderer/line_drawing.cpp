@@ -163,7 +163,6 @@ Frame lineSetFrame(const LineSet& lines, LineStyle style) {
 namespace hsr {
 
 Image lineStepPicture(const LineSet& lines, std::span<const std::uint32_t> justDecided, LineStyle style) {
-  constexpr Rgb kJustDecided = {170, 235, 170};
   constexpr double kLabelMinimumPixels = 24;
   Image picture = blankPicture(lines.width, lines.height);
   for (const std::uint32_t e : justDecided) drawSegment(picture, lines.edges[e].pixelFrom, lines.edges[e].pixelTo, kJustDecided, 6);

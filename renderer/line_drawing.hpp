@@ -27,7 +27,9 @@ inline constexpr std::array<Rgb, 4> kQiColors = {Rgb{0, 0, 0}, Rgb{40, 100, 230}
 inline constexpr Rgb kHiddenLineColor = {136, 136, 136};
 // A line algorithm's step (renderer/steps.hpp): the drawing so far (`lines` with the
 // pieces decided so far) in the style, under it the edges just decided in broad light
-// green, and on each of their pieces long enough to hold it, its QI (style qi).
+// green (kJustDecided), and on each of their pieces long enough to hold it, its QI
+// (style qi).
+inline constexpr Rgb kJustDecided = {170, 235, 170};
 Image lineStepPicture(const LineSet& lines, std::span<const std::uint32_t> justDecided, LineStyle style);
 // What each QI colour means, for a legend.
 std::vector<std::pair<Rgb, std::string>> qiLegend();

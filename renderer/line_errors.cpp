@@ -4,6 +4,7 @@
 
 #include "renderer/error.hpp"
 #include "renderer/line_drawing.hpp"
+#include "renderer/raster.hpp"
 
 namespace hsr {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "renderer/frame.hpp"
 #include "renderer/line_set.hpp"
-#include "renderer/raster.hpp"
+#include "renderer/steps.hpp"
 
 namespace hsr {
 
@@ -33,25 +33,18 @@ inline constexpr double kErrorLineWidth = 3;  // errors drawn wider, so a short 
 // An RGBA8 picture of a drawing's errors, white to start with.
 class LineErrorPicture {
  public:
-  LineErrorPicture(int width, int height)
-      : width_(width), height_(height), rgba_(std::size_t(width) * std::size_t(height) * 4, 255) {}
-  void line(const dvec2& a, const dvec2& b, double width, Rgb color) {
-    rasterizeLine(a, b, width, width_, height_, [&](int x, int y) {
-      std::uint8_t* pixel = &rgba_[(std::size_t(y) * std::size_t(width_) + std::size_t(x)) * 4];
-      pixel[0] = color[0], pixel[1] = color[1], pixel[2] = color[2];
-    });
-  }
+  LineErrorPicture(int width, int height) : picture_(blankPicture(width, height)) {}
+  void line(const dvec2& a, const dvec2& b, double width, Rgb color) { drawSegment(picture_, a, b, color, width); }
   // Parts of an edge; those shorter than a millionth of a pixel are the rounding of event
   // positions, not errors.
   void parts(const FeatureEdge& edge, const std::vector<Interval>& parts, double width, Rgb color) {
     for (const Interval& part : parts)
       if ((part.end - part.begin) * edge.lengthPixels() > 1e-6) line(edge.pixelAt(part.begin), edge.pixelAt(part.end), width, color);
   }
-  std::vector<std::uint8_t> take() { return std::move(rgba_); }
+  std::vector<std::uint8_t> take() { return std::move(picture_.pixels); }
 
  private:
-  int width_, height_;
-  std::vector<std::uint8_t> rgba_;
+  Image picture_;
 };
 
 }  // namespace hsr

@@ -54,8 +54,9 @@ class StepRecorder {
 };
 
 // Colours of the step pictures.
-inline constexpr Rgb kHighlight{220, 30, 30};     // what the step just did
+inline constexpr Rgb kHighlight{220, 30, 30};        // what the step just did
 inline constexpr Rgb kSecondHighlight{30, 90, 220};  // what it did it against
+inline constexpr Rgb kThirdHighlight{235, 140, 0};   // a third thing the step shows
 
 // A blank RGBA picture.
 Image blankPicture(int width, int height, Rgb color = {255, 255, 255});

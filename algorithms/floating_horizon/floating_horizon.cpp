@@ -85,7 +85,7 @@ class Horizons {
       if (upper_[column] < kNothingDrawn && upper_[column + 1] < kNothingDrawn)
         drawSegment(picture, {x0, upper_[column]}, {x1, upper_[column + 1]}, kSecondHighlight, 2.0);
       if (keepLower_ && lower_[column] > -kNothingDrawn && lower_[column + 1] > -kNothingDrawn)
-        drawSegment(picture, {x0, lower_[column]}, {x1, lower_[column + 1]}, kQiColors[2], 2.0);
+        drawSegment(picture, {x0, lower_[column]}, {x1, lower_[column + 1]}, kThirdHighlight, 2.0);
     }
   }
 
@@ -253,7 +253,7 @@ class FloatingHorizon {
     std::iota(curveEdges.begin(), curveEdges.end(), firstEdge);
     Image picture = lineStepPicture(lines_, curveEdges, LineStyle::hidden);
     horizons_->drawOver(picture);
-    drawLegend(picture, {{kSecondHighlight, "upper horizon"}, {kQiColors[2], "lower horizon"}, {{170, 235, 170}, "curve just drawn"}});
+    drawLegend(picture, {{kSecondHighlight, "upper horizon"}, {kThirdHighlight, "lower horizon"}, {kJustDecided, "curve just drawn"}});
     steps_->record("steps 3-5: curve " + std::to_string(curvesDrawn_ + 1) + " of " + std::to_string(curvesToDraw()) +
                        " tested against the horizons, then raising them (front to back)",
                    std::move(picture));

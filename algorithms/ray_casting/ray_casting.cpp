@@ -202,7 +202,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   Stats& stats = request.stats;
   stats.add("primary rays", static_cast<std::int64_t>(frame.pixelCount()));
   std::optional<Recording> steps;
-  if (request.steps) steps.emplace(*request.steps, scene);
+  if (request.steps) steps.emplace(Recording{*request.steps, scene});
   const Recording* recording = steps ? &*steps : nullptr;
   switch (knobs.variant) {
     case Variant::naive: {

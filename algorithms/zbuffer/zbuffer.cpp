@@ -90,7 +90,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   const ScreenGeometry geometry =
       buildScreenTriangles(request.scene, request.view, {.clipFar = clipFar, .submitted = request.triangles}, request.threads, request.stats);
   std::optional<Recording> recording;
-  if (request.steps) recording.emplace(*request.steps, request.scene);
+  if (request.steps) recording.emplace(Recording{*request.steps, request.scene});
   const Recording* steps = recording ? &*recording : nullptr;
   if (knobs.variant == Variant::full)
     renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps);
