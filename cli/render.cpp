@@ -133,11 +133,12 @@ void printDecisions(const Stats& stats, double seconds) {
 }
 
 // The folder --steps names: made if absent (its parent must exist), and removed again if
-// the command fails before writing into it; a previous run's frames beyond this run's
-// count are removed once this run's are in place, so the folder holds one run.
+// the command fails before its steps are written; its writer takes the steps as they are
+// recorded; a previous run's frames beyond this run's count are removed once this run's
+// are in place, so the folder holds one run.
 class StepsFolder {
  public:
-  explicit StepsFolder(const std::filesystem::path& folder) : folder_(folder) {
+  explicit StepsFolder(const std::filesystem::path& folder) : folder_(folder), writer_(folder) {
     std::error_code error;
     if (std::filesystem::is_directory(folder_, error)) return;
     if (std::filesystem::exists(folder_, error)) throw InputError("--steps " + folder_.string() + ": exists and is not a folder");
@@ -155,11 +156,13 @@ class StepsFolder {
     if (made_ && !written_) std::filesystem::remove_all(folder_, error);
   }
 
-  void write(const std::vector<Step>& steps) {
-    writeSteps(folder_, steps);
+  StepsWriter& writer() { return writer_; }
+
+  void finish() {
+    writer_.finish();
     written_ = true;
     std::error_code error;
-    for (std::size_t stale = steps.size() + 1;; ++stale) {
+    for (std::size_t stale = writer_.count() + 1;; ++stale) {
       char name[32];
       std::snprintf(name, sizeof name, "step-%04zu.png", stale);
       if (!std::filesystem::remove(folder_ / name, error)) break;
@@ -168,6 +171,7 @@ class StepsFolder {
 
  private:
   std::filesystem::path folder_;
+  StepsWriter writer_;
   bool made_ = false, written_ = false;
 };
 
@@ -200,7 +204,7 @@ int render(const RenderOptions& options) {
   studies::checkRenders(configuration, scene.name, *scene.prepared);
   if (options.explain) printPlan(scene, configuration);
   std::optional<StepRecorder> steps;
-  if (stepsFolder) steps.emplace(std::size_t(options.every));
+  if (stepsFolder) steps.emplace(std::size_t(options.every), [&](const Step& step) { stepsFolder->writer().add(step); });
   const auto start = std::chrono::steady_clock::now();
   Stats stats;
   const pipeline::Rendered rendered =
@@ -218,7 +222,7 @@ int render(const RenderOptions& options) {
     const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
     steps->record(lines ? "the finished drawing" : "the finished image, after the passes that follow visibility (hsr render --explain)",
                   Image{shown.width, shown.height, 4, shown.color});
-    stepsFolder->write(steps->steps());
+    stepsFolder->finish();
   }
   // Why the image or drawing may be wrong somewhere, as the algorithm says.
   const std::string& partial = lines ? rendered.drawing.partial : frame.partial;

@@ -22,7 +22,10 @@ bool StepRecorder::due(std::size_t index) const { return every_ > 0 ? (index + 1
 
 void StepRecorder::record(std::string caption, Image picture) {
   const std::lock_guard lock(mutex_);
-  steps_.push_back({std::move(caption), std::move(picture)});
+  if (sink_)
+    sink_(Step{std::move(caption), std::move(picture)});
+  else
+    steps_.push_back({std::move(caption), std::move(picture)});
 }
 
 namespace {
@@ -237,33 +240,30 @@ Image withCaption(const Image& picture, const std::string& caption) {
   return framed;
 }
 
-void writeSteps(const std::filesystem::path& folder, const std::vector<Step>& steps, int framesPerSecond) {
-  OutputFiles outputs;
-  std::string captions;
-  std::vector<Image> frames;
-  int width = 0, height = 0;
-  for (std::size_t s = 0; s < steps.size(); ++s) {
-    char name[32];
-    std::snprintf(name, sizeof name, "%04zu", s + 1);
-    outputs.addRgbaPng(folder / ("step-" + std::string(name) + ".png"), steps[s].picture.width, steps[s].picture.height,
-                       steps[s].picture.pixels);
-    captions += std::string(name) + " " + steps[s].caption + "\n";
-    frames.push_back(withCaption(atMostWide(steps[s].picture, kAnimationWidth), steps[s].caption));
-    width = std::max(width, frames.back().width), height = std::max(height, frames.back().height);
-  }
-  outputs.addText(folder / "captions.txt", captions);
+void StepsWriter::add(const Step& step) {
+  char number[32];
+  std::snprintf(number, sizeof number, "%04zu", frames_.size() + 1);
+  files_.addRgbaPng(folder_ / ("step-" + std::string(number) + ".png"), step.picture.width, step.picture.height, step.picture.pixels);
+  captions_ += std::string(number) + " " + step.caption + "\n";
+  frames_.push_back(withCaption(atMostWide(step.picture, kAnimationWidth), step.caption));
+}
+
+void StepsWriter::finish() {
+  files_.addText(folder_ / "captions.txt", captions_);
   // An animation's frames share one size: each is padded with white to the largest.
-  for (Image& frame : frames) {
+  int width = 0, height = 0;
+  for (const Image& frame : frames_) width = std::max(width, frame.width), height = std::max(height, frame.height);
+  for (Image& frame : frames_) {
     if (frame.width == width && frame.height == height) continue;
     Image padded = blankPicture(width, height);
     for (int y = 0; y < frame.height; ++y)
       std::copy_n(&frame.pixels[std::size_t(y) * std::size_t(frame.width) * 4], std::size_t(frame.width) * 4, pixelAt(padded, 0, y));
     frame = std::move(padded);
   }
-  const std::filesystem::path animation = outputs.addWrittenElsewhere(folder / "steps.gif");
-  if (const std::string error = imageLibrary().writeAnimation(animation.string(), frames, framesPerSecond); !error.empty())
-    throw InputError((folder / "steps.gif").string() + ": cannot write the animation: " + error);
-  outputs.commit();
+  const std::filesystem::path animation = files_.addWrittenElsewhere(folder_ / "steps.gif");
+  if (const std::string error = imageLibrary().writeAnimation(animation.string(), frames_, framesPerSecond_); !error.empty())
+    throw InputError((folder_ / "steps.gif").string() + ": cannot write the animation: " + error);
+  files_.commit();
 }
 
 }  // namespace hsr

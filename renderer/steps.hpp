@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <mutex>
 #include <span>
 #include <string>
@@ -30,11 +32,15 @@ struct Step {
 
 class StepRecorder {
  public:
+  // Where the steps go: kept in steps() (no sink), or handed one by one to a sink that
+  // writes them as they come (StepsWriter), so that no frame stays in memory longer
+  // than it takes to write it.
+  using Sink = std::function<void(const Step&)>;
   // A repeated step (a triangle drawn, a row cast, a curve added) is recorded every
   // `every`th time; 0 chooses, for each run of repeated steps, the stride that records
   // about kFramesPerRun of them.
   static constexpr std::size_t kFramesPerRun = 40;
-  explicit StepRecorder(std::size_t every = 0) : every_(every) {}
+  explicit StepRecorder(std::size_t every = 0, Sink sink = nullptr) : every_(every), sink_(std::move(sink)) {}
 
   // Whether the index-th of `count` repeated steps is recorded: every stride-th, and
   // always the last, so that the run ends on its finished state.
@@ -45,10 +51,11 @@ class StepRecorder {
   // Records a step. Safe from any thread; the steps keep the order of the calls, so an
   // algorithm records from one thread (between its parallel loops) where order matters.
   void record(std::string caption, Image picture);
-  const std::vector<Step>& steps() const { return steps_; }
+  const std::vector<Step>& steps() const { return steps_; }  // the kept ones: none with a sink
 
  private:
   std::size_t every_;
+  Sink sink_;
   std::mutex mutex_;
   std::vector<Step> steps_;
 };
@@ -91,10 +98,26 @@ Image graphvizPicture(const std::string& graph);
 // The picture with a white band above it holding the caption, for an animation frame.
 Image withCaption(const Image& picture, const std::string& caption);
 
-// The steps written to a folder: step-0001.png..., captions.txt (one line per frame,
-// "0001 caption"), and steps.gif (the frames with their captions, at most 720 pixels
-// wide, padded to one size, at `framesPerSecond`). Through OutputFiles, so a failed
-// write leaves nothing behind.
-void writeSteps(const std::filesystem::path& folder, const std::vector<Step>& steps, int framesPerSecond = 4);
+// Steps written to a folder as they are recorded (a StepRecorder's sink): step-0001.png,
+// step-0002.png... at once, under temporary names (OutputFiles), while only the caption
+// and a small animation frame are kept; finish() adds captions.txt (one line per frame,
+// "0001 caption") and steps.gif (the frames with their captions, at most 720 pixels wide,
+// padded to one size, at `framesPerSecond`) and renames every file into place. A run
+// that fails before finish() leaves nothing behind.
+class StepsWriter {
+ public:
+  explicit StepsWriter(std::filesystem::path folder, int framesPerSecond = 4)
+      : folder_(std::move(folder)), framesPerSecond_(framesPerSecond) {}
+  void add(const Step& step);
+  std::size_t count() const { return frames_.size(); }
+  void finish();
+
+ private:
+  std::filesystem::path folder_;
+  int framesPerSecond_;
+  OutputFiles files_;
+  std::string captions_;
+  std::vector<Image> frames_;
+};
 
 }  // namespace hsr
