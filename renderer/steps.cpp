@@ -184,9 +184,25 @@ void drawWireframe(Image& picture, const PreparedScene& scene, const CameraTrans
 }
 
 void drawLabel(Image& picture, int x, int baseline, const std::string& text, Rgb color, int size) {
+  // The text is drawn on a patch of the picture as large as the text, then copied back
+  // where it overlaps the picture: a label partly or wholly off a small picture is cut,
+  // where OpenImageIO's own clipping fails an assertion.
+  int width = 0;
+  if (const std::string error = imageLibrary().textWidth(text, size, kLabelFont, width); !error.empty())
+    throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
+  const int left = x - 2, top = baseline - size - 2;
+  Image patch = blankPicture(width + 4, size * 3 / 2 + 4);
+  const auto overlap = [&](auto&& each) {
+    for (int py = 0; py < patch.height; ++py)
+      for (int px = 0; px < patch.width; ++px)
+        if (left + px >= 0 && left + px < picture.width && top + py >= 0 && top + py < picture.height)
+          each(pixelAt(patch, px, py), pixelAt(picture, left + px, top + py));
+  };
+  overlap([](std::uint8_t* inPatch, const std::uint8_t* inPicture) { std::copy_n(inPicture, 4, inPatch); });
   const float rgba[4] = {color[0] / 255.0f, color[1] / 255.0f, color[2] / 255.0f, 1.0f};
-  if (const std::string error = imageLibrary().drawText(picture, x, baseline, text, size, kLabelFont, rgba); !error.empty())
+  if (const std::string error = imageLibrary().drawText(patch, x - left, baseline - top, text, size, kLabelFont, rgba); !error.empty())
     throw InputError(std::string("steps: cannot draw text with ") + kLabelFont + ": " + error);
+  overlap([](const std::uint8_t* inPatch, std::uint8_t* inPicture) { std::copy_n(inPatch, 4, inPicture); });
 }
 
 void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& entries) {

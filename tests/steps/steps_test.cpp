@@ -8,6 +8,7 @@
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
 #include "renderer/image_library.hpp"
+#include "renderer/line_drawing.hpp"
 #include "renderer/steps.hpp"
 #include "test_support.hpp"
 
@@ -35,6 +36,33 @@ TEST(Steps, ARunOfRepeatedStepsIsRecordedAboutFortyTimesEndingOnItsLast) {
   EXPECT_FALSE(everyThird.due(303));
 }
 
+// Not every pixel of the picture the same colour.
+bool showsSomething(const Image& picture) {
+  for (std::size_t i = 4; i < picture.pixels.size(); ++i)
+    if (picture.pixels[i] != picture.pixels[i % 4]) return true;
+  return false;
+}
+
+// A label partly or wholly off a small picture is cut, not drawn past it (OpenImageIO's
+// own clipping failed an assertion: Appel's steps and the QI legend on a 96 x 64 image).
+TEST(Steps, LabelsAndLegendsOffASmallPictureAreCut) {
+  Image picture = blankPicture(24, 12);
+  for (const auto& [x, baseline] : std::vector<std::pair<int, int>>{{-30, 5}, {20, 14}, {5, 40}, {-5, -3}, {100, 100}, {2, 11}})
+    drawLabel(picture, x, baseline, "QI 12", {0, 0, 0});
+  drawLegend(picture, qiLegend());
+  EXPECT_EQ(picture.pixels.size(), 24u * 12u * 4u);
+  EXPECT_TRUE(showsSomething(picture));
+  // And through the command: a drawing by QI, and Appel's steps, on a tiny image.
+  const auto folder = test::outputPath("steps-tiny");
+  std::filesystem::remove_all(folder);
+  const std::string scene = test::sourcePath("scenes/hard/occ_gap.toml").string();
+  for (const std::string& arguments : {" --line-style qi -o " + test::outputPath("tiny-qi.png").string(),
+                                       " -o " + test::outputPath("tiny.png").string() + " --steps " + folder.string()}) {
+    const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " render " + scene + " --algo appel --size 40x30" + arguments);
+    EXPECT_EQ(result.exitCode, 0) << arguments << "\n" << result.output;
+  }
+}
+
 struct Configured {
   std::string scene, algorithm;
   KnobSettings knobs;
@@ -48,13 +76,6 @@ void PrintTo(const Configured& c, std::ostream* out) {
 }
 
 class EveryAlgorithmsSteps : public testing::TestWithParam<Configured> {};
-
-// Not every pixel of the picture the same colour.
-bool showsSomething(const Image& picture) {
-  for (std::size_t i = 4; i < picture.pixels.size(); ++i)
-    if (picture.pixels[i] != picture.pixels[i % 4]) return true;
-  return false;
-}
 
 // The counters of a render: what the algorithm did, without its times.
 std::map<std::string, std::int64_t> countersOf(const Stats& stats) {
