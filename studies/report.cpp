@@ -10,7 +10,6 @@
 #include <thread>
 #include <vector>
 
-#include "renderer/error.hpp"
 #include "renderer/frame.hpp"
 
 namespace hsr::studies {
