@@ -20,31 +20,27 @@ std::string readText(const std::filesystem::path& path) {
   return text.str();
 }
 
-// A run's folder, made once for the suite: a compare of two algorithms on the cube and a
-// sweep of two depth formats, each small enough to take well under a second.
+// The folder of an hsr run (`arguments` after "hsr"), in this test process's own folder
+// (the tests run as parallel processes).
+std::filesystem::path folderOfRun(const std::string& name, const std::string& arguments) {
+  const auto out = test::outputPath(name + "-" + std::to_string(getpid()));
+  std::filesystem::remove_all(out);
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " " + arguments + " --out " + out.string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  return out;
+}
+
+// A compare of two algorithms on the cube and a sweep of two depth formats, each made
+// once per process and small enough to take well under a second.
 const std::filesystem::path& compareFolder() {
-  static const std::filesystem::path folder = [] {
-    const auto out = test::outputPath("report-compare-" + std::to_string(getpid()));  // tests run in parallel processes
-    std::filesystem::remove_all(out);
-    const test::CommandResult result =
-        test::runCommand(std::string(HSR_BINARY) + " compare " + test::sourcePath("scenes/cube.toml").string() +
-                         " --algos zbuffer,painter --size 96x72 --repeat 1 --out " + out.string());
-    EXPECT_EQ(result.exitCode, 0) << result.output;
-    return out;
-  }();
+  static const std::filesystem::path folder = folderOfRun(
+      "report-compare", "compare " + test::sourcePath("scenes/cube.toml").string() + " --algos zbuffer,painter --size 96x72 --repeat 1");
   return folder;
 }
 
 const std::filesystem::path& sweepFolder() {
-  static const std::filesystem::path folder = [] {
-    const auto out = test::outputPath("report-sweep-" + std::to_string(getpid()));
-    std::filesystem::remove_all(out);
-    const test::CommandResult result =
-        test::runCommand(std::string(HSR_BINARY) + " sweep " + test::sourcePath("scenes/cube.toml").string() +
-                         " --knob depth-format=float32,unorm16 --size 96x72 --repeat 1 --out " + out.string());
-    EXPECT_EQ(result.exitCode, 0) << result.output;
-    return out;
-  }();
+  static const std::filesystem::path folder = folderOfRun(
+      "report-sweep", "sweep " + test::sourcePath("scenes/cube.toml").string() + " --knob depth-format=float32,unorm16 --size 96x72 --repeat 1");
   return folder;
 }
 
