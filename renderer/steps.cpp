@@ -51,6 +51,21 @@ std::string number(double value) {
   return text;
 }
 
+// How wide drawLabel draws `text` at `size`.
+int labelWidth(const std::string& text, int size) {
+  int width = 0;
+  if (const std::string error = imageLibrary().textWidth(text, size, kLabelFont, width); !error.empty())
+    throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
+  return width;
+}
+
+// Copies `picture` into `into` with its top left corner at (left, top); it must fit.
+void paste(Image& into, const Image& picture, int left, int top) {
+  for (int y = 0; y < picture.height; ++y)
+    std::copy_n(&picture.pixels[std::size_t(y) * std::size_t(picture.width) * 4], std::size_t(picture.width) * 4,
+                pixelAt(into, left, top + y));
+}
+
 // The animation's frames are at most this wide: GIF encoding costs about 0.1 s per
 // 200,000 pixels, and a frame of a 1280 x 720 z-buffer (colour beside depth) has 1.8 M.
 constexpr int kAnimationWidth = 720;
@@ -134,9 +149,7 @@ Image heatMapPicture(std::span<const double> values, int width, int height, cons
   const int baseline = height + kLegendHeight - 5;
   drawLabel(picture, kMargin, baseline, "0", {0, 0, 0}, 12);
   const std::string top = number(largest) + " " + unit;
-  int topWidth = 0;
-  if (const std::string error = imageLibrary().textWidth(top, 12, kLabelFont, topWidth); !error.empty())
-    throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
+  const int topWidth = labelWidth(top, 12);
   drawLabel(picture, std::max(kMargin + 20, width - kMargin - topWidth), baseline, top, {0, 0, 0}, 12);
   return picture;
 }
@@ -148,9 +161,7 @@ Image besideEachOther(const std::vector<Image>& pictures) {
   Image combined = blankPicture(width, height);
   int left = 0;
   for (const Image& picture : pictures) {
-    for (int y = 0; y < picture.height; ++y)
-      std::copy_n(&picture.pixels[std::size_t(y) * std::size_t(picture.width) * 4], std::size_t(picture.width) * 4,
-                  pixelAt(combined, left, y));
+    paste(combined, picture, left, 0);
     left += picture.width + kGap;
   }
   return combined;
@@ -187,9 +198,7 @@ void drawLabel(Image& picture, int x, int baseline, const std::string& text, Rgb
   // The text is drawn on a patch of the picture as large as the text, then copied back
   // where it overlaps the picture: a label partly or wholly off a small picture is cut,
   // where OpenImageIO's own clipping fails an assertion.
-  int width = 0;
-  if (const std::string error = imageLibrary().textWidth(text, size, kLabelFont, width); !error.empty())
-    throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
+  const int width = labelWidth(text, size);
   const int left = x - 2, top = baseline - size - 2;
   Image patch = blankPicture(width + 4, size * 3 / 2 + 4);
   const auto overlap = [&](auto&& each) {
@@ -208,12 +217,7 @@ void drawLabel(Image& picture, int x, int baseline, const std::string& text, Rgb
 void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& entries) {
   constexpr int kLine = 17, kSample = 22, kPad = 5;
   int widest = 0;
-  for (const auto& [color, text] : entries) {
-    int width = 0;
-    if (const std::string error = imageLibrary().textWidth(text, 12, kLabelFont, width); !error.empty())
-      throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
-    widest = std::max(widest, width);
-  }
+  for (const auto& [color, text] : entries) widest = std::max(widest, labelWidth(text, 12));
   const int boxWidth = std::min(picture.width, kPad * 3 + kSample + widest), boxHeight = std::min(picture.height, kPad * 2 + kLine * int(entries.size()));
   for (int y = 0; y < boxHeight; ++y)
     for (int x = 0; x < boxWidth; ++x) {
@@ -251,7 +255,7 @@ Image graphvizPicture(const std::string& graph) {
 Image withCaption(const Image& picture, const std::string& caption) {
   constexpr int kBand = 22;
   Image framed = blankPicture(picture.width, picture.height + kBand);
-  std::copy(picture.pixels.begin(), picture.pixels.end(), pixelAt(framed, 0, kBand));
+  paste(framed, picture, 0, kBand);
   drawLabel(framed, 4, kBand - 6, caption, {0, 0, 0}, 13);
   return framed;
 }
@@ -272,8 +276,7 @@ void StepsWriter::finish() {
   for (Image& frame : frames_) {
     if (frame.width == width && frame.height == height) continue;
     Image padded = blankPicture(width, height);
-    for (int y = 0; y < frame.height; ++y)
-      std::copy_n(&frame.pixels[std::size_t(y) * std::size_t(frame.width) * 4], std::size_t(frame.width) * 4, pixelAt(padded, 0, y));
+    paste(padded, frame, 0, 0);
     frame = std::move(padded);
   }
   const std::filesystem::path animation = files_.addWrittenElsewhere(folder_ / "steps.gif");
