@@ -190,7 +190,7 @@ MatchedDrawing onFeatureEdges(const hsr::LineSet& features, const std::vector<Se
     lo = glm::min(lo, glm::min(e.pixelFrom, e.pixelTo));
     hi = glm::max(hi, glm::max(e.pixelFrom, e.pixelTo));
   }
-  hsr::ImageGrid grid(lo, hi, 8);
+  hsr::ImageGrid grid(lo, hi, hsr::dvec2(features.width, features.height), 8);
   grid.bin(features.edges.size(), [&](std::size_t e, auto&& add) {
     grid.cellsOnSegment(features.edges[e].pixelFrom, features.edges[e].pixelTo, add);
   });

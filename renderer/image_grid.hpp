@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "renderer/math.hpp"
@@ -16,26 +17,35 @@ class ImageGrid {
  public:
   static constexpr int kMaxCellsPerSide = 1024;
 
-  // Covers [lo, hi] with square cells of cellPixels, made larger when a side would need
-  // more than kMaxCellsPerSide (geometry projected far outside the view).
-  ImageGrid(const dvec2& lo, const dvec2& hi, double cellPixels) : origin_(lo) {
-    cell_ = std::max({cellPixels, (hi.x - lo.x) / kMaxCellsPerSide, (hi.y - lo.y) / kMaxCellsPerSide, 1e-9});
-    columns_ = std::max(1, static_cast<int>(std::floor((hi.x - lo.x) / cell_)) + 1);
-    rows_ = std::max(1, static_cast<int>(std::floor((hi.y - lo.y) / cell_)) + 1);
+  // Covers [lo, hi] with square cells of cellPixels (larger only when the view itself
+  // would need more than kMaxCellsPerSide), as far as kMaxCellsPerSide cells around the
+  // view's center reach. Geometry projected beyond that (a ground plane reaching under
+  // the eye projects to hundreds of thousands of pixels) falls in the border cells,
+  // which reach to infinity: cells grown to cover all of it would each hold a good part
+  // of the view.
+  ImageGrid(const dvec2& lo, const dvec2& hi, const dvec2& view, double cellPixels) {
+    cell_ = std::max({cellPixels, view.x / kMaxCellsPerSide, view.y / kMaxCellsPerSide, 1e-9});
+    const dvec2 reachLo = 0.5 * view - 0.5 * kMaxCellsPerSide * cell_, reachHi = 0.5 * view + 0.5 * kMaxCellsPerSide * cell_;
+    origin_ = glm::clamp(lo, reachLo, reachHi);
+    const dvec2 end = glm::max(origin_, glm::clamp(hi, reachLo, reachHi));
+    columns_ = std::clamp(static_cast<int>(std::floor((end.x - origin_.x) / cell_)) + 1, 1, kMaxCellsPerSide);
+    rows_ = std::clamp(static_cast<int>(std::floor((end.y - origin_.y) / cell_)) + 1, 1, kMaxCellsPerSide);
   }
 
   std::size_t cellCount() const { return std::size_t(columns_) * std::size_t(rows_); }
 
   // The cells a segment passes through: row by row, those between where it enters and
-  // leaves the row (clamped to the grid, so a superset near the ends).
+  // leaves the row (a superset near the ends).
   template <typename Visit>
   void cellsOnSegment(const dvec2& a, const dvec2& b, Visit&& visit) const {
     const int rowEnd = row(std::max(a.y, b.y));
     for (int r = row(std::min(a.y, b.y)); r <= rowEnd; ++r) {
       double x0 = a.x, x1 = b.x;
       if (a.y != b.y) {
-        const double top = origin_.y + r * cell_;
-        const double t0 = std::clamp((top - a.y) / (b.y - a.y), 0.0, 1.0), t1 = std::clamp((top + cell_ - a.y) / (b.y - a.y), 0.0, 1.0);
+        // The first and the last row reach to infinity.
+        const double top = r == 0 ? -kEndless : origin_.y + r * cell_;
+        const double bottom = r == rows_ - 1 ? kEndless : origin_.y + (r + 1) * cell_;
+        const double t0 = std::clamp((top - a.y) / (b.y - a.y), 0.0, 1.0), t1 = std::clamp((bottom - a.y) / (b.y - a.y), 0.0, 1.0);
         x0 = a.x + t0 * (b.x - a.x);
         x1 = a.x + t1 * (b.x - a.x);
       }
@@ -69,6 +79,8 @@ class ImageGrid {
   }
 
  private:
+  static constexpr double kEndless = std::numeric_limits<double>::infinity();
+
   int row(double y) const { return std::clamp(static_cast<int>(std::floor((y - origin_.y) / cell_)), 0, rows_ - 1); }
   int column(double x) const { return std::clamp(static_cast<int>(std::floor((x - origin_.x) / cell_)), 0, columns_ - 1); }
 

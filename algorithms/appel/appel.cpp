@@ -110,13 +110,14 @@ class QuantitativeInvisibility {
     firstJunction_ = static_cast<std::uint32_t>(lines_.edges.size());
     for (const Junction& junction : intersections_.junctions)
       lines_.edges.push_back(projectEdge(camera_, junction.from, junction.to, EdgeKind::junction));
-    // The grid covers every edge's projection and lists the contours through each cell.
+    // The grid covers every edge's projection in the view and lists the contours through
+    // each cell.
     dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const FeatureEdge& edge : lines_.edges) {
       lo = glm::min(lo, glm::min(edge.pixelFrom, edge.pixelTo));
       hi = glm::max(hi, glm::max(edge.pixelFrom, edge.pixelTo));
     }
-    grid_.emplace(lo, hi, knobs.cellPixels);
+    grid_.emplace(lo, hi, dvec2(lines_.width, lines_.height), knobs.cellPixels);
     grid_->bin(contours_.size(), [&](std::size_t i, auto&& add) { grid_->cellsOnSegment(contours_[i].pixelFrom, contours_[i].pixelTo, add); });
     stats.add("grid cells", static_cast<std::int64_t>(grid_->cellCount()));
     seen_.assign(contours_.size(), kUnknown);

@@ -338,7 +338,7 @@ class Roberts {
     if (!knobs_.grid) return;
     dvec2 lo(kInfinity), hi(-kInfinity);
     for (const Body& body : bodies_) lo = glm::min(lo, body.lo), hi = glm::max(hi, body.hi);
-    grid_.emplace(lo, hi, knobs_.cellPixels);
+    grid_.emplace(lo, hi, dvec2(scene_.width(), scene_.height()), knobs_.cellPixels);
     grid_->bin(bodies_.size(), [&](std::size_t b, auto&& add) { grid_->cellsInBox(bodies_[b].lo, bodies_[b].hi, add); });
     seen_.assign(bodies_.size(), kNoBody);
   }
