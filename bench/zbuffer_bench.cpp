@@ -51,6 +51,30 @@ void visibility(benchmark::State& state) {
   state.counters["fragments"] = double(warmUp.counter("fragments tested"));
 }
 
+// The rasterization alone (steps 1-3 of the full frame, the geometry stage built once),
+// by the textbook loop and by the fast path: their ratio is the fast path's gain.
+constexpr const char* kRasterScenes[] = {"counters", "city", "dragons"};
+
+void raster(benchmark::State& state) {
+  const char* name = kRasterScenes[state.range(0)];
+  const hsr::PreparedScene& scene = *sceneNamed(name).prepared;
+  const auto path = static_cast<hsr::zbuffer::Path>(state.range(1));
+  const int threads = static_cast<int>(state.range(2));
+  hsr::Stats setUp;
+  const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, {}, threads, setUp);
+  hsr::Frame frame(scene.width(), scene.height());
+  hsr::Stats warmUp;
+  hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, warmUp, {.path = path});
+  for (auto _ : state) {
+    hsr::Stats stats;
+    hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats, {.path = path});
+    benchmark::DoNotOptimize(frame.ids.data());
+  }
+  state.SetLabel(std::string(name) + (path == hsr::zbuffer::Path::simd ? " simd" : " scalar") + " threads=" + std::to_string(threads));
+  state.counters["fragments"] = double(warmUp.counter("fragments tested"));
+  state.counters["skipped"] = double(warmUp.counter("fragments skipped by block depth"));
+}
+
 void shaded(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
   const int threads = static_cast<int>(state.range(1));
@@ -96,6 +120,8 @@ const bool contextAdded = [] {
 }();
 
 BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+BENCHMARK(raster)->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(reference)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);

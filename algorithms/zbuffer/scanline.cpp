@@ -80,9 +80,9 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
       bandResults[band] = test;
     });
     for (const auto& test : bandResults) {
-      stats.add("fragments tested", test.tested);
-      stats.add("fragments written", test.written);
-      stats.add("depth ties", test.ties);
+      stats.add("fragments tested", test.counts.tested);
+      stats.add("fragments written", test.counts.written);
+      stats.add("depth ties", test.counts.ties);
       stats.add("active triangles summed over rows", test.activeTriangles);
     }
     stats.add("depth buffer bytes",

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <numeric>
 #include <optional>
 
 #include "renderer/parallel.hpp"
@@ -17,8 +18,21 @@ Image buffersPicture(const Recording& recording, const CameraTransform& view, st
   return besideEachOther({surfaces, depthPicture(depth, width, height)});
 }
 
+namespace {
+
+constexpr std::size_t kPrefetchAhead = 8;
+
+// Starts loading a triangle into the cache (all of its lines; it is 136 bytes).
+void prefetch(const ScreenTriangle& tri) {
+  const char* const bytes = reinterpret_cast<const char*>(&tri);
+  for (std::size_t line = 0; line < sizeof(ScreenTriangle); line += 64) __builtin_prefetch(bytes + line);
+}
+
+}  // namespace
+
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                     bool depthTest, const Recording* recording) {
+                     const FullFrameOptions& options) {
+  const Recording* recording = options.recording;
   // Binning: each tile gets the triangles whose pixel box overlaps it, in submission
   // order, so that within a tile triangles are drawn in the same order as on one thread.
   const TileGrid tiles(frame.width, frame.height, recording ? std::max(frame.width, frame.height) : TileGrid::kTileSize);
@@ -29,12 +43,16 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
   }
 
   PhaseTimer timer(stats, "rasterization");
-  withDepthTest(format, depthTest, [&]<typename Format>() {
+  withDepthTest(format, options.depthTest, [&]<typename Format>() {
     const DepthEncoding encoding = depthEncoding(format, geometry.camera);
+    // The fast path runs float formats with the depth test on, on a CPU with AVX2.
+    constexpr bool kFloatDepthTest = std::is_same_v<Format, Float32Depth> || std::is_same_v<Format, ReversedFloat32Depth>;
+    const bool simd = kFloatDepthTest && options.path == Path::simd && cpuHasAvx2();
     // Left uninitialized here: each tile clears its own part, on the thread that will use it.
     const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(frame.pixelCount());
     std::vector<double> testedAt(recording ? frame.pixelCount() : 0);  // fragments tested per pixel, for the steps
     std::vector<DepthTest<Format>> tileResults(bins.size());
+    std::vector<std::int64_t> skippedByBlockDepth(bins.size());
     parallelFor(bins.size(), threads, [&](std::size_t tile, int) {
       const auto [tileX0, tileY0, tileX1, tileY1] = tiles.rect(tile);
       const auto pixel = [&](int x, int y) { return std::size_t(y) * std::size_t(frame.width) + std::size_t(x); };
@@ -44,14 +62,28 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
         std::fill(&depth[pixel(tileX0, y)], &depth[pixel(tileX0, y)] + (tileX1 - tileX0), Format::kFar);
         std::fill(&frame.ids[pixel(tileX0, y)], &frame.ids[pixel(tileX0, y)] + (tileX1 - tileX0), conventions::kBackgroundId);
       }
+      // The fast path's tile (fast_path.hpp), when it runs: the same steps 2 and 3.
+      std::optional<SimdTile> fast;
+      if constexpr (kFloatDepthTest)
+        if (simd) fast.emplace(tiles.rect(tile), frame.width, depth.get(), frame.ids.data(), encoding, std::is_same_v<Format, ReversedFloat32Depth>,
+                       test.counts);
       // Step 2: for every triangle and every pixel it covers, keep the fragment if it is
       // nearer than what the pixel holds.
       for (std::size_t drawn = 0; drawn < bins[tile].size(); ++drawn) {
+        // A tile's triangles lie scattered through the scene's list (a mesh's triangles
+        // fall into many tiles): ask for one a few ahead while this one is drawn, or each
+        // waits on a cache miss (on dragons, most of the pass).
+        if (drawn + kPrefetchAhead < bins[tile].size()) prefetch(geometry.triangles[bins[tile][drawn + kPrefetchAhead]]);
         const ScreenTriangle& tri = geometry.triangles[bins[tile][drawn]];
         const int x0 = std::max(tri.minX, tileX0), x1 = std::min(tri.maxX + 1, tileX1);
-        for (int y = std::max(tri.minY, tileY0); y < std::min(tri.maxY + 1, tileY1); ++y) {
-          const std::size_t row = pixel(0, y);
-          rasterizeSpan(tri, y, x0, x1, [&](int x) { test.test(tri, x, y, depth[row + std::size_t(x)], frame.ids[row + std::size_t(x)]); });
+        if (fast && fast->worthDrawing(tri)) {
+          fast->draw(tri);
+        } else {
+          for (int y = std::max(tri.minY, tileY0); y < std::min(tri.maxY + 1, tileY1); ++y) {
+            const std::size_t row = pixel(0, y);
+            rasterizeSpan(tri, y, x0, x1, [&](int x) { test.test(tri, x, y, depth[row + std::size_t(x)], frame.ids[row + std::size_t(x)]); });
+          }
+          if (fast) fast->drawnElsewhere(tri);
         }
         if (recording) {
           // Overdraw: every pixel the triangle covered was one more fragment tested there.
@@ -60,7 +92,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
             std::vector<float> distances(frame.pixelCount());
             for (std::size_t p = 0; p < distances.size(); ++p) distances[p] = test.distance(frame.ids[p], depth[p], geometry.camera);
             recording->steps.record("step 2, depth test: triangle " + std::to_string(drawn + 1) + " of " + std::to_string(bins[tile].size()) +
-                                        " drawn (red); " + std::to_string(test.written) + " of " + std::to_string(test.tested) +
+                                        " drawn (red); " + std::to_string(test.counts.written) + " of " + std::to_string(test.counts.tested) +
                                         " fragments so far were nearer and kept",
                                     buffersPicture(*recording, geometry.camera, frame.ids, distances, frame.width, frame.height,
                                                    std::span(&tri.triangle, 1)));
@@ -68,19 +100,26 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
         }
       }
       // Step 3: the frame's depth is what the format stored, decoded to a view distance.
-      for (int y = tileY0; y < tileY1; ++y)
-        for (int x = tileX0; x < tileX1; ++x) frame.depth[pixel(x, y)] = test.distance(frame.ids[pixel(x, y)], depth[pixel(x, y)], geometry.camera);
+      if (fast) {
+        fast->decode(frame.depth, geometry.camera.perspective());
+        skippedByBlockDepth[tile] = fast->skippedByBlockDepth;
+      } else {
+        for (int y = tileY0; y < tileY1; ++y)
+          for (int x = tileX0; x < tileX1; ++x) frame.depth[pixel(x, y)] = test.distance(frame.ids[pixel(x, y)], depth[pixel(x, y)], geometry.camera);
+      }
       tileResults[tile] = test;
     });
     if (recording)
-      recording->steps.record("overdraw: fragments tested per pixel (" + std::to_string(tileResults[0].tested) + " in all, " +
-                                  std::to_string(tileResults[0].written) + " written)",
+      recording->steps.record("overdraw: fragments tested per pixel (" + std::to_string(tileResults[0].counts.tested) + " in all, " +
+                                  std::to_string(tileResults[0].counts.written) + " written)",
                               heatMapPicture(testedAt, frame.width, frame.height, "fragments tested per pixel"));
     for (const auto& test : tileResults) {
-      stats.add("fragments tested", test.tested);
-      stats.add("fragments written", test.written);
-      stats.add("depth ties", test.ties);
+      stats.add("fragments tested", test.counts.tested);
+      stats.add("fragments written", test.counts.written);
+      stats.add("depth ties", test.counts.ties);
     }
+    // Present (0 or more) exactly when the fast path ran.
+    if (simd) stats.add("fragments skipped by block depth", std::accumulate(skippedByBlockDepth.begin(), skippedByBlockDepth.end(), std::int64_t{0}));
     stats.add("depth buffer bytes", static_cast<std::int64_t>(frame.pixelCount() * sizeof(typename Format::Stored)));
   });
 }
@@ -93,7 +132,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   if (request.steps) recording.emplace(Recording{*request.steps, request.scene});
   const Recording* steps = recording ? &*recording : nullptr;
   if (knobs.variant == Variant::full)
-    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps);
+    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, {knobs.depthTest, knobs.path, steps});
   else
     renderScanline(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps);
 }

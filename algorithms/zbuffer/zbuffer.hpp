@@ -11,6 +11,7 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
+#include "algorithms/zbuffer/fast_path.hpp"
 #include "renderer/conventions.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/frame.hpp"
@@ -26,6 +27,10 @@ enum class Variant {
   scanline,  // a depth buffer one row high, rows in order with an active-triangle list: O(width)
 };
 
+// How the full-frame variant runs its loops: the textbook loop a pixel at a time, or
+// the fast path (fast_path.hpp), bit for bit the same ids, depths and counters.
+enum class Path { simd, scalar };
+
 struct Knobs {
   Variant variant = Variant::full;
   DepthFormat depthFormat = DepthFormat::float32;
@@ -33,6 +38,7 @@ struct Knobs {
   // alone decides what a pixel shows (the last triangle drawn there). Kept to show what
   // the depth buffer buys, as the culling study's modes "without a z-buffer" do.
   bool depthTest = true;
+  Path path = Path::simd;
 };
 
 inline const KnobTable<Knobs>& knobTable() {
@@ -45,7 +51,12 @@ inline const KnobTable<Knobs>& knobTable() {
         .choice("depth-format", &Knobs::depthFormat, formats, "what the depth buffer stores (conventions.hpp)")
         .onOff("depth-test", &Knobs::depthTest,
                "off: no depth test, every fragment is drawn and the last triangle drawn at a pixel wins (wrong wherever "
-               "surfaces overlap; kept to show what the depth buffer buys)");
+               "surfaces overlap; kept to show what the depth buffer buys)")
+        .choice("path", &Knobs::path, {{Path::simd, "simd"}, {Path::scalar, "scalar"}},
+                "simd: eight pixels at a time with AVX2, 8 x 8 blocks skipped by depth (fast_path.hpp), where the CPU has "
+                "AVX2 and the depth format is a float with the depth test on, else the textbook loop; scalar: the "
+                "textbook loop. The same ids, depths and counters")
+        .onlyFor({"full"});
   }();
   return table;
 }
@@ -70,8 +81,13 @@ struct Recording {
 // With a recording, the full frame draws the whole image as one tile (every triangle in
 // submission order, one thread) and records after triangles; the scanline variant runs
 // its rows on one thread and records after rows. Same image and counters either way.
+struct FullFrameOptions {
+  bool depthTest = true;
+  Path path = Path::simd;
+  const Recording* recording = nullptr;
+};
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                     bool depthTest = true, const Recording* recording = nullptr);
+                     const FullFrameOptions& options = {});
 void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
                     bool depthTest = true, const Recording* recording = nullptr);
 
@@ -105,18 +121,22 @@ void withDepthTest(DepthFormat format, bool depthTest, Visitor&& visit) {
 template <typename Format>
 struct DepthTest {
   DepthEncoding encoding;
-  std::int64_t tested = 0, written = 0, ties = 0, activeTriangles = 0;
+  DepthCounts counts;
+  std::int64_t activeTriangles = 0;
+
+  DepthTest() = default;
+  explicit DepthTest(const DepthEncoding& encoding_) : encoding(encoding_) {}
 
   void test(const ScreenTriangle& tri, int x, int y, typename Format::Stored& stored, std::uint32_t& id) {
-    ++tested;
+    ++counts.tested;
     const auto z = Format::store(encoding.z(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
     if (!Format::nearer(z, stored)) {
-      ties += z == stored && id != conventions::kBackgroundId && id != tri.triangle + 1;
+      counts.ties += z == stored && id != conventions::kBackgroundId && id != tri.triangle + 1;
       return;
     }
     stored = z;
     id = tri.triangle + 1;
-    ++written;
+    ++counts.written;
   }
 
   // What the buffer stored, decoded back to a distance along the view axis

@@ -1,0 +1,293 @@
+// The z-buffer's fast path (fast_path.hpp says what it computes and why it is the same).
+// Only the functions marked HSR_AVX2 use AVX2 instructions; the rest of the program is
+// built for the baseline x86-64, and cpuHasAvx2() decides at run time whether these run.
+#include "algorithms/zbuffer/fast_path.hpp"
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "renderer/conventions.hpp"
+
+#define HSR_AVX2 __attribute__((target("avx2")))
+
+namespace hsr::zbuffer {
+namespace {
+
+constexpr int kBlock = 8;  // a block is 8 x 8 pixels; a row of a block is one vector of 8 floats
+// Triangles whose box in the tile has fewer pixels than this are drawn by the textbook
+// loop (worthDrawing).
+constexpr int kVectorsFromPixels = 24;
+// Blocks smaller than this part of a triangle go straight to the pixels: for a few
+// pixels the depth bound and the block's farthest depth cost more than they save.
+constexpr int kBlockTestFromPixels = 16;
+// The depth bound's margin against the rounding of the per-pixel formula: a few units in
+// the last place of its terms' magnitudes, taken a thousand times over.
+constexpr double kRoundingMargin = 1e-12;
+
+// Lane i of a row's 8 lanes is pixel x + i; its bit in the masks below is 1 << i.
+HSR_AVX2 __m256i laneMask(int bits) {
+  const __m256i laneBits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), laneBits), laneBits);
+}
+
+// The lanes, of four, where all three edge functions are non-negative (no sign bit set).
+HSR_AVX2 int insideLanes(__m256i e0, __m256i e1, __m256i e2) {
+  return ~_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_or_si256(_mm256_or_si256(e0, e1), e2))) & 0xF;
+}
+
+// One triangle's edge functions along a row: lane i is E(x + i) = E(x) + i * step, exact
+// in 64-bit integers as in rasterizeSpan.
+struct EdgeLanes {
+  __m256i first4[3], second4[3];  // i * step for i = 0..3, and for i = 4..7
+
+  HSR_AVX2 explicit EdgeLanes(const ScreenTriangle& tri) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t step = tri.edgeA[k] * conventions::kSubpixelScale;
+      first4[k] = _mm256_setr_epi64x(0, step, 2 * step, 3 * step);
+      second4[k] = _mm256_add_epi64(first4[k], _mm256_set1_epi64x(4 * step));
+    }
+  }
+
+  // The covered lanes of the row whose edge functions at its first pixel are e.
+  HSR_AVX2 int covered(const std::int64_t e[3]) const {
+    __m256i low[3], high[3];
+    for (int k = 0; k < 3; ++k) {
+      const __m256i start = _mm256_set1_epi64x(e[k]);
+      low[k] = _mm256_add_epi64(start, first4[k]);
+      high[k] = _mm256_add_epi64(start, second4[k]);
+    }
+    return insideLanes(low[0], low[1], low[2]) | insideLanes(high[0], high[1], high[2]) << 4;
+  }
+};
+
+// Eight floats stored whole, or only in `lanes` (a row at the image's right edge).
+HSR_AVX2 void storeRow(float* row, bool whole, __m256i lanes, __m256 value) {
+  if (whole)
+    _mm256_storeu_ps(row, value);
+  else
+    _mm256_maskstore_ps(row, lanes, value);
+}
+
+// The scalar loop's z for eight lanes: a + b t, clamped to [0, 1] as std::clamp does
+// (max(0, z) keeps -0.0 and NaN, as it does), rounded to float. tx holds
+// t0 + tdx (x - x0) per lane; ty is tdy (y - y0).
+HSR_AVX2 __m256 storedDepth(const __m256d tx[2], double ty, const DepthEncoding& encoding) {
+  const __m256d a = _mm256_set1_pd(encoding.a), b = _mm256_set1_pd(encoding.b), zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  __m128 half[2];
+  for (int h = 0; h < 2; ++h) {
+    const __m256d t = _mm256_add_pd(tx[h], _mm256_set1_pd(ty));
+    const __m256d z = _mm256_add_pd(a, _mm256_mul_pd(b, t));
+    half[h] = _mm256_cvtpd_ps(_mm256_min_pd(one, _mm256_max_pd(zero, z)));
+  }
+  return _mm256_set_m128(half[1], half[0]);
+}
+
+// The nearest depth value, as stored, any pixel center of [x0, x1] x [y0, y1] can get
+// from the triangle's plane: its value at the nearest corner, moved toward the near end
+// by the margin. The formula at a pixel rounds, so its value there may lie below the
+// plane's least value by a few units in the last place; the margin covers that.
+float nearestStored(const ScreenTriangle& tri, const DepthEncoding& encoding, bool reversed, int x0, int x1, int y0, int y1) {
+  const double dx[2] = {conventions::pixelCenter(x0) - tri.x0, conventions::pixelCenter(x1) - tri.x0};
+  const double dy[2] = {conventions::pixelCenter(y0) - tri.y0, conventions::pixelCenter(y1) - tri.y0};
+  double nearest = reversed ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  for (const double u : dx)
+    for (const double v : dy) {
+      const double z = encoding.z(tri.t0 + tri.tdx * u + tri.tdy * v);
+      nearest = reversed ? std::max(nearest, z) : std::min(nearest, z);
+    }
+  const double magnitude = std::abs(tri.t0) + std::abs(tri.tdx) * std::max(std::abs(dx[0]), std::abs(dx[1])) +
+                           std::abs(tri.tdy) * std::max(std::abs(dy[0]), std::abs(dy[1]));
+  const double margin = kRoundingMargin * (std::abs(encoding.a) + std::abs(encoding.b) * magnitude);
+  return static_cast<float>(std::clamp(reversed ? nearest + margin : nearest - margin, 0.0, 1.0));
+}
+
+}  // namespace
+
+bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+SimdTile::SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
+                   DepthCounts& counts)
+    : rect_(rect),
+      width_(width),
+      depth_(depth),
+      ids_(ids),
+      encoding_(encoding),
+      reversed_(reversed),
+      counts_(counts),
+      blocksX_((rect.x1 - rect.x0 + kBlock - 1) / kBlock),
+      blocks_(std::size_t(blocksX_) * std::size_t((rect.y1 - rect.y0 + kBlock - 1) / kBlock),
+              Block{reversed ? 0.0f : 1.0f, false}) {}
+
+namespace {
+// The triangle's box in the tile, [x0, x1) x [y0, y1).
+TileGrid::Rect boxIn(const ScreenTriangle& tri, const TileGrid::Rect& tile) {
+  return {std::max(tri.minX, tile.x0), std::max(tri.minY, tile.y0), std::min(tri.maxX + 1, tile.x1), std::min(tri.maxY + 1, tile.y1)};
+}
+}  // namespace
+
+bool SimdTile::worthDrawing(const ScreenTriangle& tri) const {
+  const TileGrid::Rect box = boxIn(tri, rect_);
+  return (box.x1 - box.x0) * (box.y1 - box.y0) >= kVectorsFromPixels;
+}
+
+void SimdTile::drawnElsewhere(const ScreenTriangle& tri) {
+  const TileGrid::Rect box = boxIn(tri, rect_);
+  if (box.x0 >= box.x1 || box.y0 >= box.y1) return;
+  for (int row = (box.y0 - rect_.y0) / kBlock; row <= (box.y1 - 1 - rect_.y0) / kBlock; ++row)
+    for (int column = (box.x0 - rect_.x0) / kBlock; column <= (box.x1 - 1 - rect_.x0) / kBlock; ++column)
+      blocks_[std::size_t(row) * std::size_t(blocksX_) + std::size_t(column)].stale = true;
+}
+
+// The farthest depth the block [x0, x1) x [y0, y1) holds, found again if it was written.
+HSR_AVX2 float SimdTile::blockFarthest(std::size_t block, int x0, int y0, int x1, int y1) {
+  Block& b = blocks_[block];
+  if (!b.stale) return b.farthest;
+  // Lanes past the block's right edge are filled with a value that never wins.
+  const __m256 never = _mm256_set1_ps(reversed_ ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity());
+  const __m256i inBlock = laneMask((1 << (x1 - x0)) - 1);
+  __m256 farthest = never;
+  for (int y = y0; y < y1; ++y) {
+    const __m256 row = _mm256_blendv_ps(never, _mm256_maskload_ps(&depth_[std::size_t(y) * width_ + x0], inBlock), _mm256_castsi256_ps(inBlock));
+    farthest = reversed_ ? _mm256_min_ps(farthest, row) : _mm256_max_ps(farthest, row);
+  }
+  alignas(32) float lanes[8];
+  _mm256_store_ps(lanes, farthest);
+  b.farthest = reversed_ ? *std::min_element(lanes, lanes + 8) : *std::max_element(lanes, lanes + 8);
+  b.stale = false;
+  return b.farthest;
+}
+
+HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
+  using conventions::kSubpixelScale;
+  const auto [triX0, triY0, triX1, triY1] = boxIn(tri, rect_);
+  if (triX0 >= triX1 || triY0 >= triY1) return;
+  const EdgeLanes edges(tri);
+  const __m256i id = _mm256_set1_epi32(static_cast<int>(tri.triangle + 1));
+  const __m256i background = _mm256_set1_epi32(static_cast<int>(conventions::kBackgroundId));
+  float* const depth = depth_;
+  std::uint32_t* const ids = ids_;
+  const std::size_t width = std::size_t(width_);
+  DepthCounts counts;  // kept in registers, added to counts_ at the end
+  // Step 2, by blocks of the tile's 8 x 8 grid. A block's lanes are its 8 columns; the
+  // triangle's box clips them to [x0, x1) and its rows to [y0, y1).
+  for (int blockY = rect_.y0 + (triY0 - rect_.y0) / kBlock * kBlock; blockY < triY1; blockY += kBlock)
+    for (int blockX = rect_.x0 + (triX0 - rect_.x0) / kBlock * kBlock; blockX < triX1; blockX += kBlock) {
+      const int x0 = std::max(blockX, triX0), x1 = std::min(blockX + kBlock, triX1);
+      const int y0 = std::max(blockY, triY0), y1 = std::min(blockY + kBlock, triY1);
+      // The edge functions at the block's first column on row y0, and their least and
+      // greatest over the clipped block: being linear, at its corners.
+      std::int64_t e[3];
+      bool outside = false, inside = true;
+      const std::int64_t px = std::int64_t(blockX) * kSubpixelScale + kSubpixelScale / 2, py = std::int64_t(y0) * kSubpixelScale + kSubpixelScale / 2;
+      for (int k = 0; k < 3; ++k) {
+        e[k] = tri.edgeA[k] * px + tri.edgeB[k] * py + tri.edgeC[k];
+        const std::int64_t step = tri.edgeA[k] * kSubpixelScale, down = tri.edgeB[k] * kSubpixelScale * (y1 - 1 - y0);
+        const std::int64_t left = e[k] + step * (x0 - blockX), right = e[k] + step * (x1 - 1 - blockX);
+        outside |= std::max(left, right) + std::max<std::int64_t>(down, 0) < 0;
+        inside &= std::min(left, right) + std::min<std::int64_t>(down, 0) >= 0;
+      }
+      if (outside) continue;  // no pixel center of the block inside the triangle
+      const int columns = ((1 << (x1 - blockX)) - 1) & ~((1 << (x0 - blockX)) - 1);
+      const std::size_t block = std::size_t((blockY - rect_.y0) / kBlock) * std::size_t(blocksX_) + std::size_t((blockX - rect_.x0) / kBlock);
+      // The hierarchical test: every depth the block holds is nearer than the nearest
+      // this triangle can store there, so no fragment can pass, or tie.
+      bool hidden = false;
+      if ((x1 - x0) * (y1 - y0) >= kBlockTestFromPixels) {
+        const float farthest = blockFarthest(block, blockX, blockY, std::min(blockX + kBlock, rect_.x1), std::min(blockY + kBlock, rect_.y1));
+        const float nearest = nearestStored(tri, encoding_, reversed_, x0, x1 - 1, y0, y1 - 1);
+        hidden = reversed_ ? farthest > nearest : farthest < nearest;
+      }
+      if (hidden && inside) {  // the whole clipped block covered: its fragments need no count
+        counts.tested += std::int64_t(x1 - x0) * (y1 - y0);
+        skippedByBlockDepth += std::int64_t(x1 - x0) * (y1 - y0);
+        continue;
+      }
+      // A block inside the tile is read and written as whole rows of 8 (plain loads and
+      // stores are far cheaper than masked ones on some CPUs, and the tile is this
+      // thread's); one at the image's right edge, narrower, only in its own columns.
+      const bool wholeRows = blockX + kBlock <= rect_.x1;
+      const __m256i inBlock = laneMask(wholeRows ? 0xFF : (1 << (rect_.x1 - blockX)) - 1);
+      // The lanes' t0 + tdx (x - x0), the part of the depth that depends on the column.
+      __m256d tx[2];
+      for (int h = 0; h < 2; ++h) {
+        const __m256d center = _mm256_add_pd(_mm256_set1_pd(conventions::pixelCenter(blockX)), _mm256_setr_pd(4 * h, 4 * h + 1, 4 * h + 2, 4 * h + 3));
+        tx[h] = _mm256_add_pd(_mm256_set1_pd(tri.t0), _mm256_mul_pd(_mm256_set1_pd(tri.tdx), _mm256_sub_pd(center, _mm256_set1_pd(tri.x0))));
+      }
+      bool wrote = false;
+      for (int y = y0; y < y1; ++y) {
+        const int covered = (inside ? columns : edges.covered(e) & columns);
+        for (int k = 0; k < 3; ++k) e[k] += tri.edgeB[k] * kSubpixelScale;
+        if (covered == 0) continue;
+        counts.tested += std::popcount(unsigned(covered));
+        if (hidden) {
+          skippedByBlockDepth += std::popcount(unsigned(covered));
+          continue;
+        }
+        float* const depthRow = &depth[std::size_t(y) * width + std::size_t(blockX)];
+        std::uint32_t* const idRow = &ids[std::size_t(y) * width + std::size_t(blockX)];
+        const __m256i coveredLanes = laneMask(covered);
+        const __m256 candidate = storedDepth(tx, tri.tdy * (conventions::pixelCenter(y) - tri.y0), encoding_);
+        const __m256 current = wholeRows ? _mm256_loadu_ps(depthRow) : _mm256_maskload_ps(depthRow, inBlock);
+        const __m256i currentIds = wholeRows ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(idRow))
+                                             : _mm256_maskload_epi32(reinterpret_cast<const int*>(idRow), inBlock);
+        // Nearer: candidate < current, or candidate > current when reversed.
+        const __m256 nearer = _mm256_and_ps(_mm256_cmp_ps(reversed_ ? current : candidate, reversed_ ? candidate : current, _CMP_LT_OQ),
+                                            _mm256_castsi256_ps(coveredLanes));
+        // A tie: another triangle's fragment stored at exactly this depth.
+        const __m256i otherTriangle = _mm256_andnot_si256(_mm256_or_si256(_mm256_cmpeq_epi32(currentIds, background), _mm256_cmpeq_epi32(currentIds, id)),
+                                                          coveredLanes);
+        const __m256 tie = _mm256_and_ps(_mm256_cmp_ps(candidate, current, _CMP_EQ_OQ), _mm256_castsi256_ps(otherTriangle));
+        const int passed = _mm256_movemask_ps(nearer);
+        counts.ties += std::popcount(unsigned(_mm256_movemask_ps(tie)));
+        if (passed == 0) continue;
+        counts.written += std::popcount(unsigned(passed));
+        const __m256 newDepth = _mm256_blendv_ps(current, candidate, nearer);
+        const __m256i newIds = _mm256_blendv_epi8(currentIds, id, _mm256_castps_si256(nearer));
+        if (wholeRows) {
+          _mm256_storeu_ps(depthRow, newDepth);
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(idRow), newIds);
+        } else {
+          _mm256_maskstore_ps(depthRow, inBlock, newDepth);
+          _mm256_maskstore_epi32(reinterpret_cast<int*>(idRow), inBlock, newIds);
+        }
+        wrote = true;
+      }
+      if (wrote) blocks_[block].stale = true;
+    }
+  counts_.tested += counts.tested, counts_.written += counts.written, counts_.ties += counts.ties;
+}
+
+HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) const {
+  const __m256d a = _mm256_set1_pd(encoding_.a), reciprocalB = _mm256_set1_pd(1.0 / encoding_.b), one = _mm256_set1_pd(1.0);
+  const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  const __m256i background = _mm256_set1_epi32(static_cast<int>(conventions::kBackgroundId));
+  for (int y = rect_.y0; y < rect_.y1; ++y)
+    for (int x = rect_.x0; x < rect_.x1; x += kBlock) {
+      const std::size_t at = std::size_t(y) * width_ + x;
+      const bool whole = x + kBlock <= rect_.x1;  // as in draw: masked stores only at the image's right edge
+      const __m256i lanes = laneMask(whole ? 0xFF : (1 << (rect_.x1 - x)) - 1);
+      const __m256i isBackground = _mm256_cmpeq_epi32(_mm256_maskload_epi32(reinterpret_cast<const int*>(&ids_[at]), lanes), background);
+      if (_mm256_testc_si256(isBackground, lanes)) {  // all background: no division to do
+        storeRow(&distance[at], whole, lanes, infinity);
+        continue;
+      }
+      const __m256 stored = _mm256_maskload_ps(&depth_[at], lanes);
+      __m128 half[2];
+      for (int h = 0; h < 2; ++h) {
+        // As DepthTest::distance: t = (z - a) (1 / b), and the distance 1 / t in perspective.
+        const __m128 four = h == 0 ? _mm256_castps256_ps128(stored) : _mm256_extractf128_ps(stored, 1);
+        const __m256d t = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(four), a), reciprocalB);
+        half[h] = _mm256_cvtpd_ps(perspective ? _mm256_div_pd(one, t) : t);
+      }
+      storeRow(&distance[at], whole, lanes, _mm256_blendv_ps(_mm256_set_m128(half[1], half[0]), infinity, _mm256_castsi256_ps(isBackground)));
+    }
+}
+
+}  // namespace hsr::zbuffer

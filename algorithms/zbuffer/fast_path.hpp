@@ -1,0 +1,83 @@
+// The z-buffer's fast path: the full-frame loop's step 2 and step 3 for one tile, eight
+// pixels at a time with AVX2, with hierarchical rejection of 8 x 8 blocks.
+//
+// It computes what the textbook loop computes, with the same operations in the same
+// order on each pixel, so the ids, the depths and the counters come out bit for bit the
+// same (tests/zbuffer/fast_path_test.cpp checks every shipped scene, every hard case and
+// the property generator's random scenes):
+//   - coverage: the same 64-bit integer edge functions, four pixels to a vector;
+//   - depth: t = t0 + tdx (x - x0) + tdy (y - y0), then z = a + b t, clamped and
+//     rounded to float, in double lanes, without fused multiply-adds (neither loop may
+//     contract them: the scalar build has no FMA, and this file is compiled for AVX2
+//     only);
+//   - the test: "nearer", ties counted as the scalar DepthTest counts them.
+// What it adds: each 8 x 8 block keeps the farthest depth it holds, and a block whose
+// farthest depth is nearer than the nearest the triangle can store there is skipped
+// whole (Greene, Kass and Miller's hierarchical z-buffer, one level). The nearest is a
+// lower bound: the plane's least value at the block's corners, less a margin a
+// thousand times the worst rounding of the per-pixel formula. The skipped fragments
+// are still counted as tested (their coverage is counted, not their depth), so the
+// counters stay the textbook loop's; "fragments skipped by block depth" says how many.
+// Only float depth formats with the depth test on have a fast path; elsewhere, and on
+// a CPU without AVX2, the textbook loop runs.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "renderer/depth.hpp"
+#include "renderer/raster.hpp"
+#include "renderer/tiles.hpp"
+
+namespace hsr::zbuffer {
+
+// Whether this CPU runs AVX2 (checked once).
+bool cpuHasAvx2();
+
+// What a depth test counts (DepthTest, zbuffer.hpp, and the fast path alike).
+struct DepthCounts {
+  std::int64_t tested = 0, written = 0, ties = 0;
+};
+
+class SimdTile {
+ public:
+  // The tile `rect` of a width-wide image whose depth buffer is `depth` (float32, or
+  // reversed-float32 when `reversed`) and ids `ids`, both already cleared; adds to `counts`.
+  SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
+           DepthCounts& counts);
+
+  // Whether the triangle's pixels in this tile are worth the vectors: a triangle of a
+  // few pixels costs less a pixel at a time (the textbook loop) than its lanes and
+  // blocks cost set up.
+  bool worthDrawing(const ScreenTriangle& tri) const;
+  // Step 2 for one triangle: every pixel of the tile it covers, depth-tested.
+  void draw(const ScreenTriangle& tri);
+  // The textbook loop drew the triangle into this tile's buffers: the blocks under its
+  // box must find their farthest depth again.
+  void drawnElsewhere(const ScreenTriangle& tri);
+  // Step 3: the tile's depth decoded to view distance (perspective: 1 / t), +infinity
+  // on the background.
+  void decode(std::span<float> distance, bool perspective) const;
+
+  std::int64_t skippedByBlockDepth = 0;  // covered fragments in blocks skipped whole
+
+ private:
+  struct Block {
+    float farthest;  // the farthest depth any of its pixels holds (valid when !stale)
+    bool stale;      // written since `farthest` was found
+  };
+  float blockFarthest(std::size_t block, int x0, int y0, int x1, int y1);
+
+  TileGrid::Rect rect_;
+  int width_;
+  float* depth_;
+  std::uint32_t* ids_;
+  DepthEncoding encoding_;
+  bool reversed_;
+  DepthCounts& counts_;
+  int blocksX_;
+  std::vector<Block> blocks_;
+};
+
+}  // namespace hsr::zbuffer
