@@ -2,7 +2,10 @@
 // count in hsr's full-frame z-buffer and in Mesa's software OpenGL (OSMesa on llvmpipe),
 // timed in one run, interleaved, and compared pixel by pixel on visible triangle ids.
 //
-//   build/bench/mesa_peer --threads 2 [--runs 15] [dragons counters ...]
+//   build/bench/mesa_peer --threads 2 [--runs 15] [counters city dragons ...]
+//
+// hsr is timed twice, by the textbook loop (path=scalar) and by the fast path
+// (path=simd, algorithms/zbuffer/fast_path.hpp), which draw the same ids.
 //
 // Both draw ids, not shading: Mesa gets every triangle's id as a flat vertex colour.
 // OSMesa's own depth buffer stops at 24 bits, so Mesa draws into a framebuffer object
@@ -174,7 +177,7 @@ int main(int argc, char** argv) try {
       return 2;
     }
   }
-  if (scenes.empty()) scenes = {"dragons", "counters"};
+  if (scenes.empty()) scenes = {"counters", "city", "dragons"};
   hsr::keepFreedMemoryForReuse();
   setenv("LP_NUM_THREADS", std::to_string(threads <= 1 ? 0 : threads).c_str(), 1);
 
@@ -187,23 +190,27 @@ int main(int argc, char** argv) try {
     MesaRenderer mesa(prepared);
 
     hsr::Frame frame(kWidth, kHeight);  // reused, as Mesa reuses its framebuffer: both clear it every frame
-    const auto hsrVisibility = [&] {
+    const auto hsrVisibility = [&](hsr::zbuffer::Path path) {
       hsr::Stats stats;
       const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(prepared, {}, threads, stats);
-      hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats);
+      hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats, {.path = path});
     };
-    Timing ours, theirs;
-    for (int run = 0; run < runs + 2; ++run) {  // interleaved, so both see the same machine load
-      const double a = millisecondsOf(hsrVisibility), b = millisecondsOf([&] { mesa.draw(); });
+    Timing scalar, simd, theirs;
+    for (int run = 0; run < runs + 2; ++run) {  // interleaved, so all three see the same machine load
+      const double a = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::scalar); });
+      const double b = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::simd); });
+      const double c = millisecondsOf([&] { mesa.draw(); });
       if (run >= 2) {
-        ours.milliseconds.push_back(a);
-        theirs.milliseconds.push_back(b);
+        scalar.milliseconds.push_back(a);
+        simd.milliseconds.push_back(b);
+        theirs.milliseconds.push_back(c);
       }
     }
     std::printf("%s (%zu triangles)\n", name.c_str(), prepared.triangleCount());
-    std::printf("  hsr  median %7.2f ms (min %7.2f, max %7.2f)\n", ours.median(), ours.min(), ours.max());
-    std::printf("  Mesa median %7.2f ms (min %7.2f, max %7.2f)\n", theirs.median(), theirs.min(), theirs.max());
-    std::printf("  ratio hsr/Mesa (medians) %.2f\n", ours.median() / theirs.median());
+    std::printf("  hsr scalar median %7.2f ms (min %7.2f, max %7.2f)\n", scalar.median(), scalar.min(), scalar.max());
+    std::printf("  hsr simd   median %7.2f ms (min %7.2f, max %7.2f)\n", simd.median(), simd.min(), simd.max());
+    std::printf("  Mesa       median %7.2f ms (min %7.2f, max %7.2f)\n", theirs.median(), theirs.min(), theirs.max());
+    std::printf("  ratio hsr/Mesa (medians): scalar %.2f, simd %.2f\n", scalar.median() / theirs.median(), simd.median() / theirs.median());
     compareIds(frame.ids, mesa.ids());
   }
   return 0;

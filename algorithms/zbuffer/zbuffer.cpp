@@ -143,7 +143,7 @@ AlgorithmEntry entry() {
   entry.summary = "per-pixel depth test (Catmull 1974): full-frame or one-scanline buffer";
   setKnobs(entry, knobTable());
   entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
-  entry.studyConfigurations = {{}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
+  entry.studyConfigurations = {{}, {{"path", "scalar"}}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
   entry.takesTriangleSubsets = true;
   setVisibility(entry, visibility);
   return entry;
