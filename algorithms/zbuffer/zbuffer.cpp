@@ -20,6 +20,9 @@ Image buffersPicture(const Recording& recording, const CameraTransform& view, st
 
 namespace {
 
+// How far ahead of the triangle being drawn the next is asked for: enough to cover a
+// cache miss while a few small triangles are drawn (on dragons, zbuffer_bench raster:
+// 4 ahead 6.10 ms, 8 ahead 5.68, 16 ahead 5.86).
 constexpr std::size_t kPrefetchAhead = 8;
 
 // Starts loading a triangle into the cache (all of its lines; it is 136 bytes).
