@@ -282,8 +282,12 @@ HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) cons
       __m128 half[2];
       for (int h = 0; h < 2; ++h) {
         // As DepthTest::distance: t = (z - a) (1 / b), and the distance 1 / t in perspective.
+        // Background lanes (and those past the image's edge) divide 1 by 1 instead: the
+        // far end of reversed-float32-inf is t = 0, and the scalar loop divides only
+        // where a triangle was drawn (the debug build traps a division by zero).
         const __m128 four = h == 0 ? _mm256_castps256_ps128(stored) : _mm256_extractf128_ps(stored, 1);
-        const __m256d t = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(four), a), reciprocalB);
+        const __m256d undrawn = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(h == 0 ? _mm256_castsi256_si128(isBackground) : _mm256_extracti128_si256(isBackground, 1)));
+        const __m256d t = _mm256_blendv_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(four), a), reciprocalB), one, undrawn);
         half[h] = _mm256_cvtpd_ps(perspective ? _mm256_div_pd(one, t) : t);
       }
       storeRow(&distance[at], whole, lanes, _mm256_blendv_ps(_mm256_set_m128(half[1], half[0]), infinity, _mm256_castsi256_ps(isBackground)));
