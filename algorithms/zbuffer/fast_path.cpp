@@ -39,29 +39,41 @@ HSR_AVX2 int insideLanes(__m256i e0, __m256i e1, __m256i e2) {
   return ~_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_or_si256(_mm256_or_si256(e0, e1), e2))) & 0xF;
 }
 
-// One triangle's edge functions along a row: lane i is E(x + i) = E(x) + i * step, exact
-// in 64-bit integers as in rasterizeSpan.
-struct EdgeLanes {
-  __m256i first4[3], second4[3];  // i * step for i = 0..3, and for i = 4..7
-
+// One triangle's edge functions over the lanes of a block's rows: lane i of row y is
+// E(x + i, y) = E(x, y) + i A, and a row down adds B, exact in 64-bit integers as in
+// rasterizeSpan. Stepped row by row from the block's first.
+class EdgeLanes {
+ public:
   HSR_AVX2 explicit EdgeLanes(const ScreenTriangle& tri) {
     for (int k = 0; k < 3; ++k) {
       const std::int64_t step = tri.edgeA[k] * conventions::kSubpixelScale;
-      first4[k] = _mm256_setr_epi64x(0, step, 2 * step, 3 * step);
-      second4[k] = _mm256_add_epi64(first4[k], _mm256_set1_epi64x(4 * step));
+      across_[k] = _mm256_setr_epi64x(0, step, 2 * step, 3 * step);
+      acrossHalf_[k] = _mm256_set1_epi64x(4 * step);
+      down_[k] = _mm256_set1_epi64x(tri.edgeB[k] * conventions::kSubpixelScale);
     }
   }
 
-  // The covered lanes of the row whose edge functions at its first pixel are e.
-  HSR_AVX2 int covered(const std::int64_t e[3]) const {
-    __m256i low[3], high[3];
+  // Starts a block whose first row's first lane has edge functions e.
+  HSR_AVX2 void start(const std::int64_t e[3]) {
     for (int k = 0; k < 3; ++k) {
-      const __m256i start = _mm256_set1_epi64x(e[k]);
-      low[k] = _mm256_add_epi64(start, first4[k]);
-      high[k] = _mm256_add_epi64(start, second4[k]);
+      low_[k] = _mm256_add_epi64(_mm256_set1_epi64x(e[k]), across_[k]);
+      high_[k] = _mm256_add_epi64(low_[k], acrossHalf_[k]);
     }
-    return insideLanes(low[0], low[1], low[2]) | insideLanes(high[0], high[1], high[2]) << 4;
   }
+
+  // The covered lanes of the current row (bit i: lane i), and a step down to the next.
+  HSR_AVX2 int coveredThenDown() {
+    const int covered = insideLanes(low_[0], low_[1], low_[2]) | insideLanes(high_[0], high_[1], high_[2]) << 4;
+    for (int k = 0; k < 3; ++k) {
+      low_[k] = _mm256_add_epi64(low_[k], down_[k]);
+      high_[k] = _mm256_add_epi64(high_[k], down_[k]);
+    }
+    return covered;
+  }
+
+ private:
+  __m256i across_[3], acrossHalf_[3], down_[3];  // i A for lanes 0..3; 4 A; B
+  __m256i low_[3] = {}, high_[3] = {};                // the current row's lanes 0..3 and 4..7 (set by start)
 };
 
 // Eight floats stored whole, or only in `lanes` (a row at the image's right edge).
@@ -168,7 +180,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
   using conventions::kSubpixelScale;
   const auto [triX0, triY0, triX1, triY1] = boxIn(tri, rect_);
   if (triX0 >= triX1 || triY0 >= triY1) return;
-  const EdgeLanes edges(tri);
+  EdgeLanes edges(tri);
   const __m256i id = _mm256_set1_epi32(static_cast<int>(tri.triangle + 1));
   const __m256i background = _mm256_set1_epi32(static_cast<int>(conventions::kBackgroundId));
   float* const depth = depth_;
@@ -220,10 +232,10 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         const __m256d center = _mm256_add_pd(_mm256_set1_pd(conventions::pixelCenter(blockX)), _mm256_setr_pd(4 * h, 4 * h + 1, 4 * h + 2, 4 * h + 3));
         tx[h] = _mm256_add_pd(_mm256_set1_pd(tri.t0), _mm256_mul_pd(_mm256_set1_pd(tri.tdx), _mm256_sub_pd(center, _mm256_set1_pd(tri.x0))));
       }
+      if (!inside) edges.start(e);
       bool wrote = false;
       for (int y = y0; y < y1; ++y) {
-        const int covered = (inside ? columns : edges.covered(e) & columns);
-        for (int k = 0; k < 3; ++k) e[k] += tri.edgeB[k] * kSubpixelScale;
+        const int covered = (inside ? columns : edges.coveredThenDown() & columns);
         if (covered == 0) continue;
         counts.tested += std::popcount(unsigned(covered));
         if (hidden) {
@@ -240,12 +252,14 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         // Nearer: candidate < current, or candidate > current when reversed.
         const __m256 nearer = _mm256_and_ps(_mm256_cmp_ps(reversed_ ? current : candidate, reversed_ ? candidate : current, _CMP_LT_OQ),
                                             _mm256_castsi256_ps(coveredLanes));
-        // A tie: another triangle's fragment stored at exactly this depth.
-        const __m256i otherTriangle = _mm256_andnot_si256(_mm256_or_si256(_mm256_cmpeq_epi32(currentIds, background), _mm256_cmpeq_epi32(currentIds, id)),
-                                                          coveredLanes);
-        const __m256 tie = _mm256_and_ps(_mm256_cmp_ps(candidate, current, _CMP_EQ_OQ), _mm256_castsi256_ps(otherTriangle));
+        // A tie: another triangle's fragment stored at exactly this depth (seldom: the
+        // ids are looked at only where some lane is equal).
+        const __m256 equal = _mm256_and_ps(_mm256_cmp_ps(candidate, current, _CMP_EQ_OQ), _mm256_castsi256_ps(coveredLanes));
+        if (!_mm256_testz_ps(equal, equal)) {
+          const __m256i thisOrNone = _mm256_or_si256(_mm256_cmpeq_epi32(currentIds, background), _mm256_cmpeq_epi32(currentIds, id));
+          counts.ties += std::popcount(unsigned(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(thisOrNone), equal))));
+        }
         const int passed = _mm256_movemask_ps(nearer);
-        counts.ties += std::popcount(unsigned(_mm256_movemask_ps(tie)));
         if (passed == 0) continue;
         counts.written += std::popcount(unsigned(passed));
         const __m256 newDepth = _mm256_blendv_ps(current, candidate, nearer);
