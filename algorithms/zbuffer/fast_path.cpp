@@ -28,6 +28,11 @@ constexpr int kBlockTestFromPixels = 16;
 // the last place of its terms' magnitudes, taken a thousand times over.
 constexpr double kRoundingMargin = 1e-12;
 
+// The triangle's box in the tile, [x0, x1) x [y0, y1).
+TileGrid::Rect boxIn(const ScreenTriangle& tri, const TileGrid::Rect& tile) {
+  return {std::max(tri.minX, tile.x0), std::max(tri.minY, tile.y0), std::min(tri.maxX + 1, tile.x1), std::min(tri.maxY + 1, tile.y1)};
+}
+
 // Lane i of a row's 8 lanes is pixel x + i; its bit in the masks below is 1 << i.
 HSR_AVX2 __m256i laneMask(int bits) {
   const __m256i laneBits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
@@ -136,13 +141,6 @@ SimdTile::SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* 
       blocksX_((rect.x1 - rect.x0 + kBlock - 1) / kBlock),
       blocks_(std::size_t(blocksX_) * std::size_t((rect.y1 - rect.y0 + kBlock - 1) / kBlock),
               Block{reversed ? 0.0f : 1.0f, false}) {}
-
-namespace {
-// The triangle's box in the tile, [x0, x1) x [y0, y1).
-TileGrid::Rect boxIn(const ScreenTriangle& tri, const TileGrid::Rect& tile) {
-  return {std::max(tri.minX, tile.x0), std::max(tri.minY, tile.y0), std::min(tri.maxX + 1, tile.x1), std::min(tri.maxY + 1, tile.y1)};
-}
-}  // namespace
 
 bool SimdTile::worthDrawing(const ScreenTriangle& tri) const {
   const TileGrid::Rect box = boxIn(tri, rect_);
