@@ -216,7 +216,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
       }
       if (hidden && inside) {  // the whole clipped block covered: its fragments need no count
         counts.tested += std::int64_t(x1 - x0) * (y1 - y0);
-        skippedByBlockDepth += std::int64_t(x1 - x0) * (y1 - y0);
+        counts.skippedByBlockDepth += std::int64_t(x1 - x0) * (y1 - y0);
         continue;
       }
       // A block inside the tile is read and written as whole rows of 8 (plain loads and
@@ -237,7 +237,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         if (covered == 0) continue;
         counts.tested += std::popcount(unsigned(covered));
         if (hidden) {
-          skippedByBlockDepth += std::popcount(unsigned(covered));
+          counts.skippedByBlockDepth += std::popcount(unsigned(covered));
           continue;
         }
         float* const depthRow = &depth[std::size_t(y) * width + std::size_t(blockX)];
@@ -274,6 +274,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
       if (wrote) blocks_[block].stale = true;
     }
   counts_.tested += counts.tested, counts_.written += counts.written, counts_.ties += counts.ties;
+  counts_.skippedByBlockDepth += counts.skippedByBlockDepth;
 }
 
 HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) const {

@@ -35,9 +35,10 @@ namespace hsr::zbuffer {
 // Whether this CPU runs AVX2 (checked once).
 bool cpuHasAvx2();
 
-// What a depth test counts (DepthTest, zbuffer.hpp, and the fast path alike).
+// What a depth test counts (DepthTest, zbuffer.hpp, and the fast path alike); only the
+// fast path skips fragments by block depth (covered, counted as tested, never computed).
 struct DepthCounts {
-  std::int64_t tested = 0, written = 0, ties = 0;
+  std::int64_t tested = 0, written = 0, ties = 0, skippedByBlockDepth = 0;
 };
 
 class SimdTile {
@@ -59,8 +60,6 @@ class SimdTile {
   // Step 3: the tile's depth decoded to view distance (perspective: 1 / t), +infinity
   // on the background.
   void decode(std::span<float> distance, bool perspective) const;
-
-  std::int64_t skippedByBlockDepth = 0;  // covered fragments in blocks skipped whole
 
  private:
   struct Block {

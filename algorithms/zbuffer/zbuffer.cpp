@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <memory>
-#include <numeric>
 #include <optional>
 
 #include "renderer/parallel.hpp"
@@ -55,7 +54,6 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(frame.pixelCount());
     std::vector<double> testedAt(recording ? frame.pixelCount() : 0);  // fragments tested per pixel, for the steps
     std::vector<DepthTest<Format>> tileResults(bins.size());
-    std::vector<std::int64_t> skippedByBlockDepth(bins.size());
     parallelFor(bins.size(), threads, [&](std::size_t tile, int) {
       const auto [tileX0, tileY0, tileX1, tileY1] = tiles.rect(tile);
       const auto pixel = [&](int x, int y) { return std::size_t(y) * std::size_t(frame.width) + std::size_t(x); };
@@ -105,7 +103,6 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
       // Step 3: the frame's depth is what the format stored, decoded to a view distance.
       if (fast) {
         fast->decode(frame.depth, geometry.camera.perspective());
-        skippedByBlockDepth[tile] = fast->skippedByBlockDepth;
       } else {
         for (int y = tileY0; y < tileY1; ++y)
           for (int x = tileX0; x < tileX1; ++x) frame.depth[pixel(x, y)] = test.distance(frame.ids[pixel(x, y)], depth[pixel(x, y)], geometry.camera);
@@ -120,9 +117,8 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
       stats.add("fragments tested", test.counts.tested);
       stats.add("fragments written", test.counts.written);
       stats.add("depth ties", test.counts.ties);
+      if (simd) stats.add("fragments skipped by block depth", test.counts.skippedByBlockDepth);  // present exactly when the fast path ran
     }
-    // Present (0 or more) exactly when the fast path ran.
-    if (simd) stats.add("fragments skipped by block depth", std::accumulate(skippedByBlockDepth.begin(), skippedByBlockDepth.end(), std::int64_t{0}));
     stats.add("depth buffer bytes", static_cast<std::int64_t>(frame.pixelCount() * sizeof(typename Format::Stored)));
   });
 }
