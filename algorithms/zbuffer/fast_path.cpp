@@ -81,13 +81,29 @@ class EdgeLanes {
   __m256i low_[3] = {}, high_[3] = {};                // the current row's lanes 0..3 and 4..7 (set by start)
 };
 
-// Eight floats stored whole, or only in `lanes` (a row at the image's right edge).
-HSR_AVX2 void storeRow(float* row, bool whole, __m256i lanes, __m256 value) {
-  if (whole)
-    _mm256_storeu_ps(row, value);
-  else
-    _mm256_maskstore_ps(row, lanes, value);
-}
+// Eight pixels of a tile's row from column x, as read and written: all eight with plain
+// loads and stores where they lie in the tile (masked stores are far slower on some
+// CPUs, and the tile is this thread's), else only those up to the tile's right edge (a
+// row at the image's right edge, where eight would reach into another tile's row).
+// Ids go through it as the float bits they are stored in.
+class RowOfEight {
+ public:
+  HSR_AVX2 RowOfEight(int x, int tileEnd) : whole_(x + kBlock <= tileEnd), lanes_(laneMask(whole_ ? 0xFF : (1 << (tileEnd - x)) - 1)) {}
+  HSR_AVX2 __m256 load(const float* row) const { return whole_ ? _mm256_loadu_ps(row) : _mm256_maskload_ps(row, lanes_); }
+  HSR_AVX2 __m256i load(const std::uint32_t* row) const { return _mm256_castps_si256(load(reinterpret_cast<const float*>(row))); }
+  HSR_AVX2 void store(float* row, __m256 value) const {
+    if (whole_)
+      _mm256_storeu_ps(row, value);
+    else
+      _mm256_maskstore_ps(row, lanes_, value);
+  }
+  HSR_AVX2 void store(std::uint32_t* row, __m256i value) const { store(reinterpret_cast<float*>(row), _mm256_castsi256_ps(value)); }
+  HSR_AVX2 __m256i lanes() const { return lanes_; }  // the lanes inside the tile
+
+ private:
+  bool whole_;
+  __m256i lanes_;
+};
 
 // The scalar loop's z for eight lanes: a + b t, clamped to [0, 1] as std::clamp does
 // (max(0, z) keeps -0.0 and NaN, as it does), rounded to float. tx holds
@@ -214,16 +230,12 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         const float nearest = nearestStored(tri, encoding_, reversed_, x0, x1 - 1, y0, y1 - 1);
         hidden = reversed_ ? farthest > nearest : farthest < nearest;
       }
-      if (hidden && inside) {  // the whole clipped block covered: its fragments need no count
+      if (hidden && inside) {  // the whole clipped block covered: its fragments counted without a walk
         counts.tested += std::int64_t(x1 - x0) * (y1 - y0);
         counts.skippedByBlockDepth += std::int64_t(x1 - x0) * (y1 - y0);
         continue;
       }
-      // A block inside the tile is read and written as whole rows of 8 (plain loads and
-      // stores are far cheaper than masked ones on some CPUs, and the tile is this
-      // thread's); one at the image's right edge, narrower, only in its own columns.
-      const bool wholeRows = blockX + kBlock <= rect_.x1;
-      const __m256i inBlock = laneMask(wholeRows ? 0xFF : (1 << (rect_.x1 - blockX)) - 1);
+      const RowOfEight rows(blockX, rect_.x1);
       // The lanes' t0 + tdx (x - x0), the part of the depth that depends on the column.
       __m256d tx[2];
       for (int h = 0; h < 2; ++h) {
@@ -244,9 +256,8 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         std::uint32_t* const idRow = &ids[std::size_t(y) * width + std::size_t(blockX)];
         const __m256i coveredLanes = laneMask(covered);
         const __m256 candidate = storedDepth(tx, tri.tdy * (conventions::pixelCenter(y) - tri.y0), encoding_);
-        const __m256 current = wholeRows ? _mm256_loadu_ps(depthRow) : _mm256_maskload_ps(depthRow, inBlock);
-        const __m256i currentIds = wholeRows ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(idRow))
-                                             : _mm256_maskload_epi32(reinterpret_cast<const int*>(idRow), inBlock);
+        const __m256 current = rows.load(depthRow);
+        const __m256i currentIds = rows.load(idRow);
         // Nearer: candidate < current, or candidate > current when reversed.
         const __m256 nearer = _mm256_and_ps(_mm256_cmp_ps(reversed_ ? current : candidate, reversed_ ? candidate : current, _CMP_LT_OQ),
                                             _mm256_castsi256_ps(coveredLanes));
@@ -260,15 +271,8 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         const int passed = _mm256_movemask_ps(nearer);
         if (passed == 0) continue;
         counts.written += std::popcount(unsigned(passed));
-        const __m256 newDepth = _mm256_blendv_ps(current, candidate, nearer);
-        const __m256i newIds = _mm256_blendv_epi8(currentIds, id, _mm256_castps_si256(nearer));
-        if (wholeRows) {
-          _mm256_storeu_ps(depthRow, newDepth);
-          _mm256_storeu_si256(reinterpret_cast<__m256i*>(idRow), newIds);
-        } else {
-          _mm256_maskstore_ps(depthRow, inBlock, newDepth);
-          _mm256_maskstore_epi32(reinterpret_cast<int*>(idRow), inBlock, newIds);
-        }
+        rows.store(depthRow, _mm256_blendv_ps(current, candidate, nearer));
+        rows.store(idRow, _mm256_blendv_epi8(currentIds, id, _mm256_castps_si256(nearer)));
         wrote = true;
       }
       if (wrote) blocks_[block].stale = true;
@@ -284,14 +288,15 @@ HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) cons
   for (int y = rect_.y0; y < rect_.y1; ++y)
     for (int x = rect_.x0; x < rect_.x1; x += kBlock) {
       const std::size_t at = std::size_t(y) * width_ + x;
-      const bool whole = x + kBlock <= rect_.x1;  // as in draw: masked stores only at the image's right edge
-      const __m256i lanes = laneMask(whole ? 0xFF : (1 << (rect_.x1 - x)) - 1);
-      const __m256i isBackground = _mm256_cmpeq_epi32(_mm256_maskload_epi32(reinterpret_cast<const int*>(&ids_[at]), lanes), background);
-      if (_mm256_testc_si256(isBackground, lanes)) {  // all background: no division to do
-        storeRow(&distance[at], whole, lanes, infinity);
+      const RowOfEight row(x, rect_.x1);
+      // Lanes past the image's edge read as background.
+      const __m256i isBackground = _mm256_or_si256(_mm256_cmpeq_epi32(row.load(&ids_[at]), background),
+                                                   _mm256_xor_si256(row.lanes(), _mm256_set1_epi32(-1)));
+      if (_mm256_testc_si256(isBackground, _mm256_set1_epi32(-1))) {  // all background: no division to do
+        row.store(&distance[at], infinity);
         continue;
       }
-      const __m256 stored = _mm256_maskload_ps(&depth_[at], lanes);
+      const __m256 stored = row.load(&depth_[at]);
       __m128 half[2];
       for (int h = 0; h < 2; ++h) {
         // As DepthTest::distance: t = (z - a) (1 / b), and the distance 1 / t in perspective.
@@ -303,7 +308,7 @@ HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) cons
         const __m256d t = _mm256_blendv_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(four), a), reciprocalB), one, undrawn);
         half[h] = _mm256_cvtpd_ps(perspective ? _mm256_div_pd(one, t) : t);
       }
-      storeRow(&distance[at], whole, lanes, _mm256_blendv_ps(_mm256_set_m128(half[1], half[0]), infinity, _mm256_castsi256_ps(isBackground)));
+      row.store(&distance[at], _mm256_blendv_ps(_mm256_set_m128(half[1], half[0]), infinity, _mm256_castsi256_ps(isBackground)));
     }
 }
 
