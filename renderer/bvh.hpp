@@ -119,9 +119,14 @@ struct RayBoxTest {
   int nearSide[3];     // per axis, the corner (0 low, 1 high) whose slab plane the ray meets first
   bool parallel[3];    // per axis, the ray runs parallel to the slab's planes (a zero component)
 
+  // The factor far distances are widened by: 1 + 2 gamma(3).
+  static constexpr double kWiden = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
+
   // Along an axis the ray does not move on, it is inside the (closed) slab for every t
   // or for none: that axis is tested by the origin alone, with no division by zero.
-  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : origin(rayOrigin), inverseDirection(inverseOf(direction)) {
+  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction) : RayBoxTest(rayOrigin, direction, inverseOf(direction)) {}
+  // With the direction's inverse already computed (inverseOf, or its vector form).
+  RayBoxTest(const dvec3& rayOrigin, const dvec3& direction, const dvec3& inverse) : origin(rayOrigin), inverseDirection(inverse) {
     for (int axis = 0; axis < 3; ++axis) {
       parallel[axis] = direction[axis] == 0;
       nearSide[axis] = std::signbit(direction[axis]) ? 1 : 0;
@@ -131,7 +136,6 @@ struct RayBoxTest {
   // The entry parameter of the ray into the node's box when the box is met within
   // [0, tMax]; +infinity otherwise.
   double entry(const BvhNode& node, double tMax) const {
-    constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
     double tEnter = 0, tExit = tMax;
     for (int axis = 0; axis < 3; ++axis) {
       if (parallel[axis]) {
@@ -142,7 +146,7 @@ struct RayBoxTest {
       const double tNear = (double(node.bounds[nearSide[axis]][axis]) - origin[axis]) * inverseDirection[axis];
       const double tFar = (double(node.bounds[1 - nearSide[axis]][axis]) - origin[axis]) * inverseDirection[axis];
       tEnter = tNear > tEnter ? tNear : tEnter;
-      tExit = tFar * widen < tExit ? tFar * widen : tExit;
+      tExit = tFar * kWiden < tExit ? tFar * kWiden : tExit;
     }
     return tEnter <= tExit ? tEnter : std::numeric_limits<double>::infinity();
   }
@@ -151,7 +155,6 @@ struct RayBoxTest {
   // two-double vector: the same operations in the same order, so the same results.
   std::array<double, 2> childEntries(const BvhNode* children, double tMax) const {
     using Pair = double __attribute__((vector_size(16)));
-    constexpr double widen = 1 + 2 * (3 * 0x1p-53 / (1 - 3 * 0x1p-53));
     constexpr double miss = std::numeric_limits<double>::infinity();
     Pair tEnter = {0, 0}, tExit = {tMax, tMax};
     bool inside[2] = {true, true};
@@ -166,7 +169,7 @@ struct RayBoxTest {
       const Pair nearPlane = {children[0].bounds[near][axis], children[1].bounds[near][axis]};
       const Pair farPlane = {children[0].bounds[far][axis], children[1].bounds[far][axis]};
       const Pair tNear = (nearPlane - origin[axis]) * inverseDirection[axis];
-      const Pair tFar = (farPlane - origin[axis]) * inverseDirection[axis] * widen;
+      const Pair tFar = (farPlane - origin[axis]) * inverseDirection[axis] * kWiden;
       tEnter = tNear > tEnter ? tNear : tEnter;
       tExit = tFar < tExit ? tFar : tExit;
     }

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "renderer/scene.hpp"
+#include "renderer/simd.hpp"
 
 namespace hsr {
 
@@ -30,6 +31,11 @@ struct Ray {
   dvec3 origin, direction;  // world space; direction not normalized
 };
 
+// Four rays, a ray per lane: Ray's coordinates, axis by axis (the fast paths' form).
+struct FourRays {
+  Double4 origin[3], direction[3];
+};
+
 class CameraTransform {
  public:
   CameraTransform(const Camera& camera, int width, int height);
@@ -48,6 +54,19 @@ class CameraTransform {
   // The world-space ray through a point in pixel coordinates: from the eye under
   // perspective, parallel to the view axis from the near-plane rectangle under orthographic.
   Ray rayThroughPixel(double px, double py) const;
+  // rayThroughPixel for four points of one row, a point per lane, by the same operations
+  // in the same order: the same rays, bit for bit.
+  HSR_AVX2 FourRays raysThroughPixels(Double4 px, double py) const {
+    const Double4 ndcX = 2.0 * px / double(width_) - 1.0;
+    const double ndcY = 1 - 2 * py / height_;
+    FourRays rays;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Double4 across = right_[axis] * (ndcX * inverseScaleX_) + up_[axis] * (ndcY * inverseScaleY_);
+      rays.origin[axis] = perspective() ? lanesOf(camera_.eye[axis]) : camera_.eye[axis] + across;
+      rays.direction[axis] = perspective() ? forward_[axis] + across : lanesOf(forward_[axis]);
+    }
+    return rays;
+  }
 
   // "t" is the quantity that is affine in screen space: 1/d under perspective, d under
   // orthographic. Depth formats store a + b t; see depth.hpp.

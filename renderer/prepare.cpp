@@ -195,6 +195,16 @@ const Bvh& PreparedScene::triangleBvh(Stats& stats) const {
   return triangleBvh_;
 }
 
+const WideBvh& PreparedScene::wideTriangleBvh(Stats& stats) const {
+  const Bvh& binary = triangleBvh(stats);
+  std::call_once(wideBvhBuilt_, [&] {
+    PhaseTimer timer(stats, "wide bvh build");
+    wideTriangleBvh_ = WideBvh(binary);
+    stats.add("wide bvh nodes built", static_cast<std::int64_t>(wideTriangleBvh_.nodes().size()));
+  });
+  return wideTriangleBvh_;
+}
+
 const Bvh& PreparedScene::objectBvh(Stats& stats) const {
   std::call_once(objectBvhBuilt_, [&] {
     PhaseTimer timer(stats, "object bvh build");

@@ -17,6 +17,7 @@
 #include "renderer/rounding.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/stats.hpp"
+#include "renderer/wide_bvh.hpp"
 
 namespace hsr {
 
@@ -125,6 +126,11 @@ class PreparedScene {
   };
   const std::vector<LeafTriangle>& leafTriangles(Stats& stats) const;
 
+  // triangleBvh() with four children to a node (renderer/wide_bvh.hpp), for the fast
+  // paths' traversals; its leaves are the same slots. Built on first use (phase "wide
+  // bvh build", counter "wide bvh nodes built").
+  const WideBvh& wideTriangleBvh(Stats& stats) const;
+
   // A BVH over the instances' boxes (primitive i = instances()[i]) for culling whole
   // objects hierarchically, built on first use (phase "object bvh build", counter
   // "object bvh nodes built").
@@ -159,6 +165,8 @@ class PreparedScene {
   mutable std::once_flag bvhBuilt_;
   mutable Bvh triangleBvh_;
   mutable std::vector<LeafTriangle> leafTriangles_;
+  mutable std::once_flag wideBvhBuilt_;
+  mutable WideBvh wideTriangleBvh_;
   mutable std::once_flag objectBvhBuilt_;
   mutable Bvh objectBvh_;
   mutable std::once_flag adjacencyBuilt_;

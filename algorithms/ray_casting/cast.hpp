@@ -2,6 +2,8 @@
 // it between the near and far planes, and the variant's answer written into the Frame.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -18,13 +20,18 @@ namespace hsr::ray_casting {
 
 // A pixel's ray and the parameters where it crosses the near and far planes. Points on
 // it are origin + t * direction, at view distance d(t) = startDistance + t * slope.
+// inverseDirection is 1 / direction per axis (inverseOf), what box tests and the
+// watertight test's shear divide by.
 struct PixelRay {
   Ray ray;
+  dvec3 inverseDirection;
   double startDistance, slope;
   double tNear, tFar;
 
+  PixelRay() = default;
   PixelRay(const CameraTransform& camera, const Ray& pixelRay)
       : ray(pixelRay),
+        inverseDirection(inverseOf(pixelRay.direction)),
         startDistance(glm::dot(pixelRay.origin - camera.camera().eye, camera.forward())),
         slope(glm::dot(pixelRay.direction, camera.forward())) {
     const double perDistance = 1.0 / slope;
@@ -40,6 +47,33 @@ struct Hit {
   std::uint32_t id = conventions::kBackgroundId;  // global triangle index + 1
   double t = std::numeric_limits<double>::infinity();
 };
+
+// How far along the ray a BVH traversal still enters boxes: a node is worth entering only
+// if its box starts before the nearest hit so far. The box's entry and a triangle's t are
+// each rounded, so a triangle lying in its box's face may come out a few ulps before the
+// entry: the reach is widened by far more than that (2^-32 of it), so a traversal skips
+// nothing the naive variant would take, ties included.
+inline double reachOf(const Hit& nearest) { return nearest.t * (1 + 0x1p-32); }
+
+// What a traversal of a BVH counts (the bvh variant's, and the fast paths' over the
+// wide BVH, renderer/wide_bvh.hpp, whose nodes have four children instead of two).
+struct TraversalCounters {
+  std::int64_t nodesVisited = 0, triangleTests = 0;
+  TraversalCounters& operator+=(const TraversalCounters& other) {
+    nodesVisited += other.nodesVisited;
+    triangleTests += other.triangleTests;
+    return *this;
+  }
+  static constexpr const char* kCostUnit = "BVH nodes visited per ray";
+  double cost() const { return double(nodesVisited); }
+};
+
+// The PixelRays of pixels x0 .. x0 + count - 1 of row y, into out: four at a time in
+// vector lanes where the CPU has AVX2 (the same bits as one at a time: a ray's set-up
+// divides four times, and four rays share each vector division). castRays sets up a run
+// of a row's rays before tracing them.
+void setUpPixelRays(const CameraTransform& camera, int y, int x0, int count, PixelRay* out);
+inline constexpr int kRaysSetUpTogether = 64;
 
 // Where castRays records its steps (renderer/steps.hpp), and the scene its ids index.
 struct Recording {
@@ -62,15 +96,20 @@ typename Tracer::Counters castRays(const Tracer& tracer, const CameraTransform& 
   std::vector<double> costAt(recording ? frame.pixelCount() : 0);
   const auto castRow = [&](std::size_t row, int) {
     Counters counters;
-    for (int x = 0; x < frame.width; ++x) {
-      const PixelRay pixel(camera, camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(int(row))));
-      const double before = recording ? counters.cost() : 0;
-      const Hit hit = tracer.trace(pixel, counters);
-      const std::size_t index = row * std::size_t(frame.width) + std::size_t(x);
-      frame.ids[index] = hit.id;
-      frame.depth[index] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
-                                                                : static_cast<float>(pixel.distance(hit.t));
-      if (recording) costAt[index] = counters.cost() - before;
+    std::array<PixelRay, kRaysSetUpTogether> pixels;
+    for (int x0 = 0; x0 < frame.width; x0 += kRaysSetUpTogether) {
+      const int count = std::min(kRaysSetUpTogether, frame.width - x0);
+      setUpPixelRays(camera, int(row), x0, count, pixels.data());
+      for (int i = 0; i < count; ++i) {
+        const PixelRay& pixel = pixels[std::size_t(i)];
+        const double before = recording ? counters.cost() : 0;
+        const Hit hit = tracer.trace(pixel, counters);
+        const std::size_t index = row * std::size_t(frame.width) + std::size_t(x0 + i);
+        frame.ids[index] = hit.id;
+        frame.depth[index] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
+                                                                  : static_cast<float>(pixel.distance(hit.t));
+        if (recording) costAt[index] = counters.cost() - before;
+      }
     }
     rowCounters[row] = counters;
   };

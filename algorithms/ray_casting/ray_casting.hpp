@@ -26,6 +26,11 @@ namespace hsr::ray_casting {
 
 enum class Variant { bvh, naive, march };
 
+// How the bvh variant runs: a fast path (fast_path.hpp) over the BVH with four children
+// to a node, one ray at a time or eight at once, or the textbook traversal of the binary
+// BVH. The same ids and depths.
+enum class Path { simd, scalar };
+
 
 inline constexpr int kMaxGrid = 256;  // voxels per side of an occupancy grid: 16 M voxels at most
 
@@ -40,6 +45,7 @@ struct Knobs {
   KnobNumber step{0.5, true};
   int grid = 64;
   int refine = 0;
+  Path path = Path::simd;
 };
 
 // Why the knobs cannot render this scene ("" when they can): naive or march over budget.
@@ -60,7 +66,12 @@ inline const KnobTable<Knobs>& knobTable() {
                   "march: occupancy-grid voxels along each mesh's longest side")
           .onlyFor({"march"})
           .number("refine", &Knobs::refine, {0, 52}, {"2", "4", "8"}, "march: bisection steps back to the surface once a sample is inside")
-          .onlyFor({"march"});
+          .onlyFor({"march"})
+          .choice("path", &Knobs::path, {{Path::simd, "simd"}, {Path::scalar, "scalar"}},
+                  "bvh: simd: one ray at a time through a BVH of four children to a node, the four boxes tested at once "
+                  "with AVX2 (fast_path.hpp), where the CPU has AVX2, else the textbook traversal; scalar: the textbook "
+                  "traversal of the binary BVH. The same ids and depths")
+          .onlyFor({"bvh"});
   return table;
 }
 

@@ -1,9 +1,6 @@
 // The z-buffer's fast path (fast_path.hpp says what it computes and why it is the same).
-// Only the functions marked HSR_AVX2 use AVX2 instructions; the rest of the program is
-// built for the baseline x86-64, and cpuHasAvx2() decides at run time whether these run.
+// Only the functions marked HSR_AVX2 use AVX2 instructions (renderer/simd.hpp).
 #include "algorithms/zbuffer/fast_path.hpp"
-
-#include <immintrin.h>
 
 #include <algorithm>
 #include <bit>
@@ -11,8 +8,7 @@
 #include <limits>
 
 #include "renderer/conventions.hpp"
-
-#define HSR_AVX2 __attribute__((target("avx2")))
+#include "renderer/simd.hpp"
 
 namespace hsr::zbuffer {
 namespace {
@@ -139,11 +135,6 @@ float nearestStored(const ScreenTriangle& tri, const DepthEncoding& encoding, bo
 }
 
 }  // namespace
-
-bool cpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
 
 SimdTile::SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
                    DepthCounts& counts)

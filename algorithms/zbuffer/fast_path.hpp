@@ -32,9 +32,6 @@
 
 namespace hsr::zbuffer {
 
-// Whether this CPU runs AVX2 (checked once).
-bool cpuHasAvx2();
-
 // What a depth test counts (DepthTest, zbuffer.hpp, and the fast path alike); only the
 // fast path skips fragments by block depth (covered, counted as tested, never computed).
 struct DepthCounts {

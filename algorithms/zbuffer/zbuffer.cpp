@@ -7,6 +7,7 @@
 
 #include "renderer/parallel.hpp"
 #include "renderer/screen_triangles.hpp"
+#include "renderer/simd.hpp"
 #include "renderer/tiles.hpp"
 
 namespace hsr::zbuffer {

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "renderer/bvh.hpp"
+#include "renderer/wide_bvh.hpp"
 
 namespace hsr {
 namespace {
@@ -109,6 +110,83 @@ TEST(Bvh, BoxTestNeverMissesABoxTheRayMeets) {
     if (trial % 2) origin[trial % 3] = target[trial % 3];  // an axis-parallel ray
     const RayBoxTest test(origin, target - origin);
     EXPECT_LE(test.entry(node, 1.0), 1.0) << "trial " << trial;
+  }
+}
+
+// Checks the wide subtree under `index`: every child's box contains its primitives, and
+// counts each primitive's leaves.
+void checkWideSubtree(const WideBvh& wide, const Bvh& binary, std::span<const Aabb> boxes, std::uint32_t index, std::vector<int>& seen) {
+  const WideBvhNode& node = wide.nodes()[index];
+  ASSERT_GE(node.children, 1);
+  ASSERT_LE(node.children, WideBvhNode::kWidth);
+  for (int child = 0; child < WideBvhNode::kWidth; ++child) {
+    if (child >= node.children) {  // absent: a box no ray meets
+      for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_EQ(node.low[axis][child], std::numeric_limits<float>::infinity());
+        EXPECT_EQ(node.high[axis][child], -std::numeric_limits<float>::infinity());
+      }
+      continue;
+    }
+    Aabb below;
+    std::vector<int> under(seen.size(), 0);
+    if (node.leaf(child)) {
+      EXPECT_LE(node.count[child], Bvh::kMaxLeafSize);
+      for (std::uint32_t slot = node.index[child]; slot < node.index[child] + node.count[child]; ++slot) ++under[binary.order()[slot]];
+    } else {
+      checkWideSubtree(wide, binary, boxes, node.index[child], under);
+    }
+    for (std::size_t primitive = 0; primitive < under.size(); ++primitive)
+      if (under[primitive] != 0) below.grow(boxes[primitive]), seen[primitive] += under[primitive];
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_LE(double(node.low[axis][child]), below.lo[axis]) << "node " << index << " child " << child;
+      EXPECT_GE(double(node.high[axis][child]), below.hi[axis]) << "node " << index << " child " << child;
+    }
+  }
+}
+
+TEST(WideBvh, EveryPrimitiveInOneLeafAndEveryBoxContainsItsChildren) {
+  for (const std::size_t count : {1u, 2u, 9u, 1000u, 20000u}) {
+    const std::vector<Aabb> boxes = randomTriangleBoxes(count, 7);
+    const Bvh binary(boxes);
+    const WideBvh wide(binary);
+    std::vector<int> seen(count, 0);
+    checkWideSubtree(wide, binary, boxes, 0, seen);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(count)) << count << " primitives";
+    // Collapsing keeps the binary tree's leaves and needs at most one wide node per
+    // binary inner node, usually far fewer.
+    if (count > 100) {
+      EXPECT_LT(wide.nodes().size(), binary.nodes().size() / 4) << count << " primitives";
+    }
+  }
+}
+
+TEST(WideBvh, ChildBoxTestsGiveTheBinaryBoxTestsEntries) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the wide box test is never run here";
+  const std::vector<Aabb> boxes = randomTriangleBoxes(3000, 5);
+  const Bvh binary(boxes);
+  const WideBvh wide(binary);
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> position(-3, 3);
+  for (int trial = 0; trial < 2000; ++trial) {
+    dvec3 origin(position(random), position(random), position(random)), direction(position(random), position(random), position(random));
+    if (trial % 4 == 0) direction[trial % 3] = 0;  // parallel to one axis's slabs
+    const RayBoxTest ray(origin, direction);
+    const WideRayBoxTest children(ray);
+    const double tMax = trial % 2 ? 1e30 : 0.5;
+    for (const WideBvhNode& node : wide.nodes()) {
+      double entries[WideBvhNode::kWidth];
+      const int met = children.entries(node, tMax, entries);
+      for (int child = 0; child < node.children; ++child) {
+        BvhNode single{};
+        for (int axis = 0; axis < 3; ++axis) single.bounds[0][axis] = node.low[axis][child], single.bounds[1][axis] = node.high[axis][child];
+        const double expected = ray.entry(single, tMax);
+        ASSERT_EQ(bool(met >> child & 1), expected < std::numeric_limits<double>::infinity()) << "trial " << trial;
+        if (met >> child & 1) {
+          ASSERT_EQ(entries[child], expected) << "trial " << trial;
+        }
+      }
+      EXPECT_EQ(met >> node.children, 0);
+    }
   }
 }
 

@@ -45,7 +45,7 @@ std::string differences(const PreparedScene& scene, DepthFormat format, int thre
 constexpr DepthFormat kFastFormats[] = {DepthFormat::float32, DepthFormat::reversedFloat32, DepthFormat::reversedFloat32Infinite};
 
 TEST(FastPath, SameBitsAndCountersAsTheTextbookLoopOnEveryShippedScene) {
-  if (!zbuffer::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast path is the textbook loop here";
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast path is the textbook loop here";
   for (const auto& file : test::shippedScenes()) {
     const Scene scene = loadScene(file);
     PreparedScene prepared(scene);
@@ -56,7 +56,7 @@ TEST(FastPath, SameBitsAndCountersAsTheTextbookLoopOnEveryShippedScene) {
 }
 
 TEST(FastPath, SameBitsAndCountersAsTheTextbookLoopOnRandomScenes) {
-  if (!zbuffer::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast path is the textbook loop here";
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast path is the textbook loop here";
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
     const test::RandomScene random = test::randomScene(seed);
     PreparedScene prepared(random.scene);
@@ -67,7 +67,7 @@ TEST(FastPath, SameBitsAndCountersAsTheTextbookLoopOnRandomScenes) {
 }
 
 TEST(FastPath, SkipsMostOfTheCitysHiddenFragmentsByBlock) {
-  if (!zbuffer::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast path is the textbook loop here";
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast path is the textbook loop here";
   const test::LoadedScene city(test::sourcePath("scenes/city.toml"), 640);
   const Rendered fast = visibilityBy(city.prepared, zbuffer::Path::simd, DepthFormat::float32, 2);
   const std::int64_t tested = fast.stats.counter("fragments tested"), written = fast.stats.counter("fragments written");

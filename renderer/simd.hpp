@@ -1,0 +1,57 @@
+// What the fast paths share (the z-buffer's blocks, the wide BVH's traversal, ray
+// packets): how AVX2 code is marked and chosen, and four doubles as one value.
+//
+// The program is built for the baseline x86-64. Only functions marked HSR_AVX2 use AVX2
+// instructions, and they run only where cpuHasAvx2() says the CPU has them; elsewhere
+// the textbook loop runs, so one binary runs anywhere. A function of the baseline build
+// may be inlined into an HSR_AVX2 one (it then gets AVX2 code), never the other way, so
+// nothing compiled for AVX2 leaks into the rest of the program.
+//
+// Double4 is four doubles with GCC's vector extensions: `a * b + c` on Double4 values is
+// the scalar expression lane by lane, the same IEEE operations in the same order, so a
+// vector path gives the scalar path's bits. (Neither build lets the compiler fuse a
+// multiply and an add: the baseline has no FMA, and HSR_AVX2 does not enable it.)
+// Comparisons give a Mask4, all bits set in a true lane; `mask ? a : b` selects by lane.
+#pragma once
+
+#include <immintrin.h>
+
+#include <cstdint>
+#include <limits>
+
+#define HSR_AVX2 __attribute__((target("avx2")))
+
+namespace hsr {
+
+// Whether this CPU runs AVX2 (asked once).
+inline bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+using Double4 = double __attribute__((vector_size(32)));
+using Mask4 = std::int64_t __attribute__((vector_size(32)));
+
+// Bit i set where lane i of the mask is true.
+HSR_AVX2 inline int laneBits(Mask4 mask) { return _mm256_movemask_pd(__m256d(mask)); }
+
+// Four floats widened to doubles (exactly).
+HSR_AVX2 inline Double4 widened(const float* four) { return Double4(_mm256_cvtps_pd(_mm_loadu_ps(four))); }
+
+HSR_AVX2 inline Double4 lanesOf(double value) { return Double4{value, value, value, value}; }
+
+// The larger and the smaller of two values, lane by lane, as `a > b ? a : b` and
+// `a < b ? a : b` choose them (so b where either is NaN).
+HSR_AVX2 inline Double4 larger(Double4 a, Double4 b) { return a > b ? a : b; }
+HSR_AVX2 inline Double4 smaller(Double4 a, Double4 b) { return a < b ? a : b; }
+
+// inverseOf (renderer/math.hpp) lane by lane: 1 / d, and +-infinity by d's sign for a
+// zero lane, without dividing by zero.
+HSR_AVX2 inline Double4 inverseOf(Double4 d) {
+  const Mask4 zero = d == 0.0;
+  const __m256d sign = _mm256_and_pd(__m256d(d), __m256d(lanesOf(-0.0)));
+  const Double4 signedInfinity = Double4(_mm256_or_pd(sign, __m256d(lanesOf(std::numeric_limits<double>::infinity()))));
+  return zero ? signedInfinity : 1.0 / (zero ? lanesOf(1.0) : d);
+}
+
+}  // namespace hsr
