@@ -1,9 +1,14 @@
 // The peer benchmark for ray casting: the same primary rays (one per pixel center,
 // from CameraTransform::rayThroughPixel), the same scene and the same thread count in
-// hsr's bvh variant and in Intel Embree's rtcIntersect1 (single rays), timed in one
-// run, interleaved, and compared pixel by pixel on the triangle each ray hits.
+// hsr's bvh variant and in Intel Embree, timed in one run, interleaved, and compared
+// pixel by pixel on the triangle each ray hits:
+//   hsr path=scalar   the textbook traversal of the binary BVH, one ray at a time
+//   hsr path=simd     one ray at a time through the eight-wide BVH (AVX2)
+//   hsr path=packet   eight neighbouring rays of a row together
+//   Embree 1, 8, 16   rtcIntersect1 (single rays), rtcIntersect8 and rtcIntersect16
+//                     (packets of 8 and 16 neighbouring rays of a row, marked coherent)
 //
-//   build/bench/embree_peer [--threads N] [--runs R] [dragons counters ...]
+//   build/bench/embree_peer [--threads N] [--runs R] [dragons counters city ...]
 //
 // Both sides do the same work per ray: generate it, find the nearest hit between the
 // near and far planes, and store the hit triangle. Embree gets float vertices and rays
@@ -15,7 +20,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "algorithms/ray_casting/ray_casting.hpp"
@@ -59,29 +66,59 @@ class EmbreeScene {
 
   double buildMilliseconds() const { return buildMilliseconds_; }
 
-  // ids as hsr writes them: triangle index + 1, 0 for no hit.
-  void trace(const hsr::CameraTransform& camera, int threads, std::vector<std::uint32_t>& ids) const {
+  // ids as hsr writes them: triangle index + 1, 0 for no hit; `width` rays at a time
+  // (1: rtcIntersect1; 8, 16: a packet of that many neighbours of a row).
+  void trace(const hsr::CameraTransform& camera, int threads, int width, std::vector<std::uint32_t>& ids) const {
+    switch (width) {
+      case 1: return traceRows<1>(camera, threads, ids);
+      case 8: return traceRows<8>(camera, threads, ids);
+      default: return traceRows<16>(camera, threads, ids);
+    }
+  }
+
+ private:
+  template <int kWidthOfCall>
+  void traceRows(const hsr::CameraTransform& camera, int threads, std::vector<std::uint32_t>& ids) const {
+    using RayHits = std::conditional_t<kWidthOfCall == 1, RTCRayHit, std::conditional_t<kWidthOfCall == 8, RTCRayHit8, RTCRayHit16>>;
     hsr::parallelFor(std::size_t(kHeight), threads, [&](std::size_t row, int) {
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
-      for (int x = 0; x < kWidth; ++x) {
-        const hsr::Ray ray = camera.rayThroughPixel(x + 0.5, double(row) + 0.5);
-        const double startDistance = glm::dot(ray.origin - camera.camera().eye, camera.forward());
-        const double slope = glm::dot(ray.direction, camera.forward());
-        RTCRayHit hit{};
-        hit.ray.org_x = float(ray.origin.x), hit.ray.org_y = float(ray.origin.y), hit.ray.org_z = float(ray.origin.z);
-        hit.ray.dir_x = float(ray.direction.x), hit.ray.dir_y = float(ray.direction.y), hit.ray.dir_z = float(ray.direction.z);
-        hit.ray.tnear = float((camera.camera().near - startDistance) / slope);
-        hit.ray.tfar = float((camera.camera().far - startDistance) / slope);
-        hit.ray.mask = ~0u;
-        hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &context, &hit);
-        ids[row * kWidth + std::size_t(x)] = hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? 0 : hit.hit.primID + 1;
+      if (kWidthOfCall > 1) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (int x0 = 0; x0 < kWidth; x0 += kWidthOfCall) {
+        alignas(64) RayHits hits{};
+        alignas(64) int valid[kWidthOfCall];
+        for (int lane = 0; lane < kWidthOfCall; ++lane) {
+          const int x = x0 + lane;
+          valid[lane] = x < kWidth ? -1 : 0;
+          const hsr::Ray ray = camera.rayThroughPixel(std::min(x, kWidth - 1) + 0.5, double(row) + 0.5);
+          const double startDistance = glm::dot(ray.origin - camera.camera().eye, camera.forward());
+          const double slope = glm::dot(ray.direction, camera.forward());
+          const float tNear = float((camera.camera().near - startDistance) / slope), tFar = float((camera.camera().far - startDistance) / slope);
+          if constexpr (kWidthOfCall == 1) {
+            hits.ray.org_x = float(ray.origin.x), hits.ray.org_y = float(ray.origin.y), hits.ray.org_z = float(ray.origin.z);
+            hits.ray.dir_x = float(ray.direction.x), hits.ray.dir_y = float(ray.direction.y), hits.ray.dir_z = float(ray.direction.z);
+            hits.ray.tnear = tNear, hits.ray.tfar = tFar, hits.ray.mask = ~0u;
+            hits.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          } else {
+            hits.ray.org_x[lane] = float(ray.origin.x), hits.ray.org_y[lane] = float(ray.origin.y), hits.ray.org_z[lane] = float(ray.origin.z);
+            hits.ray.dir_x[lane] = float(ray.direction.x), hits.ray.dir_y[lane] = float(ray.direction.y), hits.ray.dir_z[lane] = float(ray.direction.z);
+            hits.ray.tnear[lane] = tNear, hits.ray.tfar[lane] = tFar, hits.ray.mask[lane] = ~0u;
+            hits.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+          }
+        }
+        if constexpr (kWidthOfCall == 1) rtcIntersect1(scene_, &context, &hits);
+        else if constexpr (kWidthOfCall == 8) rtcIntersect8(valid, scene_, &context, &hits);
+        else rtcIntersect16(valid, scene_, &context, &hits);
+        for (int lane = 0; lane < kWidthOfCall && x0 + lane < kWidth; ++lane) {
+          unsigned geometry, primitive;
+          if constexpr (kWidthOfCall == 1) geometry = hits.hit.geomID, primitive = hits.hit.primID;
+          else geometry = hits.hit.geomID[lane], primitive = hits.hit.primID[lane];
+          ids[row * kWidth + std::size_t(x0 + lane)] = geometry == RTC_INVALID_GEOMETRY_ID ? 0 : primitive + 1;
+        }
       }
     });
   }
 
- private:
   RTCDevice device_;
   RTCScene scene_;
   double buildMilliseconds_ = 0;
@@ -106,8 +143,8 @@ int main(int argc, char** argv) try {
       return 2;
     }
   }
-  if (names.empty()) names = {"dragons", "counters"};
-  std::printf("hsr ray_casting bvh vs Embree %d.%d.%d rtcIntersect1, %dx%d primary rays, %d thread(s), %d runs after a warm-up\n",
+  if (names.empty()) names = {"dragons", "counters", "city"};
+  std::printf("hsr ray_casting bvh vs Embree %d.%d.%d, %dx%d primary rays, %d thread(s), %d runs after a warm-up\n",
               RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, kWidth, kHeight, threads, runs);
   for (const std::string& name : names) {
     const hsr::Scene scene = hsr::loadScene(std::string(HSR_SOURCE_DIR) + "/scenes/" + name + ".toml");
@@ -116,38 +153,56 @@ int main(int argc, char** argv) try {
     const hsr::CameraTransform camera(scene.camera, kWidth, kHeight);
     const EmbreeScene embree(prepared);
     hsr::Stats buildStats;
-    const double hsrBuild = millisecondsOf([&] { prepared.triangleBvh(buildStats); });
+    const double hsrBuild = millisecondsOf([&] { prepared.wideTriangleBvh(buildStats); });
 
-    const hsr::ray_casting::Knobs knobs;  // the bvh variant
-    // Both write into buffers allocated once.
-    hsr::Visibility visibility{hsr::Frame(kWidth, kHeight), std::nullopt};
-    const hsr::Frame& ours = visibility.frame;
-    std::vector<std::uint32_t> theirs(std::size_t(kWidth) * kHeight);
-    hsr::Stats warmUp;
-    hsr::ray_casting::visibility({prepared, camera, nullptr, threads, warmUp}, knobs, visibility);
-    embree.trace(camera, threads, theirs);
-    Timing oursMs, theirsMs;
-    for (int run = 0; run < runs; ++run) {  // interleaved, so both see the same machine load
-      oursMs.milliseconds.push_back(millisecondsOf([&] {
-        hsr::Stats stats;
-        hsr::ray_casting::visibility({prepared, camera, nullptr, threads, stats}, knobs, visibility);
-      }));
-      theirsMs.milliseconds.push_back(millisecondsOf([&] { embree.trace(camera, threads, theirs); }));
+    // Each side writes into buffers allocated once; one warm-up of each first.
+    struct Side {
+      std::string name;
+      std::function<void()> run;
+      const std::vector<std::uint32_t>* ids;
+      Timing milliseconds;
+    };
+    std::vector<Side> sides;
+    std::vector<hsr::Visibility> ours;
+    ours.reserve(3);
+    for (const auto& [path, pathName] : {std::pair(hsr::ray_casting::Path::scalar, "scalar"), std::pair(hsr::ray_casting::Path::simd, "simd"),
+                                         std::pair(hsr::ray_casting::Path::packet, "packet")}) {
+      hsr::ray_casting::Knobs knobs;  // the bvh variant
+      knobs.path = path;
+      hsr::Visibility& visibility = ours.emplace_back(hsr::Visibility{hsr::Frame(kWidth, kHeight), std::nullopt});
+      sides.push_back({std::string("hsr path=") + pathName, [&, knobs] {
+                         hsr::Stats stats;
+                         hsr::ray_casting::visibility({prepared, camera, nullptr, threads, stats}, knobs, visibility);
+                       },
+                       &visibility.frame.ids, {}});
     }
-    std::int64_t agree = 0, covered = 0;
-    for (std::size_t i = 0; i < theirs.size(); ++i) {
-      if (ours.ids[i] == 0 && theirs[i] == 0) continue;
-      ++covered;
-      agree += ours.ids[i] == theirs[i];
+    std::vector<std::vector<std::uint32_t>> theirs(3, std::vector<std::uint32_t>(std::size_t(kWidth) * kHeight));
+    for (const int width : {1, 8, 16}) {
+      std::vector<std::uint32_t>& ids = theirs[width == 1 ? 0 : width == 8 ? 1 : 2];
+      sides.push_back({"Embree rtcIntersect" + std::to_string(width), [&, width] { embree.trace(camera, threads, width, ids); }, &ids, {}});
     }
+    for (Side& side : sides) side.run();
+    for (int run = 0; run < runs; ++run)  // interleaved, so every side sees the same machine load
+      for (Side& side : sides) side.milliseconds.milliseconds.push_back(millisecondsOf(side.run));
+
     const double rays = double(kWidth) * kHeight;
-    std::printf("%s (%zu triangles; build: hsr SAH %.1f ms, %zu nodes; Embree %.1f ms)\n", name.c_str(),
-                prepared.triangleCount(), hsrBuild, prepared.triangleBvh(buildStats).nodes().size(), embree.buildMilliseconds());
-    std::printf("  hsr    median %7.2f ms  %6.2f Mrays/s\n", oursMs.median(), rays / oursMs.median() / 1e3);
-    std::printf("  Embree median %7.2f ms  %6.2f Mrays/s\n", theirsMs.median(), rays / theirsMs.median() / 1e3);
-    std::printf("  throughput ratio hsr/Embree %.2f\n", theirsMs.median() / oursMs.median());
-    std::printf("  pixels hit by either: %lld, same triangle %.4f%%\n", static_cast<long long>(covered),
-                100.0 * double(agree) / double(std::max<std::int64_t>(1, covered)));
+    std::printf("%s (%zu triangles; build: hsr SAH and eight-wide %.1f ms, %zu wide nodes; Embree %.1f ms)\n", name.c_str(),
+                prepared.triangleCount(), hsrBuild, prepared.wideTriangleBvh(buildStats).nodes().size(), embree.buildMilliseconds());
+    for (Side& side : sides) {
+      std::int64_t agree = 0, covered = 0;
+      const std::vector<std::uint32_t>& textbook = *sides.front().ids;
+      for (std::size_t i = 0; i < textbook.size(); ++i) {
+        if ((*side.ids)[i] == 0 && textbook[i] == 0) continue;
+        ++covered;
+        agree += (*side.ids)[i] == textbook[i];
+      }
+      std::printf("  %-22s median %7.2f ms [%.2f-%.2f]  %6.2f Mrays/s  same triangle as path=scalar: %.4f%% of %lld\n", side.name.c_str(),
+                  side.milliseconds.median(), side.milliseconds.min(), side.milliseconds.max(), rays / side.milliseconds.median() / 1e3,
+                  100.0 * double(agree) / double(std::max<std::int64_t>(1, covered)), static_cast<long long>(covered));
+    }
+    const auto ratio = [&](std::size_t ours_, std::size_t theirs_) { return sides[theirs_].milliseconds.median() / sides[ours_].milliseconds.median(); };
+    std::printf("  throughput hsr/Embree: scalar/1 %.2f, simd/1 %.2f, packet/8 %.2f, packet/16 %.2f\n", ratio(0, 3), ratio(1, 3), ratio(2, 4),
+                ratio(2, 5));
   }
   return 0;
 } catch (const hsr::InputError& error) {

@@ -31,14 +31,30 @@ inline bool cpuHasAvx2() {
 
 using Double4 = double __attribute__((vector_size(32)));
 using Mask4 = std::int64_t __attribute__((vector_size(32)));
+// Eight doubles: two AVX2 registers, which the compiler pairs up operation by operation
+// (ray packets: a ray per lane).
+using Double8 = double __attribute__((vector_size(64)));
+using Mask8 = std::int64_t __attribute__((vector_size(64)));
 
 // Bit i set where lane i of the mask is true.
 HSR_AVX2 inline int laneBits(Mask4 mask) { return _mm256_movemask_pd(__m256d(mask)); }
+HSR_AVX2 inline int laneBits(const Mask8& mask) {
+  Mask4 low, high;
+  __builtin_memcpy(&low, &mask, sizeof low);
+  __builtin_memcpy(&high, reinterpret_cast<const char*>(&mask) + sizeof low, sizeof high);
+  return laneBits(low) | laneBits(high) << 4;
+}
+// The lanes whose bit is set in `bits`, as a mask (the inverse of laneBits).
+HSR_AVX2 inline Mask4 laneMask4(int bits) {
+  const Mask4 laneBit = {1, 2, 4, 8};
+  return (bits & laneBit) != 0;
+}
 
 // Four floats widened to doubles (exactly).
 HSR_AVX2 inline Double4 widened(const float* four) { return Double4(_mm256_cvtps_pd(_mm_loadu_ps(four))); }
 
 HSR_AVX2 inline Double4 lanesOf(double value) { return Double4{value, value, value, value}; }
+HSR_AVX2 inline Double8 eightLanesOf(double value) { return Double8{value, value, value, value, value, value, value, value}; }
 
 // The larger and the smaller of two values, lane by lane, as `a > b ? a : b` and
 // `a < b ? a : b` choose them (so b where either is NaN).

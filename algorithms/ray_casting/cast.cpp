@@ -4,33 +4,36 @@
 #include "renderer/simd.hpp"
 
 namespace hsr::ray_casting {
-namespace {
-
-// PixelRay's constructor and CameraTransform::rayThroughPixel lane by lane: the same
-// operations in the same order, glm::dot's sum taken as it takes it, ((x + y) + z).
-HSR_AVX2 void setUpFourAtATime(const CameraTransform& camera, int y, int x0, int count, PixelRay* out) {
+HSR_AVX2 FourPixelRays::FourPixelRays(const CameraTransform& camera, Double4 centersX, int y)
+    : rays(camera.raysThroughPixels(centersX, conventions::pixelCenter(y))) {
   const dvec3& eye = camera.camera().eye;
   const dvec3& forward = camera.forward();
+  for (int axis = 0; axis < 3; ++axis) inverseDirection[axis] = inverseOf(rays.direction[axis]);
+  startDistance = (rays.origin[0] - eye.x) * forward.x + (rays.origin[1] - eye.y) * forward.y + (rays.origin[2] - eye.z) * forward.z;
+  slope = rays.direction[0] * forward.x + rays.direction[1] * forward.y + rays.direction[2] * forward.z;
+  const Double4 perDistance = 1.0 / slope;
+  tNear = (camera.camera().near - startDistance) * perDistance;
+  tFar = (camera.camera().far - startDistance) * perDistance;
+}
+
+HSR_AVX2 PixelRay FourPixelRays::lane(int i) const {
+  PixelRay pixel;
+  for (int axis = 0; axis < 3; ++axis) {
+    pixel.ray.origin[axis] = rays.origin[axis][i];
+    pixel.ray.direction[axis] = rays.direction[axis][i];
+    pixel.inverseDirection[axis] = inverseDirection[axis][i];
+  }
+  pixel.startDistance = startDistance[i], pixel.slope = slope[i];
+  pixel.tNear = tNear[i], pixel.tFar = tFar[i];
+  return pixel;
+}
+
+namespace {
+
+HSR_AVX2 void setUpFourAtATime(const CameraTransform& camera, int y, int x0, int count, PixelRay* out) {
   for (int x = x0; x < x0 + count; x += 4) {
-    const Double4 centers = double(x) + Double4{0, 1, 2, 3} + conventions::kPixelCenterOffset;
-    const FourRays rays = camera.raysThroughPixels(centers, conventions::pixelCenter(y));
-    Double4 inverse[3];
-    for (int axis = 0; axis < 3; ++axis) inverse[axis] = inverseOf(rays.direction[axis]);
-    const Double4 startDistance = (rays.origin[0] - eye.x) * forward.x + (rays.origin[1] - eye.y) * forward.y + (rays.origin[2] - eye.z) * forward.z;
-    const Double4 slope = rays.direction[0] * forward.x + rays.direction[1] * forward.y + rays.direction[2] * forward.z;
-    const Double4 perDistance = 1.0 / slope;
-    const Double4 tNear = (camera.camera().near - startDistance) * perDistance;
-    const Double4 tFar = (camera.camera().far - startDistance) * perDistance;
-    for (int lane = 0; lane < std::min(4, x0 + count - x); ++lane) {
-      PixelRay& pixel = out[x - x0 + lane];
-      for (int axis = 0; axis < 3; ++axis) {
-        pixel.ray.origin[axis] = rays.origin[axis][lane];
-        pixel.ray.direction[axis] = rays.direction[axis][lane];
-        pixel.inverseDirection[axis] = inverse[axis][lane];
-      }
-      pixel.startDistance = startDistance[lane], pixel.slope = slope[lane];
-      pixel.tNear = tNear[lane], pixel.tFar = tFar[lane];
-    }
+    const FourPixelRays four(camera, double(x) + Double4{0, 1, 2, 3} + conventions::kPixelCenterOffset, y);
+    for (int lane = 0; lane < std::min(4, x0 + count - x); ++lane) out[x - x0 + lane] = four.lane(lane);
   }
 }
 

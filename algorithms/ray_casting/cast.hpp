@@ -53,7 +53,8 @@ struct Hit {
 // each rounded, so a triangle lying in its box's face may come out a few ulps before the
 // entry: the reach is widened by far more than that (2^-32 of it), so a traversal skips
 // nothing the naive variant would take, ties included.
-inline double reachOf(const Hit& nearest) { return nearest.t * (1 + 0x1p-32); }
+inline constexpr double kReachWidening = 1 + 0x1p-32;
+inline double reachOf(const Hit& nearest) { return nearest.t * kReachWidening; }
 
 // What a traversal of a BVH counts (the bvh variant's, and the fast paths' over the
 // wide BVH, renderer/wide_bvh.hpp, whose nodes have four children instead of two).
@@ -68,12 +69,28 @@ struct TraversalCounters {
   double cost() const { return double(nodesVisited); }
 };
 
+// PixelRay for four pixel centers of a row, a ray per lane, by the same operations in
+// the same order (glm::dot's sum taken as it takes it, ((x + y) + z)): the same bits.
+struct FourPixelRays {
+  FourRays rays;
+  Double4 inverseDirection[3];
+  Double4 startDistance, slope, tNear, tFar;
+  HSR_AVX2 FourPixelRays(const CameraTransform& camera, Double4 centersX, int y);
+  HSR_AVX2 PixelRay lane(int i) const;
+};
+
 // The PixelRays of pixels x0 .. x0 + count - 1 of row y, into out: four at a time in
 // vector lanes where the CPU has AVX2 (the same bits as one at a time: a ray's set-up
 // divides four times, and four rays share each vector division). castRays sets up a run
 // of a row's rays before tracing them.
 void setUpPixelRays(const CameraTransform& camera, int y, int x0, int count, PixelRay* out);
 inline constexpr int kRaysSetUpTogether = 64;
+
+// What the frame's depth holds for a ray's answer: its distance along the view axis, or
+// +infinity where it met nothing.
+inline float frameDepth(std::uint32_t id, double distance) {
+  return id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity() : static_cast<float>(distance);
+}
 
 // Where castRays records its steps (renderer/steps.hpp), and the scene its ids index.
 struct Recording {
@@ -82,7 +99,9 @@ struct Recording {
 };
 
 // Runs tracer.trace(PixelRay, Counters&) -> Hit for every pixel center, one row per work
-// item, and fills frame.ids and frame.depth. Counters is the tracer's own tally (summed
+// item, and fills frame.ids and frame.depth; a tracer that traces several rays at once
+// has instead traceRun(camera, y, x0, count, ids, depths, Counters&, costs or null),
+// which sets up, traces and writes pixels x0 .. x0 + count - 1 of row y itself. Counters is the tracer's own tally (summed
 // with +=; cost() is one ray's work in the unit Counters::kCostUnit names); each row
 // counts on its own stack, since neighbouring rows' counters share cache lines and other
 // threads are writing them. With a recording, the rows run in order on one thread, and a
@@ -99,16 +118,19 @@ typename Tracer::Counters castRays(const Tracer& tracer, const CameraTransform& 
     std::array<PixelRay, kRaysSetUpTogether> pixels;
     for (int x0 = 0; x0 < frame.width; x0 += kRaysSetUpTogether) {
       const int count = std::min(kRaysSetUpTogether, frame.width - x0);
-      setUpPixelRays(camera, int(row), x0, count, pixels.data());
-      for (int i = 0; i < count; ++i) {
-        const PixelRay& pixel = pixels[std::size_t(i)];
-        const double before = recording ? counters.cost() : 0;
-        const Hit hit = tracer.trace(pixel, counters);
-        const std::size_t index = row * std::size_t(frame.width) + std::size_t(x0 + i);
-        frame.ids[index] = hit.id;
-        frame.depth[index] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
-                                                                  : static_cast<float>(pixel.distance(hit.t));
-        if (recording) costAt[index] = counters.cost() - before;
+      const std::size_t first = row * std::size_t(frame.width) + std::size_t(x0);
+      if constexpr (requires { tracer.traceRun(camera, 0, 0, 0, frame.ids.data(), frame.depth.data(), counters, costAt.data()); }) {
+        tracer.traceRun(camera, int(row), x0, count, &frame.ids[first], &frame.depth[first], counters, recording ? &costAt[first] : nullptr);
+      } else {
+        setUpPixelRays(camera, int(row), x0, count, pixels.data());
+        for (int i = 0; i < count; ++i) {
+          const PixelRay& pixel = pixels[std::size_t(i)];
+          const double before = recording ? counters.cost() : 0;
+          const Hit hit = tracer.trace(pixel, counters);
+          frame.ids[first + std::size_t(i)] = hit.id;
+          frame.depth[first + std::size_t(i)] = frameDepth(hit.id, pixel.distance(hit.t));
+          if (recording) costAt[first + std::size_t(i)] = counters.cost() - before;
+        }
       }
     }
     rowCounters[row] = counters;

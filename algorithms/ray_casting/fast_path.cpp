@@ -2,10 +2,13 @@
 // textbook's answer). Only the functions marked HSR_AVX2 use AVX2 (renderer/simd.hpp).
 #include "algorithms/ray_casting/fast_path.hpp"
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <utility>
 
 #include "algorithms/ray_casting/watertight.hpp"
+#include "renderer/ray_packet.hpp"
 #include "renderer/simd.hpp"
 #include "renderer/wide_bvh.hpp"
 
@@ -68,6 +71,91 @@ HSR_AVX2 Hit WideBvhTracer::trace(const PixelRay& pixel, Counters& counters) con
       current = stack[--size];
     } while (current.entry > reachOf(nearest));
   }
+}
+
+PacketTracer::PacketTracer(const PreparedScene& scene, Stats& stats)
+    : single_(scene, stats), bvh_(scene.wideTriangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
+
+void PacketTracer::traceRun(const CameraTransform& camera, int y, int x0, int count, std::uint32_t* ids, float* depths,
+                            Counters& counters, double* costs) const {
+  for (int first = 0; first < count; first += RayPacket::kRays) {
+    const int rays = std::min(RayPacket::kRays, count - first);
+    if (tracePacket(camera, y, x0 + first, rays, ids + first, depths + first, counters, costs ? costs + first : nullptr)) continue;
+    std::array<PixelRay, RayPacket::kRays> pixels;
+    setUpPixelRays(camera, y, x0 + first, rays, pixels.data());
+    for (int ray = 0; ray < rays; ++ray) {
+      const double before = counters.cost();
+      const Hit hit = single_.trace(pixels[ray], counters);
+      ids[first + ray] = hit.id;
+      depths[first + ray] = frameDepth(hit.id, pixels[ray].distance(hit.t));
+      if (costs) costs[first + ray] = counters.cost() - before;
+    }
+  }
+}
+
+// One packet of pixels x .. x + count - 1, when their rays can travel together: the
+// single-ray path's answer for each ray, by the same watertight test and the same rule
+// (offer, watertight.hpp) in lanes.
+HSR_AVX2 bool PacketTracer::tracePacket(const CameraTransform& camera, int y, int x, int count, std::uint32_t* ids, float* depths,
+                                        Counters& counters, double* costs) const {
+  // The rays set up four to a half, as setUpPixelRays sets them up; a packet of fewer
+  // than eight repeats its last pixel in the lanes after it.
+  FourPixelRays pixels[RayPacket::kHalves] = {
+      FourPixelRays(camera, double(x) + smaller(Double4{0, 1, 2, 3}, lanesOf(count - 1)) + conventions::kPixelCenterOffset, y),
+      FourPixelRays(camera, double(x) + smaller(Double4{4, 5, 6, 7}, lanesOf(count - 1)) + conventions::kPixelCenterOffset, y)};
+  const FourRays rays[RayPacket::kHalves] = {pixels[0].rays, pixels[1].rays};
+  if (!RayPacket::travelTogether(rays)) return false;
+  const Double4 inverses[RayPacket::kHalves][3] = {{pixels[0].inverseDirection[0], pixels[0].inverseDirection[1], pixels[0].inverseDirection[2]},
+                                                   {pixels[1].inverseDirection[0], pixels[1].inverseDirection[1], pixels[1].inverseDirection[2]}};
+  const RayPacket packet(rays, inverses);
+  const std::array<int, 3> axes = WatertightRay<double>::permutation(dvec3(rays[0].direction[0][0], rays[0].direction[1][0], rays[0].direction[2][0]));
+
+  // Per half of four rays: the watertight test's set-up (WatertightRay's constructor)
+  // and each ray's nearest hit so far, lane by lane.
+  std::array<WatertightRay<Double4>, RayPacket::kHalves> ray = {WatertightRay<Double4>(axes), WatertightRay<Double4>(axes)};
+  Double4 nearestT[RayPacket::kHalves], reach[RayPacket::kHalves];
+  Mask4 nearestId[RayPacket::kHalves] = {};  // conventions::kBackgroundId in every lane
+  for (int half = 0; half < RayPacket::kHalves; ++half) {
+    for (int axis = 0; axis < 3; ++axis) ray[half].origin[axis] = packet.origin[axis][half];
+    ray[half].shearZ = packet.inverse[ray[half].kz][half];
+    ray[half].shearX = packet.direction[ray[half].kx][half] * ray[half].shearZ;
+    ray[half].shearY = packet.direction[ray[half].ky][half] * ray[half].shearZ;
+    nearestT[half] = pixels[half].tFar;
+    reach[half] = nearestT[half] * kReachWidening;
+  }
+  const std::int64_t visited = visitLeaves(bvh_, packet, (1 << count) - 1, reach, [&](std::uint32_t first, std::uint16_t leafCount, int met) HSR_AVX2 {
+    counters.triangleTests += std::int64_t(leafCount) * std::popcount(unsigned(met));
+    for (int half = 0; half < RayPacket::kHalves; ++half) {
+      if (raysInHalf(met, half) == 0) continue;
+      const Mask4 lanes = laneMask4(raysInHalf(met, half));
+      for (std::uint32_t slot = first; slot < first + leafCount; ++slot) {
+        const PreparedScene::LeafTriangle& triangle = triangles_[slot];
+        // WatertightRay::hit and offer, lane by lane: inside (or on an edge) with det != 0,
+        // t within [tNear, nearest t], and nearer, or as near with a lower id.
+        const ScaledBarycentrics<Double4> b = ray[half].barycentrics(triangle.a, triangle.b, triangle.c);
+        const Mask4 outside = ((b.u < 0) | (b.v < 0) | (b.w < 0)) & ((b.u > 0) | (b.v > 0) | (b.w > 0));
+        const Double4 det = b.u + b.v + b.w;
+        const Mask4 crossed = lanes & ~outside & (det != 0);
+        if (laneBits(crossed) == 0) continue;
+        Double4 t;
+        ray[half].hitParameter(b, crossed ? det : lanesOf(1), t);  // other lanes divide by 1, never by 0
+        const std::int64_t id = triangle.id;
+        const Mask4 nearer = crossed & (t >= pixels[half].tNear) & (t <= nearestT[half]) &
+                             ((nearestId[half] == 0) | (t < nearestT[half]) | (id < nearestId[half]));
+        nearestT[half] = nearer ? t : nearestT[half];
+        nearestId[half] = nearer ? id : nearestId[half];
+      }
+      reach[half] = nearestT[half] * kReachWidening;
+    }
+  });
+  counters.nodesVisited += visited;
+  for (int r = 0; r < count; ++r) {
+    const int half = r / 4, lane = r % 4;
+    ids[r] = static_cast<std::uint32_t>(nearestId[half][lane]);
+    depths[r] = frameDepth(ids[r], pixels[half].startDistance[lane] + nearestT[half][lane] * pixels[half].slope[lane]);
+    if (costs) costs[r] = double(visited);
+  }
+  return true;
 }
 
 }  // namespace hsr::ray_casting

@@ -35,4 +35,23 @@ class WideBvhTracer {
   const std::vector<PreparedScene::LeafTriangle>& triangles_;
 };
 
+class PacketTracer {
+ public:
+  using Counters = TraversalCounters;
+  PacketTracer(const PreparedScene& scene, Stats& stats);
+  // Pixels x0 .. x0 + count - 1 of row y (castRays, cast.hpp) in packets of eight
+  // neighbours; a packet whose rays cannot travel together (RayPacket::travelTogether)
+  // is traced ray by ray by the simd path. costs[i], when asked for, is the inner nodes
+  // visited by pixel i's packet.
+  void traceRun(const CameraTransform& camera, int y, int x0, int count, std::uint32_t* ids, float* depths, Counters& counters,
+                double* costs) const;
+
+ private:
+  bool tracePacket(const CameraTransform& camera, int y, int x, int count, std::uint32_t* ids, float* depths, Counters& counters,
+                   double* costs) const;
+  WideBvhTracer single_;
+  const WideBvh& bvh_;
+  const std::vector<PreparedScene::LeafTriangle>& triangles_;
+};
+
 }  // namespace hsr::ray_casting

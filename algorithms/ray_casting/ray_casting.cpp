@@ -147,8 +147,9 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
         stats.add("bvh nodes visited", counters.nodesVisited);
         stats.add("ray-triangle tests", counters.triangleTests);
       };
-      if (knobs.path == Path::simd && cpuHasAvx2()) cast(WideBvhTracer(scene, stats));
-      else cast(BvhTracer(scene, stats));
+      if (knobs.path == Path::scalar || !cpuHasAvx2()) cast(BvhTracer(scene, stats));
+      else if (knobs.path == Path::packet) cast(PacketTracer(scene, stats));
+      else cast(WideBvhTracer(scene, stats));
       break;
     }
     case Variant::march:

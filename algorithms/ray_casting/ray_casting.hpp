@@ -29,7 +29,7 @@ enum class Variant { bvh, naive, march };
 // How the bvh variant runs: a fast path (fast_path.hpp) over the BVH with four children
 // to a node, one ray at a time or eight at once, or the textbook traversal of the binary
 // BVH. The same ids and depths.
-enum class Path { simd, scalar };
+enum class Path { simd, packet, scalar };
 
 
 inline constexpr int kMaxGrid = 256;  // voxels per side of an occupancy grid: 16 M voxels at most
@@ -67,10 +67,11 @@ inline const KnobTable<Knobs>& knobTable() {
           .onlyFor({"march"})
           .number("refine", &Knobs::refine, {0, 52}, {"2", "4", "8"}, "march: bisection steps back to the surface once a sample is inside")
           .onlyFor({"march"})
-          .choice("path", &Knobs::path, {{Path::simd, "simd"}, {Path::scalar, "scalar"}},
-                  "bvh: simd: one ray at a time through a BVH of four children to a node, the four boxes tested at once "
-                  "with AVX2 (fast_path.hpp), where the CPU has AVX2, else the textbook traversal; scalar: the textbook "
-                  "traversal of the binary BVH. The same ids and depths")
+          .choice("path", &Knobs::path, {{Path::simd, "simd"}, {Path::packet, "packet"}, {Path::scalar, "scalar"}},
+                  "bvh: simd: one ray at a time through a BVH of eight children to a node, the eight boxes tested at "
+                  "once with AVX2; packet: eight neighbouring rays through it together (fast_path.hpp); both where the "
+                  "CPU has AVX2, else the textbook traversal; scalar: the textbook traversal of the binary BVH. The same "
+                  "ids and depths")
           .onlyFor({"bvh"});
   return table;
 }

@@ -34,9 +34,12 @@ class WatertightRay {
  public:
   // Step 1: kz, the axis the direction is largest along; kx, ky the other two, swapped
   // when the ray runs down kz so the triangle's winding is kept.
-  static std::array<int, 3> permutation(const dvec3& direction) {
+  static int largestAxis(const dvec3& direction) {
     const dvec3 size = glm::abs(direction);
-    const int kz = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+    return size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+  }
+  static std::array<int, 3> permutation(const dvec3& direction) {
+    const int kz = largestAxis(direction);
     int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
     if (direction[kz] < 0) std::swap(kx, ky);
     return {kx, ky, kz};
@@ -64,9 +67,12 @@ class WatertightRay {
     return {cx * by - cy * bx, ax * cy - ay * cx, bx * ay - by * ax, Az, Bz, Cz};
   }
 
-  // Step 5: the hit parameter, the sheared z interpolated by the barycentrics over det.
-  Number hitParameter(const ScaledBarycentrics<Number>& s, const Number& det) const {
-    return (s.u * (shearZ * s.az) + s.v * (shearZ * s.bz) + s.w * (shearZ * s.cz)) / det;
+  // Step 5: the hit parameter t, the sheared z interpolated by the barycentrics over
+  // det. (Written into t rather than returned: a vector of four doubles returned by a
+  // function compiled for the baseline would be returned differently than where AVX is
+  // enabled.)
+  void hitParameter(const ScaledBarycentrics<Number>& s, const Number& det, Number& t) const {
+    t = (s.u * (shearZ * s.az) + s.v * (shearZ * s.bz) + s.w * (shearZ * s.cz)) / det;
   }
 
   // The hit parameter when the ray meets the triangle in [tMin, tMax] (Number = double).
@@ -77,7 +83,7 @@ class WatertightRay {
     if ((s.u < 0 || s.v < 0 || s.w < 0) && (s.u > 0 || s.v > 0 || s.w > 0)) return false;
     const double det = s.u + s.v + s.w;
     if (det == 0) return false;  // the ray lies in the triangle's plane: it sees the triangle edge-on
-    t = hitParameter(s, det);
+    hitParameter(s, det, t);
     return t >= tMin && t <= tMax;
   }
 

@@ -35,8 +35,8 @@ std::string differences(const PreparedScene& scene, Path path, int threads) {
   return found;
 }
 
-constexpr Path kFastPaths[] = {Path::simd};
-const char* nameOf(Path path) { return path == Path::simd ? "simd" : "scalar"; }
+constexpr Path kFastPaths[] = {Path::simd, Path::packet};
+const char* nameOf(Path path) { return path == Path::simd ? "simd" : path == Path::packet ? "packet" : "scalar"; }
 
 TEST(RayCastingFastPath, SameIdsAndDepthsAsTheTextbookTraversalOnEveryShippedScene) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the fast paths are the textbook traversal here";
