@@ -1,0 +1,202 @@
+// The exact reference's ray-triangle test (renderer/reference.hpp): the watertight test
+// of Woop, Benthin and Wald (2013), section 4, with a forward error bound on each of its
+// values, written once for every arithmetic it runs in:
+//   double     the reference's test of one ray;
+//   Double4    four rays at once, a ray per lane (renderer/simd.hpp; the reference's
+//              packets, reference_packets.cpp): the same operations in the same order,
+//              so the same values as four single rays, bit for bit;
+//   mpq_class  exact rationals, for the fall-back where a bound leaves a decision open.
+// A decision taken against a bound is a bool for one ray and a Mask4 for four lanes
+// (Truth<Number>); `a ? b : c` chooses by it either way. No function here takes or
+// returns a Double4 by value to or from AVX2 code: only structs and references cross.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "renderer/camera.hpp"
+#include "renderer/rounding.hpp"
+#include "renderer/simd.hpp"
+
+namespace hsr::woop {
+
+template <typename Number>
+using Truth = decltype(std::declval<Number>() < std::declval<Number>());
+
+inline double magnitudeOf(double x) { return std::abs(x); }
+inline Double4 magnitudeOf(const Double4& x) { return Double4(Mask4(x) & 0x7FFF'FFFF'FFFF'FFFF); }  // the sign bit cleared
+
+template <typename Number>
+Number broadcast(double value) {
+  if constexpr (std::is_same_v<Number, Double4>) return Double4{value, value, value, value};
+  else return Number(value);
+}
+
+// Section 4's per-ray set-up: kz is the dominant axis of the direction, and the shear
+// (sx, sy, sz) maps the ray onto the +z axis from the origin. Swapping kx and ky when the
+// ray runs down kz keeps the winding.
+template <typename Number>
+struct ShearedRay {
+  int kx, ky, kz;
+  std::array<Number, 3> origin;
+  Number sx, sy, sz;
+
+  static std::array<int, 3> axesOf(const dvec3& direction) {
+    const dvec3 size = glm::abs(direction);
+    const int kz = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (direction[kz] < 0) std::swap(kx, ky);
+    return {kx, ky, kz};
+  }
+
+  // Rays whose directions share the axes (axesOf): one, or four in lanes.
+  ShearedRay(const std::array<int, 3>& axes, const std::array<Number, 3>& rayOrigin, const std::array<Number, 3>& direction)
+      : kx(axes[0]), ky(axes[1]), kz(axes[2]), origin(rayOrigin) {
+    const Number& dz = direction[kz];
+    sx = direction[kx] / dz;
+    sy = direction[ky] / dz;
+    sz = 1.0 / dz;
+  }
+  explicit ShearedRay(const Ray& ray)
+      : ShearedRay(axesOf(ray.direction), {Number(ray.origin[0]), Number(ray.origin[1]), Number(ray.origin[2])},
+                   {Number(ray.direction[0]), Number(ray.direction[1]), Number(ray.direction[2])}) {}
+};
+
+// The test's values for one triangle (section 4, steps 2-5): u, v, w are the edge
+// functions of the sheared triangle at the ray (the scaled barycentrics); the ray
+// meets the triangle when they share a sign and det = u + v + w is not 0, at
+// parameter t = scaledT / det.
+template <typename Number>
+struct WoopTerms {
+  Number u, v, w, det, scaledT;
+};
+
+template <typename Number>
+WoopTerms<Number> woopTerms(const ShearedRay<Number>& ray, const dvec3& a, const dvec3& b, const dvec3& c) {
+  std::array<Number, 3> A, B, C;
+  for (int i = 0; i < 3; ++i) {
+    A[i] = a[i] - ray.origin[i];
+    B[i] = b[i] - ray.origin[i];
+    C[i] = c[i] - ray.origin[i];
+  }
+  const Number ax = A[ray.kx] - ray.sx * A[ray.kz], ay = A[ray.ky] - ray.sy * A[ray.kz];
+  const Number bx = B[ray.kx] - ray.sx * B[ray.kz], by = B[ray.ky] - ray.sy * B[ray.kz];
+  const Number cx = C[ray.kx] - ray.sx * C[ray.kz], cy = C[ray.ky] - ray.sy * C[ray.kz];
+  WoopTerms<Number> terms;
+  terms.u = cx * by - cy * bx;
+  terms.v = ax * cy - ay * cx;
+  terms.w = bx * ay - by * ax;
+  terms.det = terms.u + terms.v + terms.w;
+  terms.scaledT = terms.u * (ray.sz * A[ray.kz]) + terms.v * (ray.sz * B[ray.kz]) + terms.w * (ray.sz * C[ray.kz]);
+  return terms;
+}
+
+// Forward error bounds of the double-precision terms against the exact values of the
+// same formulas. Each sheared coordinate (a translation, a product with the rounded
+// shear, a subtraction) is within 4u of its magnitude bound m = |x| + |s||z|; each
+// edge function adds two products and a subtraction. The constants below round those
+// counts up generously: a loose bound costs a rare extra exact test, a tight one is a bug.
+// The error bounds of the edge functions u, v, w and of det; and the hit parameter
+// t = scaledT / det with its bound tBound, computed only where |det| is surely above 0 (a
+// ray surely not parallel to the triangle). Elsewhere no hit can be certain: t is 0 and
+// tBound infinite, and nothing divides by zero.
+template <typename Number>
+struct WoopBounds {
+  Number u, v, w, det;
+  Number t, tBound;
+};
+
+template <typename Number>
+WoopBounds<Number> woopBounds(const ShearedRay<Number>& ray, const dvec3& a, const dvec3& b, const dvec3& c, const WoopTerms<Number>& terms) {
+  struct Magnitude {
+    Number x, y, z;
+  };
+  const auto magnitude = [&](const dvec3& p) {
+    std::array<Number, 3> q;
+    for (int i = 0; i < 3; ++i) q[i] = p[i] - ray.origin[i];
+    const Number along = magnitudeOf(q[ray.kz]);
+    return Magnitude{magnitudeOf(q[ray.kx]) + magnitudeOf(ray.sx) * along, magnitudeOf(q[ray.ky]) + magnitudeOf(ray.sy) * along,
+                     magnitudeOf(ray.sz) * along};
+  };
+  const Magnitude A = magnitude(a), B = magnitude(b), C = magnitude(c);
+  constexpr double edge = 16 * kUnitRoundoff, sum = 4 * kUnitRoundoff;
+  WoopBounds<Number> bounds;
+  bounds.u = edge * (C.x * B.y + C.y * B.x);
+  bounds.v = edge * (A.x * C.y + A.y * C.x);
+  bounds.w = edge * (B.x * A.y + B.y * A.x);
+  const Number absU = magnitudeOf(terms.u), absV = magnitudeOf(terms.v), absW = magnitudeOf(terms.w);
+  bounds.det = bounds.u + bounds.v + bounds.w + sum * (absU + absV + absW);
+  const Number scaledT = edge * ((absU + bounds.u) * A.z + (absV + bounds.v) * B.z + (absW + bounds.w) * C.z) +
+                         bounds.u * A.z + bounds.v * B.z + bounds.w * C.z;
+  const Number absDet = magnitudeOf(terms.det);
+  // Where |det| is not surely above 0 the divisions below divide by 1 instead, and
+  // their results are not used.
+  const Truth<Number> surelyNotParallel = absDet > bounds.det;
+  const Number one = broadcast<Number>(1);
+  const Number t = terms.scaledT / (surelyNotParallel ? terms.det : one);
+  const Number tBound = (scaledT + magnitudeOf(t) * bounds.det) / (surelyNotParallel ? absDet - bounds.det : one) + sum * magnitudeOf(t);
+  bounds.t = surelyNotParallel ? t : broadcast<Number>(0);
+  bounds.tBound = surelyNotParallel ? tBound : broadcast<Number>(std::numeric_limits<double>::infinity());
+  return bounds;
+}
+
+// A decision taken against bounds: surely yes, surely no, or neither (left to the
+// exact arithmetic).
+template <typename Number>
+struct Decided {
+  Truth<Number> yes, no;
+};
+
+// Inside when u, v, w share a sign (zero counts as either: the edge belongs to both
+// triangles that share it, which is what makes the test watertight) and det != 0.
+template <typename Number>
+bool inside(const WoopTerms<Number>& terms) {
+  const bool allNonNegative = terms.u >= 0 && terms.v >= 0 && terms.w >= 0;
+  const bool allNonPositive = terms.u <= 0 && terms.v <= 0 && terms.w <= 0;
+  return (allNonNegative || allNonPositive) && terms.det != 0;
+}
+
+// `inside`, decided by the bounds where they allow.
+template <typename Number>
+Decided<Number> insideWithBounds(const WoopTerms<Number>& terms, const WoopBounds<Number>& bounds) {
+  const Truth<Number> positiveU = terms.u > bounds.u, positiveV = terms.v > bounds.v, positiveW = terms.w > bounds.w;
+  const Truth<Number> negativeU = terms.u < -bounds.u, negativeV = terms.v < -bounds.v, negativeW = terms.w < -bounds.w;
+  const Truth<Number> somePositive = positiveU | positiveV | positiveW, someNegative = negativeU | negativeV | negativeW;
+  const Truth<Number> yes = (positiveU & positiveV & positiveW) | (negativeU & negativeV & negativeW), no = somePositive & someNegative;
+  return {yes, no};
+}
+
+// The view distance of the point at parameter t of a ray, distance(t) = originDistance
+// + t * slope, with its error bound: whether a hit lies between the near and far planes.
+template <typename Number>
+struct ViewDistance {
+  Number originDistance, slope, originDistanceBound, slopeBound;
+  double near, far;
+
+  // One ray, or four in lanes.
+  ViewDistance(const CameraTransform& camera, const std::array<Number, 3>& origin, const std::array<Number, 3>& direction)
+      : near(camera.camera().near), far(camera.camera().far) {
+    const dvec3& eye = camera.camera().eye;
+    const dvec3& forward = camera.forward();
+    const dvec3 f = glm::abs(forward);
+    const std::array<Number, 3> fromEye = {origin[0] - eye.x, origin[1] - eye.y, origin[2] - eye.z};
+    // glm::dot's sum, as it takes it: ((x + y) + z).
+    originDistance = fromEye[0] * forward.x + fromEye[1] * forward.y + fromEye[2] * forward.z;
+    slope = direction[0] * forward.x + direction[1] * forward.y + direction[2] * forward.z;
+    originDistanceBound = 5 * kUnitRoundoff * (magnitudeOf(fromEye[0]) * f.x + magnitudeOf(fromEye[1]) * f.y + magnitudeOf(fromEye[2]) * f.z);
+    slopeBound = 4 * kUnitRoundoff * (magnitudeOf(direction[0]) * f.x + magnitudeOf(direction[1]) * f.y + magnitudeOf(direction[2]) * f.z);
+  }
+
+  // Is the hit at t (within tBound) between the near and far planes?
+  Decided<Number> inRange(const Number& t, const Number& tBound) const {
+    const Number d = originDistance + t * slope;
+    const Number bound = originDistanceBound + magnitudeOf(t) * slopeBound + magnitudeOf(slope) * tBound +
+                         3 * kUnitRoundoff * (magnitudeOf(originDistance) + magnitudeOf(t * slope));
+    const Truth<Number> yes = (d - bound >= near) & (d + bound <= far), no = (d + bound < near) | (d - bound > far);
+    return {yes, no};
+  }
+};
+
+}  // namespace hsr::woop

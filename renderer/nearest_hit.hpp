@@ -1,0 +1,204 @@
+// The exact reference's search for the nearest hit of one ray (renderer/reference.cpp,
+// and its packets, reference_packets.cpp): each triangle decided in double precision
+// where its error bounds allow and exactly where they do not, and the nearest of the
+// hits decided exactly where their depths lie within each other's bounds.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <gmpxx.h>
+#include <limits>
+
+#include "renderer/bounded_woop.hpp"
+#include "renderer/error.hpp"
+#include "renderer/prepare.hpp"
+#include "renderer/reference.hpp"
+
+namespace hsr::reference_search {
+
+using woop::Decided;
+using woop::ShearedRay;
+using woop::WoopBounds;
+using woop::WoopTerms;
+using woop::insideWithBounds;
+using woop::woopBounds;
+using woop::woopTerms;
+
+enum class Certainty { no, yes, unsure };
+inline Certainty certainty(const Decided<double>& decided) { return decided.no ? Certainty::no : decided.yes ? Certainty::yes : Certainty::unsure; }
+
+// Everything one ray needs: the shear in both arithmetics (the exact one built only
+// when first needed) and the view distance of the point at parameter t with its error
+// bound (woop::ViewDistance).
+class RayQuery {
+ public:
+  RayQuery(const Ray& ray, const CameraTransform& camera)
+      : ray_(ray),
+        camera_(camera),
+        shear_(ray),
+        view_(camera, {ray.origin.x, ray.origin.y, ray.origin.z}, {ray.direction.x, ray.direction.y, ray.direction.z}) {}
+
+  const ShearedRay<double>& shear() const { return shear_; }
+  double distance(double t) const { return view_.originDistance + t * view_.slope; }
+  // Is the hit at t (within tBound) between the near and far planes?
+  Certainty inRange(double t, double tBound) const { return certainty(view_.inRange(t, tBound)); }
+
+  // The exact hit parameter of a triangle, or nothing when the ray misses it or meets
+  // it outside [near, far].
+  std::optional<mpq_class> exactHit(const dvec3& a, const dvec3& b, const dvec3& c) {
+    if (!exactShear_) exactShear_.emplace(ray_);
+    const WoopTerms<mpq_class> terms = woopTerms(*exactShear_, a, b, c);
+    if (!woop::inside(terms)) return std::nullopt;
+    mpq_class t = terms.scaledT / terms.det;
+    mpq_class distance = t * exactDot(ray_.direction);
+    for (int i = 0; i < 3; ++i)
+      distance += (mpq_class(ray_.origin[i]) - mpq_class(camera_.camera().eye[i])) * mpq_class(camera_.forward()[i]);
+    if (distance < mpq_class(view_.near) || distance > mpq_class(view_.far)) return std::nullopt;
+    return t;
+  }
+
+ private:
+  mpq_class exactDot(const dvec3& v) const {
+    mpq_class sum = 0;
+    for (int i = 0; i < 3; ++i) sum += mpq_class(v[i]) * mpq_class(camera_.forward()[i]);
+    return sum;
+  }
+
+  Ray ray_;
+  const CameraTransform& camera_;
+  ShearedRay<double> shear_;
+  std::optional<ShearedRay<mpq_class>> exactShear_;
+  woop::ViewDistance<double> view_;
+};
+
+// One triangle against the ray, between the near and far planes: the hit's parameter t
+// within +-bound, decided in double precision where the error bounds allow and exactly
+// where they do not (`exact`, set whenever the exact test ran, hit or not). A sure hit
+// whose t - bound lies beyond `beyond` is dropped before any exact work (the nearest
+// hit's search passes its horizon).
+struct BoundedHit {
+  double t = 0, bound = 0;
+  bool hit = false, exact = false;
+};
+
+// The exact test, where the bounds left the decision open.
+inline BoundedHit exactBoundedHit(RayQuery& query, const PreparedScene::LeafTriangle& tri, SurfaceReference::Counters& counters) {
+  ++counters.exactTriangleTests;
+  const std::optional<mpq_class> exact = query.exactHit(tri.a, tri.b, tri.c);
+  if (!exact) return {0, 0, false, true};
+  const double rounded = exact->get_d();
+  return {rounded, 2 * kUnitRoundoff * std::abs(rounded), true, true};
+}
+
+inline BoundedHit boundedHit(RayQuery& query, const PreparedScene::LeafTriangle& tri, double beyond, SurfaceReference::Counters& counters) {
+  ++counters.triangleTests;
+  const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
+  const WoopBounds<double> bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms);
+  const double t = bounds.t;
+  Certainty hit = certainty(insideWithBounds(terms, bounds));
+  if (hit == Certainty::no) return {};
+  if (hit == Certainty::yes) {
+    if (t - bounds.tBound > beyond) return {};
+    hit = query.inRange(t, bounds.tBound);
+    if (hit == Certainty::no) return {};
+    if (hit == Certainty::yes) return {t, bounds.tBound, true, false};
+  }
+  // A center on an edge, a grazing ray, or a hit on the near or far plane.
+  return exactBoundedHit(query, tri, counters);
+}
+
+// Candidates for the nearest hit: every hit whose interval [t - bound, t + bound] can
+// still reach below the horizon, the smallest upper end t + bound seen so far. Usually
+// one or two, held in place; more (coplanar faces overlapping) spill to the heap.
+class NearestHitSearch {
+ public:
+  // A node is skipped once its entry lies beyond the horizon, widened by the rounding of
+  // the entry itself.
+  static constexpr double kEntryWidening = 1 + 4 * kUnitRoundoff;
+
+  double horizon() const { return horizon_; }
+  bool usedExact() const { return usedExact_; }
+
+  // A triangle's bounded hit (or miss), slot its index in PreparedScene::leafTriangles.
+  void offer(const BoundedHit& hit, std::uint32_t slot) {
+    usedExact_ = usedExact_ || hit.exact;
+    if (!hit.hit) return;
+    horizon_ = std::min(horizon_, hit.t + hit.bound);
+    const Candidate candidate{hit.t, hit.bound, slot};
+    if (!spilling_ && count_ < kInPlace) {
+      inPlace_[std::size_t(count_++)] = candidate;
+    } else {
+      if (!spilling_) spilled_.assign(inPlace_.begin(), inPlace_.end()), spilling_ = true;
+      spilled_.push_back(candidate);
+    }
+    eraseBeyondHorizon();
+  }
+
+  // The nearest hit among the candidates: the one candidate, or the exact nearest of
+  // several (every exact tie kept: the pixel is ambiguous, the lowest id recorded).
+  // distance(t) is the ray's view distance at t; query() its RayQuery, asked for only
+  // when the exact comparison is needed.
+  template <typename Distance, typename Query>
+  ReferenceHit nearest(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Distance&& distance,
+                       Query&& query) {
+    ReferenceHit result;
+    result.usedExact = usedExact_;
+    eraseBeyondHorizon();
+    const Candidate* first = spilling_ ? spilled_.data() : inPlace_.data();
+    const std::size_t count = spilling_ ? spilled_.size() : std::size_t(count_);
+    if (count == 0) return result;
+    std::uint32_t winner = triangles[first->slot].id;
+    double winnerT = first->t;
+    if (count > 1) {
+      // Depths too close for their bounds: compare exactly, and keep every exact tie.
+      ++counters.exactComparisons;
+      result.usedExact = true;
+      std::optional<mpq_class> nearestT;
+      int ties = 0;
+      for (const Candidate* candidate = first; candidate != first + count; ++candidate) {
+        const PreparedScene::LeafTriangle& tri = triangles[candidate->slot];
+        const std::optional<mpq_class> t = query().exactHit(tri.a, tri.b, tri.c);
+        HSR_CHECK(t.has_value());
+        if (!nearestT || *t < *nearestT) {
+          nearestT = t;
+          winner = tri.id;
+          ties = 1;
+        } else if (*t == *nearestT) {
+          winner = std::min(winner, tri.id);
+          ++ties;
+        }
+      }
+      winnerT = nearestT->get_d();
+      result.ambiguous = ties > 1;
+    }
+    result.id = winner;
+    result.distance = distance(winnerT);
+    return result;
+  }
+
+ private:
+  struct Candidate {
+    double t, bound;
+    std::uint32_t slot;
+  };
+  void eraseBeyondHorizon() {
+    const auto beyond = [&](const Candidate& c) { return c.t - c.bound > horizon_; };
+    if (spilling_) std::erase_if(spilled_, beyond);
+    else count_ = int(std::remove_if(inPlace_.begin(), inPlace_.begin() + count_, beyond) - inPlace_.begin());
+  }
+
+  static constexpr int kInPlace = 8;
+  double horizon_ = std::numeric_limits<double>::infinity();
+  bool usedExact_ = false;
+  std::array<Candidate, kInPlace> inPlace_;
+  int count_ = 0;
+  bool spilling_ = false;           // once more than kInPlace were held at once, they all live in spilled_
+  std::vector<Candidate> spilled_;
+};
+
+}  // namespace hsr::reference_search
