@@ -9,6 +9,8 @@
 // A decision taken against a bound is a bool for one ray and a Mask4 for four lanes
 // (Truth<Number>); `a ? b : c` chooses by it either way. No function here takes or
 // returns a Double4 by value to or from AVX2 code: only structs and references cross.
+// The ones called per triangle are always inlined (HSR_INLINE): compiled as a function
+// of their own, the four-lane form would get the baseline's two-lane instructions.
 #pragma once
 
 #include <array>
@@ -74,7 +76,7 @@ struct WoopTerms {
 };
 
 template <typename Number>
-WoopTerms<Number> woopTerms(const ShearedRay<Number>& ray, const dvec3& a, const dvec3& b, const dvec3& c) {
+HSR_INLINE WoopTerms<Number> woopTerms(const ShearedRay<Number>& ray, const dvec3& a, const dvec3& b, const dvec3& c) {
   std::array<Number, 3> A, B, C;
   for (int i = 0; i < 3; ++i) {
     A[i] = a[i] - ray.origin[i];
@@ -109,7 +111,7 @@ struct WoopBounds {
 };
 
 template <typename Number>
-WoopBounds<Number> woopBounds(const ShearedRay<Number>& ray, const dvec3& a, const dvec3& b, const dvec3& c, const WoopTerms<Number>& terms) {
+HSR_INLINE WoopBounds<Number> woopBounds(const ShearedRay<Number>& ray, const dvec3& a, const dvec3& b, const dvec3& c, const WoopTerms<Number>& terms) {
   struct Magnitude {
     Number x, y, z;
   };
@@ -142,6 +144,26 @@ WoopBounds<Number> woopBounds(const ShearedRay<Number>& ray, const dvec3& a, con
   return bounds;
 }
 
+// Bounds on u, v and w for every triangle inside the box [low, high], larger than each
+// triangle's own (woopBounds'): the farthest the box reaches from the ray's origin along
+// each axis bounds each vertex's magnitude there, and every operation woopBounds takes
+// them through is monotonic, so the same operations on the larger values give a bound
+// at least as large. A sign decided against it is decided against the triangle's own
+// bounds too, at the cost of a few operations per box instead of per triangle. (Only u,
+// v and w are set.)
+template <typename Number>
+HSR_INLINE WoopBounds<Number> edgeBoundsOverBox(const ShearedRay<Number>& ray, const dvec3& low, const dvec3& high) {
+  std::array<Number, 3> farthest;
+  for (int i = 0; i < 3; ++i) {
+    const Number fromLow = magnitudeOf(low[i] - ray.origin[i]), fromHigh = magnitudeOf(high[i] - ray.origin[i]);
+    farthest[i] = fromLow > fromHigh ? fromLow : fromHigh;
+  }
+  const Number x = farthest[ray.kx] + magnitudeOf(ray.sx) * farthest[ray.kz], y = farthest[ray.ky] + magnitudeOf(ray.sy) * farthest[ray.kz];
+  WoopBounds<Number> bounds;
+  bounds.u = bounds.v = bounds.w = 16 * kUnitRoundoff * (x * y + y * x);
+  return bounds;
+}
+
 // A decision taken against bounds: surely yes, surely no, or neither (left to the
 // exact arithmetic).
 template <typename Number>
@@ -160,7 +182,7 @@ bool inside(const WoopTerms<Number>& terms) {
 
 // `inside`, decided by the bounds where they allow.
 template <typename Number>
-Decided<Number> insideWithBounds(const WoopTerms<Number>& terms, const WoopBounds<Number>& bounds) {
+HSR_INLINE Decided<Number> insideWithBounds(const WoopTerms<Number>& terms, const WoopBounds<Number>& bounds) {
   const Truth<Number> positiveU = terms.u > bounds.u, positiveV = terms.v > bounds.v, positiveW = terms.w > bounds.w;
   const Truth<Number> negativeU = terms.u < -bounds.u, negativeV = terms.v < -bounds.v, negativeW = terms.w < -bounds.w;
   const Truth<Number> somePositive = positiveU | positiveV | positiveW, someNegative = negativeU | negativeV | negativeW;
@@ -190,7 +212,7 @@ struct ViewDistance {
   }
 
   // Is the hit at t (within tBound) between the near and far planes?
-  Decided<Number> inRange(const Number& t, const Number& tBound) const {
+  HSR_INLINE Decided<Number> inRange(const Number& t, const Number& tBound) const {
     const Number d = originDistance + t * slope;
     const Number bound = originDistanceBound + magnitudeOf(t) * slopeBound + magnitudeOf(slope) * tBound +
                          3 * kUnitRoundoff * (magnitudeOf(originDistance) + magnitudeOf(t * slope));

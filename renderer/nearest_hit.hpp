@@ -125,10 +125,12 @@ class NearestHitSearch {
   bool usedExact() const { return usedExact_; }
 
   // A triangle's bounded hit (or miss), slot its index in PreparedScene::leafTriangles.
-  void offer(const BoundedHit& hit, std::uint32_t slot) {
+  HSR_INLINE void offer(const BoundedHit& hit, std::uint32_t slot) {
     usedExact_ = usedExact_ || hit.exact;
-    if (!hit.hit) return;
-    horizon_ = std::min(horizon_, hit.t + hit.bound);
+    // A hit starting beyond the horizon can never be the nearest (the horizon only falls).
+    if (!hit.hit || hit.t - hit.bound > horizon_) return;
+    const bool lowered = hit.t + hit.bound < horizon_;
+    if (lowered) horizon_ = hit.t + hit.bound;
     const Candidate candidate{hit.t, hit.bound, slot};
     if (!spilling_ && count_ < kInPlace) {
       inPlace_[std::size_t(count_++)] = candidate;
@@ -136,13 +138,13 @@ class NearestHitSearch {
       if (!spilling_) spilled_.assign(inPlace_.begin(), inPlace_.end()), spilling_ = true;
       spilled_.push_back(candidate);
     }
-    eraseBeyondHorizon();
+    if (lowered) eraseBeyondHorizon();
   }
 
   // The nearest hit among the candidates: the one candidate, or the exact nearest of
   // several (every exact tie kept: the pixel is ambiguous, the lowest id recorded).
-  // distance(t) is the ray's view distance at t; query() its RayQuery, asked for only
-  // when the exact comparison is needed.
+  // distance(t) is the ray's view distance at t; query() gives its RayQuery, asked for
+  // only when the exact comparison is needed.
   template <typename Distance, typename Query>
   ReferenceHit nearest(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Distance&& distance,
                        Query&& query) {
@@ -158,11 +160,12 @@ class NearestHitSearch {
       // Depths too close for their bounds: compare exactly, and keep every exact tie.
       ++counters.exactComparisons;
       result.usedExact = true;
+      auto&& exactQuery = query();
       std::optional<mpq_class> nearestT;
       int ties = 0;
       for (const Candidate* candidate = first; candidate != first + count; ++candidate) {
         const PreparedScene::LeafTriangle& tri = triangles[candidate->slot];
-        const std::optional<mpq_class> t = query().exactHit(tri.a, tri.b, tri.c);
+        const std::optional<mpq_class> t = exactQuery.exactHit(tri.a, tri.b, tri.c);
         HSR_CHECK(t.has_value());
         if (!nearestT || *t < *nearestT) {
           nearestT = t;

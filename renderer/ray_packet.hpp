@@ -50,6 +50,14 @@ struct RayPacket {
 // The rays of `rays` (a bit per ray) in half h, as bits 0..3.
 inline int raysInHalf(int rays, int half) { return rays >> (4 * half) & 0xF; }
 
+// A leaf's box: child `lane` of node `parent`.
+struct LeafBox {
+  const WideBvhNode& parent;
+  int lane;
+  double low(int axis) const { return parent.low[axis][lane]; }
+  double high(int axis) const { return parent.high[axis][lane]; }
+};
+
 // A wide node's child waiting on a packet traversal's stack: an inner node, or a leaf's
 // run of slots (with where its box is: the parent node and the lane), and the least
 // parameter at which a ray of the packet can enter it.
@@ -109,9 +117,9 @@ HSR_AVX2 inline int raysMeeting(const WideBvhNode& node, int lane, const RayPack
   return met & rays;
 }
 
-// Calls leaf(first slot, count, rays) for every leaf some ray of the packet reaches, in
-// about nearest-first order, with the rays (a bit per ray, within `active`) whose own box
-// test meets the leaf's box within their reach. leaf() may shrink reach (a ray's nearest
+// Calls leaf(first slot, count, rays, box) for every leaf some ray of the packet
+// reaches, in about nearest-first order, with the rays (a bit per ray, within `active`)
+// whose own box test meets the leaf's box within their reach, and the box (a LeafBox). leaf() may shrink reach (a ray's nearest
 // hit so far, as the single-ray traversals widen it; ray r in lane r % 4 of half r / 4),
 // and the traversal then skips what lies beyond every active ray's reach. Returns the
 // inner nodes visited.
@@ -134,7 +142,7 @@ HSR_AVX2 std::int64_t visitLeaves(const WideBvh& bvh, const RayPacket& packet, i
     if (current.count != 0) {
       const int rays = raysMeeting(nodes[current.parent], current.lane, packet, reach, active);
       if (rays != 0) {
-        leaf(current.index, current.count, rays);
+        leaf(current.index, current.count, rays, LeafBox{nodes[current.parent], current.lane});
         farthest = farthestReach();
       }
     } else {

@@ -14,6 +14,7 @@
 #include "renderer/conventions.hpp"
 #include "renderer/error.hpp"
 #include "renderer/parallel.hpp"
+#include "renderer/ray_packet.hpp"
 #include "renderer/rounding.hpp"
 #include "renderer/fog.hpp"
 #include "renderer/outline.hpp"
@@ -28,8 +29,29 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats)
-    : scene_(scene), bvh_(scene.triangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
+SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal)
+    : scene_(scene),
+      bvh_(scene.triangleBvh(stats)),
+      triangles_(scene.leafTriangles(stats)),
+      wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats) : nullptr) {}
+
+void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const {
+  // Eight rays at a time; where they cannot travel together (they straddle a plane of
+  // the view where a direction's component changes sign), four and four; and where four
+  // cannot, one by one.
+  const auto traceOneByOne = [&](int x, int rays) {
+    for (int i = 0; i < rays; ++i)
+      hits[x - x0 + i] = trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x + i), conventions::pixelCenter(y)), counters);
+  };
+  for (int x = x0; x < x0 + count; x += RayPacket::kRays) {
+    const int rays = std::min(RayPacket::kRays, x0 + count - x);
+    if (!wideBvh_) traceOneByOne(x, rays);
+    else if (tracePacket(camera, y, x, rays, hits + (x - x0), counters)) continue;
+    else
+      for (int half = x; half < x + rays; half += 4)
+        if (!tracePacket(camera, y, half, std::min(4, x + rays - half), hits + (half - x0), counters)) traceOneByOne(half, std::min(4, x + rays - half));
+  }
+}
 
 ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const {
   if (bvh_.empty()) return {};
@@ -164,8 +186,8 @@ bool ExactShadows::shadowed(std::size_t light, const dvec3& point, std::uint32_t
   return reference_.blocked({point, direction}, 1e-9, triangle, counters);
 }
 
-ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats) {
-  const SurfaceReference reference(scene, stats);
+ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal) {
+  const SurfaceReference reference(scene, stats, traversal);
   const CameraTransform& camera = scene.camera();
   PhaseTimer timer(stats, "reference");
   ReferenceImage image;
@@ -181,9 +203,11 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
     // cache lines, and other threads work on them.
     SurfaceReference::Counters rowCounters;
     std::int64_t rowExact = 0, rowAmbiguous = 0;
+    std::vector<ReferenceHit> hits(std::size_t(scene.width()));
+    reference.traceRun(camera, int(row), 0, scene.width(), hits.data(), rowCounters);
     for (int x = 0; x < scene.width(); ++x) {
       const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
-      const ReferenceHit hit = reference.trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(int(row))), rowCounters);
+      const ReferenceHit& hit = hits[std::size_t(x)];
       image.frame.ids[pixel] = hit.id;
       image.frame.depth[pixel] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
                                                                        : static_cast<float>(hit.distance);

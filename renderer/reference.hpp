@@ -36,16 +36,24 @@ struct ReferenceHit {
   bool usedExact = false;   // some decision for this ray needed exact arithmetic
 };
 
+// How the reference traverses the BVH for a row of primary rays: eight rays at a time
+// through the wide BVH where the CPU has AVX2 (reference_packets.cpp), or the textbook
+// traversal of one ray at a time. The same ids, depths, ambiguity and fall-backs.
+enum class ReferenceTraversal { packets, textbook };
+
 class SurfaceReference {
  public:
-  // Builds (or reuses) the scene's triangle BVH.
-  SurfaceReference(const PreparedScene& scene, Stats& stats);
+  // Builds (or reuses) the scene's triangle BVH, and the wide one for packets.
+  SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal = ReferenceTraversal::textbook);
 
   // Per-ray work counters, summed by the caller.
   struct Counters {
     std::int64_t nodesVisited = 0, triangleTests = 0, exactTriangleTests = 0, exactComparisons = 0;
   };
   ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
+  // trace() for the rays through pixels x0 .. x0 + count - 1 of row y
+  // (CameraTransform::rayThroughPixel), by the traversal chosen.
+  void traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const;
 
   // Every triangle the ray meets between the near and far planes, nearest first in the
   // exact order of their distances, up to the first opaque one (for the exact blend of
@@ -67,6 +75,10 @@ class SurfaceReference {
   const PreparedScene& scene_;
   const Bvh& bvh_;
   const std::vector<PackedTriangle>& triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
+  const WideBvh* wideBvh_;                         // for packets; null for the textbook traversal
+  // Up to eight rays of a row as one packet, when they can travel together
+  // (RayPacket::travelTogether); false when they cannot.
+  bool tracePacket(const CameraTransform& camera, int y, int x, int count, ReferenceHit* hits, Counters& counters) const;
 };
 
 // Exact shadow rays: a point is shadowed from a light when a segment from it to the light
@@ -100,7 +112,8 @@ struct ReferenceImage {
 // Stats: "reference rays", "reference exact fall-backs", "reference ambiguous pixels",
 // "bvh nodes visited", "ray-triangle tests", "exact ray-triangle tests", "exact depth
 // comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
-ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats);
+ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats,
+                              ReferenceTraversal traversal = ReferenceTraversal::packets);
 // traceReference, then the shading every algorithm's frame gets (renderer/shading), with
 // exact shadow rays where an algorithm's frame has shadow maps, then fog and outline.
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);

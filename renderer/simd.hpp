@@ -20,6 +20,9 @@
 #include <limits>
 
 #define HSR_AVX2 __attribute__((target("avx2")))
+// A function of the baseline build inlined wherever it is called, so that in an HSR_AVX2
+// function it becomes AVX2 code (templates shared by one ray and four lanes).
+#define HSR_INLINE [[gnu::always_inline]] inline
 
 namespace hsr {
 

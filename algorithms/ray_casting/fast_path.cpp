@@ -123,7 +123,7 @@ HSR_AVX2 bool PacketTracer::tracePacket(const CameraTransform& camera, int y, in
     nearestT[half] = pixels[half].tFar;
     reach[half] = nearestT[half] * kReachWidening;
   }
-  const std::int64_t visited = visitLeaves(bvh_, packet, (1 << count) - 1, reach, [&](std::uint32_t first, std::uint16_t leafCount, int met) HSR_AVX2 {
+  const std::int64_t visited = visitLeaves(bvh_, packet, (1 << count) - 1, reach, [&](std::uint32_t first, std::uint16_t leafCount, int met, const LeafBox&) HSR_AVX2 {
     counters.triangleTests += std::int64_t(leafCount) * std::popcount(unsigned(met));
     for (int half = 0; half < RayPacket::kHalves; ++half) {
       if (raysInHalf(met, half) == 0) continue;

@@ -2,9 +2,13 @@
 // exact fall-back at work, and invariance under exact moves and scalings.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "property/random_scene.hpp"
 #include "renderer/reference.hpp"
+#include "renderer/simd.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -167,6 +171,41 @@ TEST(Reference, SameBitsForAnyThreadCount) {
   EXPECT_EQ(a.frame.depth, b.frame.depth);
   EXPECT_EQ(a.frame.color, b.frame.color);
   EXPECT_EQ(one.counter("ray-triangle tests"), two.counter("ray-triangle tests"));
+}
+
+// Empty when the packet traversal (renderer/reference_packets.cpp) gives the textbook
+// traversal's answer bit for bit, else what differs.
+std::string packetsAgainstTextbook(const PreparedScene& scene, int threads) {
+  Stats textbookStats, packetStats;
+  const ReferenceImage textbook = traceReference(scene, threads, textbookStats, ReferenceTraversal::textbook);
+  const ReferenceImage packets = traceReference(scene, threads, packetStats, ReferenceTraversal::packets);
+  std::string found;
+  if (packets.frame.ids != textbook.frame.ids) found += " ids";
+  if (std::memcmp(packets.frame.depth.data(), textbook.frame.depth.data(), packets.frame.depth.size() * sizeof(float)) != 0) found += " depth";
+  if (packets.ambiguous != textbook.ambiguous) found += " ambiguous pixels";
+  if (packets.exactFallbacks != textbook.exactFallbacks)
+    found += " exact fall-backs (" + std::to_string(packets.exactFallbacks) + " against " + std::to_string(textbook.exactFallbacks) + ")";
+  return found;
+}
+
+TEST(Reference, PacketsGiveTheTextbookTraversalsAnswerOnEveryShippedScene) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the reference traces one ray at a time here";
+  for (const auto& file : test::shippedScenes()) {
+    const Scene scene = loadScene(file);
+    PreparedScene prepared(scene);
+    prepared.setSize(317, 203);  // no multiple of 8: a row ends in a packet of fewer rays
+    EXPECT_EQ(packetsAgainstTextbook(prepared, 2), "") << file.filename();
+  }
+}
+
+TEST(Reference, PacketsGiveTheTextbookTraversalsAnswerOnRandomScenes) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the reference traces one ray at a time here";
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const test::RandomScene random = test::randomScene(seed);
+    PreparedScene prepared(random.scene);
+    prepared.setSize(150, 101);
+    ASSERT_EQ(packetsAgainstTextbook(prepared, 1), "") << "seed " << seed << " (" << random.camera << ")";
+  }
 }
 
 }  // namespace

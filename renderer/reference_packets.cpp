@@ -1,0 +1,103 @@
+// The exact reference's fast path: primary rays traced eight at a time through the wide
+// BVH (renderer/ray_packet.hpp), each ray's triangles decided by the same bounded test
+// in four lanes at once (renderer/bounded_woop.hpp) and by the same exact fall-back
+// where the bounds leave a decision open, each ray keeping its own candidates and
+// horizon (renderer/nearest_hit.hpp). A ray sees every leaf its own traversal would
+// reach, in about the same nearest-first order, and offers each triangle with its own
+// horizon at the time: so the ids, depths, ambiguous pixels and exact fall-backs come out
+// the textbook traversal's (tests/reference/reference_test.cpp compares them on every
+// shipped scene and on random ones).
+#include <bit>
+
+#include "renderer/conventions.hpp"
+#include "renderer/nearest_hit.hpp"
+#include "renderer/ray_packet.hpp"
+#include "renderer/reference.hpp"
+#include "renderer/simd.hpp"
+
+namespace hsr {
+
+using namespace reference_search;
+
+HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y, int x, int count, ReferenceHit* hits,
+                                            Counters& counters) const {
+  // The rays through pixels x .. x + count - 1 (the last repeated in the lanes after it),
+  // as rayThroughPixel gives them.
+  constexpr int kHalves = RayPacket::kHalves;
+  const FourRays rays[kHalves] = {
+      camera.raysThroughPixels(double(x) + smaller(Double4{0, 1, 2, 3}, lanesOf(count - 1)) + conventions::kPixelCenterOffset,
+                               conventions::pixelCenter(y)),
+      camera.raysThroughPixels(double(x) + smaller(Double4{4, 5, 6, 7}, lanesOf(count - 1)) + conventions::kPixelCenterOffset,
+                               conventions::pixelCenter(y))};
+  if (!RayPacket::travelTogether(rays)) return false;
+  Double4 inverses[kHalves][3];
+  for (int half = 0; half < kHalves; ++half)
+    for (int axis = 0; axis < 3; ++axis) inverses[half][axis] = inverseOf(rays[half].direction[axis]);
+  const RayPacket packet(rays, inverses);
+  const auto ray = [&](int r) HSR_AVX2 {
+    Ray single;
+    for (int axis = 0; axis < 3; ++axis)
+      single.origin[axis] = rays[r / 4].origin[axis][r % 4], single.direction[axis] = rays[r / 4].direction[axis][r % 4];
+    return single;
+  };
+
+  // Per half, RayQuery's set-up in lanes: the shear and the view distance. Per ray, its
+  // search, and its RayQuery for exact work, made when first needed.
+  const std::array<int, 3> axes = ShearedRay<double>::axesOf(ray(0).direction);
+  const auto lanes = [&](const Double4 (&values)[3]) HSR_AVX2 { return std::array<Double4, 3>{values[0], values[1], values[2]}; };
+  const ShearedRay<Double4> shear[kHalves] = {ShearedRay<Double4>(axes, lanes(rays[0].origin), lanes(rays[0].direction)),
+                                              ShearedRay<Double4>(axes, lanes(rays[1].origin), lanes(rays[1].direction))};
+  const woop::ViewDistance<Double4> view[kHalves] = {woop::ViewDistance<Double4>(camera, lanes(rays[0].origin), lanes(rays[0].direction)),
+                                                     woop::ViewDistance<Double4>(camera, lanes(rays[1].origin), lanes(rays[1].direction))};
+  std::array<NearestHitSearch, RayPacket::kRays> search;
+  // A ray's RayQuery is made afresh for each exact decision: they are rare, and a packet
+  // holding eight would spend more clearing them than they save.
+  const auto query = [&](int r) { return RayQuery(ray(r), camera); };
+  Double4 horizon[kHalves] = {lanesOf(std::numeric_limits<double>::infinity()), lanesOf(std::numeric_limits<double>::infinity())};
+  Double4 reach[kHalves] = {horizon[0], horizon[1]};
+
+  const auto leaf = [&](std::uint32_t first, std::uint16_t leafCount, int met, const LeafBox& box) HSR_AVX2 {
+    for (int half = 0; half < kHalves; ++half) {
+      const int active = raysInHalf(met, half);
+      if (active == 0) continue;
+      const WoopBounds<Double4> boxBounds = woop::edgeBoundsOverBox(shear[half], dvec3(box.low(0), box.low(1), box.low(2)),
+                                                                    dvec3(box.high(0), box.high(1), box.high(2)));
+      for (std::uint32_t slot = first; slot < first + leafCount; ++slot) {
+        const PackedTriangle& tri = triangles_[slot];
+        counters.triangleTests += std::popcount(unsigned(active));
+        // boundedHit, lane by lane: surely missed, a sure hit within the horizon and
+        // between the near and far planes, or left to the exact test. Most rays miss
+        // most triangles, which the box's bounds already show.
+        const WoopTerms<Double4> terms = woopTerms(shear[half], tri.a, tri.b, tri.c);
+        if ((active & ~laneBits(insideWithBounds(terms, boxBounds).no)) == 0) continue;
+        const WoopBounds<Double4> bounds = woopBounds(shear[half], tri.a, tri.b, tri.c, terms);
+        const Decided<Double4> inside = insideWithBounds(terms, bounds);
+        const Decided<Double4> inRange = view[half].inRange(bounds.t, bounds.tBound);
+        const Mask4 beyond = bounds.t - bounds.tBound > horizon[half];
+        const int sure = active & laneBits(inside.yes & ~beyond & inRange.yes);
+        const int missed = laneBits(inside.no | (inside.yes & (beyond | inRange.no)));
+        const int exact = active & ~missed & ~sure;
+        for (int bits = sure | exact; bits != 0; bits &= bits - 1) {
+          const int lane = std::countr_zero(unsigned(bits)), r = 4 * half + lane;
+          if (sure >> lane & 1) {
+            search[r].offer({bounds.t[lane], bounds.tBound[lane], true, false}, slot);
+          } else {
+            RayQuery exactQuery = query(r);
+            search[r].offer(exactBoundedHit(exactQuery, tri, counters), slot);
+          }
+          horizon[half][lane] = search[r].horizon();
+        }
+      }
+      reach[half] = horizon[half] * NearestHitSearch::kEntryWidening;
+    }
+  };
+  counters.nodesVisited += visitLeaves(*wideBvh_, packet, (1 << count) - 1, reach, leaf);
+  for (int r = 0; r < count; ++r) {
+    const woop::ViewDistance<Double4>& lanesView = view[r / 4];
+    const double originDistance = lanesView.originDistance[r % 4], slope = lanesView.slope[r % 4];
+    hits[r] = search[r].nearest(triangles_, counters, [&](double t) { return originDistance + t * slope; }, [&] { return query(r); });
+  }
+  return true;
+}
+
+}  // namespace hsr
