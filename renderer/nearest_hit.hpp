@@ -192,7 +192,7 @@ class NearestHitSearch {
   void eraseBeyondHorizon() {
     const auto beyond = [&](const Candidate& c) { return c.t - c.bound > horizon_; };
     if (spilling_) std::erase_if(spilled_, beyond);
-    else count_ = int(std::remove_if(inPlace_.begin(), inPlace_.begin() + count_, beyond) - inPlace_.begin());
+    else if (count_ > 1) count_ = int(std::remove_if(inPlace_.begin(), inPlace_.begin() + count_, beyond) - inPlace_.begin());
   }
 
   static constexpr int kInPlace = 8;

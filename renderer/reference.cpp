@@ -198,12 +198,13 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
   const auto rows = static_cast<std::size_t>(scene.height());
   std::vector<SurfaceReference::Counters> counters(rows);
   std::vector<std::int64_t> exactRays(rows, 0), ambiguousPixels(rows, 0);
-  parallelFor(rows, threads, [&](std::size_t row, int) {
+  std::vector<std::vector<ReferenceHit>> rowHits(std::size_t(resolveThreadCount(threads)), std::vector<ReferenceHit>(std::size_t(scene.width())));
+  parallelFor(rows, threads, [&](std::size_t row, int worker) {
     // Counted on this thread's stack and stored once: neighbouring rows' counters share
     // cache lines, and other threads work on them.
     SurfaceReference::Counters rowCounters;
     std::int64_t rowExact = 0, rowAmbiguous = 0;
-    std::vector<ReferenceHit> hits(std::size_t(scene.width()));
+    std::vector<ReferenceHit>& hits = rowHits[std::size_t(worker)];
     reference.traceRun(camera, int(row), 0, scene.width(), hits.data(), rowCounters);
     for (int x = 0; x < scene.width(); ++x) {
       const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
