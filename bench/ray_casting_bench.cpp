@@ -1,9 +1,11 @@
-// Ray casting's speed: primary rays per second for the bvh variant on dragons and
-// counters at 1280x720, 1 and 2 threads (the visibility pass: a ray per pixel center,
-// nearest hit, ids and depth written; the BVH already built), the march at its
-// defaults on the same scenes for scale, and the BVH build with its node count.
+// Ray casting's speed: primary rays per second for the bvh variant by each path (the
+// default packets of eight rays, single rays through the wide BVH, the textbook
+// traversal of the binary BVH) on dragons and counters at 1280x720, 1 and 2 threads (the
+// visibility pass: a ray per pixel center, nearest hit, ids and depth written; the BVHs
+// already built), the march at its defaults on the same scenes for scale, and the BVH
+// builds with their node counts.
 //
-// Protocol: one warm-up (which builds the BVH), then Google Benchmark's repetitions.
+// Protocol: one warm-up (which builds the BVHs), then Google Benchmark's repetitions.
 // Run: build/bench/ray_casting_bench --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
@@ -17,11 +19,24 @@ namespace {
 using hsr::bench::kScenes;
 using hsr::bench::sceneNamed;
 
-// Arguments: scene, variant (0 bvh, 2 march), threads.
+// The configurations timed: the bvh variant by path, and the march.
+struct Configuration {
+  const char* name;
+  hsr::ray_casting::Variant variant;
+  hsr::ray_casting::Path path;
+};
+constexpr Configuration kConfigurations[] = {{"bvh path=packet", hsr::ray_casting::Variant::bvh, hsr::ray_casting::Path::packet},
+                                             {"bvh path=simd", hsr::ray_casting::Variant::bvh, hsr::ray_casting::Path::simd},
+                                             {"bvh path=scalar", hsr::ray_casting::Variant::bvh, hsr::ray_casting::Path::scalar},
+                                             {"march (defaults)", hsr::ray_casting::Variant::march, hsr::ray_casting::Path::packet}};
+
+// Arguments: scene, configuration (kConfigurations), threads.
 void primaryRays(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
+  const Configuration& configuration = kConfigurations[state.range(1)];
   hsr::ray_casting::Knobs knobs;
-  knobs.variant = static_cast<hsr::ray_casting::Variant>(state.range(1));
+  knobs.variant = configuration.variant;
+  knobs.path = configuration.path;
   const int threads = static_cast<int>(state.range(2));
   hsr::Visibility visibility{hsr::Frame(scene.width(), scene.height()), std::nullopt};
   hsr::Stats warmUp;
@@ -31,11 +46,10 @@ void primaryRays(benchmark::State& state) {
     hsr::ray_casting::visibility({scene, scene.camera(), nullptr, threads, stats}, knobs, visibility);
     benchmark::DoNotOptimize(visibility.frame.ids.data());
   }
-  state.SetLabel(std::string(kScenes[state.range(0)]) + (state.range(1) == 0 ? " bvh" : " march (defaults)") +
-                 " threads=" + std::to_string(threads));
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " " + configuration.name + " threads=" + std::to_string(threads));
   state.counters["rays/s"] = benchmark::Counter(double(scene.width()) * scene.height(), benchmark::Counter::kIsIterationInvariantRate);
   const double rays = double(scene.width()) * scene.height();
-  if (state.range(1) == 0) {
+  if (configuration.variant == hsr::ray_casting::Variant::bvh) {
     state.counters["nodes/ray"] = double(warmUp.counter("bvh nodes visited")) / rays;
     state.counters["triangles/ray"] = double(warmUp.counter("ray-triangle tests")) / rays;
   } else {
@@ -45,15 +59,17 @@ void primaryRays(benchmark::State& state) {
 
 void bvhBuild(benchmark::State& state) {
   const hsr::Scene& scene = sceneNamed(kScenes[state.range(0)]).scene;
-  std::int64_t nodes = 0;
+  std::int64_t nodes = 0, wideNodes = 0;
   for (auto _ : state) {
     const hsr::PreparedScene prepared(scene);
     hsr::Stats stats;
     nodes = std::int64_t(prepared.triangleBvh(stats).nodes().size());
+    wideNodes = std::int64_t(prepared.wideTriangleBvh(stats).nodes().size());
     benchmark::DoNotOptimize(nodes);
   }
-  state.SetLabel(std::string(kScenes[state.range(0)]) + " flatten + SAH build");
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " flatten + SAH build + collapse to eight children");
   state.counters["nodes"] = double(nodes);
+  state.counters["wide nodes"] = double(wideNodes);
 }
 
 double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
@@ -61,6 +77,6 @@ double maximum(const std::vector<double>& v) { return *std::max_element(v.begin(
 
 }  // namespace
 
-BENCHMARK(primaryRays)->ArgsProduct({{0, 1}, {0, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
+BENCHMARK(primaryRays)->ArgsProduct({{0, 1}, {0, 1, 2, 3}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(bvhBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -165,7 +165,7 @@ AlgorithmEntry entry() {
   setKnobs(entry, knobTable());
   entry.keyCounters = {"primary rays", "bvh nodes visited", "ray-triangle tests", "march samples", "inside tests",
                        "nearest-triangle voxels searched"};
-  entry.studyConfigurations = {{}, {{"path", "scalar"}}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
+  entry.studyConfigurations = {{}, {{"path", "simd"}}, {{"path", "scalar"}}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
   setRefusal(entry, refusal);
   setVisibility(entry, visibility);
   return entry;

@@ -26,9 +26,9 @@ namespace hsr::ray_casting {
 
 enum class Variant { bvh, naive, march };
 
-// How the bvh variant runs: a fast path (fast_path.hpp) over the BVH with four children
-// to a node, one ray at a time or eight at once, or the textbook traversal of the binary
-// BVH. The same ids and depths.
+// How the bvh variant runs: a fast path (fast_path.hpp) over the BVH with eight children
+// to a node, one ray at a time or eight neighbours at once, or the textbook traversal of
+// the binary BVH. The same ids and depths.
 enum class Path { simd, packet, scalar };
 
 
@@ -45,7 +45,7 @@ struct Knobs {
   KnobNumber step{0.5, true};
   int grid = 64;
   int refine = 0;
-  Path path = Path::simd;
+  Path path = Path::packet;
 };
 
 // Why the knobs cannot render this scene ("" when they can): naive or march over budget.
@@ -67,10 +67,10 @@ inline const KnobTable<Knobs>& knobTable() {
           .onlyFor({"march"})
           .number("refine", &Knobs::refine, {0, 52}, {"2", "4", "8"}, "march: bisection steps back to the surface once a sample is inside")
           .onlyFor({"march"})
-          .choice("path", &Knobs::path, {{Path::simd, "simd"}, {Path::packet, "packet"}, {Path::scalar, "scalar"}},
-                  "bvh: simd: one ray at a time through a BVH of eight children to a node, the eight boxes tested at "
-                  "once with AVX2; packet: eight neighbouring rays through it together (fast_path.hpp); both where the "
-                  "CPU has AVX2, else the textbook traversal; scalar: the textbook traversal of the binary BVH. The same "
+          .choice("path", &Knobs::path, {{Path::packet, "packet"}, {Path::simd, "simd"}, {Path::scalar, "scalar"}},
+                  "bvh: packet: eight neighbouring rays together through a BVH of eight children to a node; simd: one "
+                  "ray at a time through it, the eight boxes tested at once (fast_path.hpp); both with AVX2 where the "
+                  "CPU has it, else the textbook traversal; scalar: the textbook traversal of the binary BVH. The same "
                   "ids and depths")
           .onlyFor({"bvh"});
   return table;
