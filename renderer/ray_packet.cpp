@@ -1,6 +1,7 @@
 #include "renderer/ray_packet.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace hsr {
 
@@ -21,7 +22,10 @@ HSR_AVX2 int raysWhere(Mask4 low, Mask4 high) { return laneBits(low) | laneBits(
 
 }  // namespace
 
-HSR_AVX2 RayPacket::RayPacket(const FourRays (&rays)[kHalves], const Double4 (&inverses)[kHalves][3]) : sharedOrigin(true) {
+HSR_AVX2 RayPacket::RayPacket(const FourRays (&rays)[kHalves], const Double4 (&inverses)[kHalves][3])
+    : sharedOrigin(true), closeDirections(true) {
+  const double length = std::sqrt(rays[0].direction[0][0] * rays[0].direction[0][0] + rays[0].direction[1][0] * rays[0].direction[1][0] +
+                                  rays[0].direction[2][0] * rays[0].direction[2][0]);
   for (int axis = 0; axis < 3; ++axis) {
     for (int half = 0; half < kHalves; ++half) {
       origin[axis][half] = rays[half].origin[axis];
@@ -32,6 +36,7 @@ HSR_AVX2 RayPacket::RayPacket(const FourRays (&rays)[kHalves], const Double4 (&i
     originLow[axis] = leastOf(origin[axis]), originHigh[axis] = greatestOf(origin[axis]);
     inverseLow[axis] = leastOf(inverse[axis]), inverseHigh[axis] = greatestOf(inverse[axis]);
     sharedOrigin = sharedOrigin && originLow[axis] == originHigh[axis];
+    closeDirections = closeDirections && greatestOf(direction[axis]) - leastOf(direction[axis]) <= kCloseDirections * length;
   }
 }
 
