@@ -2,9 +2,9 @@
 // vs one-scanline, 1 vs 2 threads. Measures the visibility pass (geometry stage and
 // depth-tested rasterization: what Mesa's peer run does too); "shaded" adds the
 // deferred Lambert shading of the whole render. "reference" traces the exact reference
-// (renderer/reference) over the same scenes, BVH already built, so the cost of ground
-// truth comes out as a ratio to the z-buffer from one run (ray_casting_bench times the
-// BVH build).
+// (renderer/reference) over the same scenes, by packets (its default) or by the textbook
+// traversal, BVHs already built, so the cost of ground truth comes out as a ratio to the
+// z-buffer from one run (ray_casting_bench times the BVH builds).
 //
 // Protocol: one warm-up render, then Google Benchmark's repetitions; it reports
 // mean, median, min, max. Run: build/bench/zbuffer_bench --benchmark_repetitions=5
@@ -88,16 +88,19 @@ void shaded(benchmark::State& state) {
   state.counters["triangles/s"] = benchmark::Counter(double(scene.triangleCount()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// Arguments: scene, traversal (0 packets, 1 textbook), threads.
 void reference(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
-  const int threads = static_cast<int>(state.range(1));
+  const auto traversal = state.range(1) == 0 ? hsr::ReferenceTraversal::packets : hsr::ReferenceTraversal::textbook;
+  const int threads = static_cast<int>(state.range(2));
   hsr::Stats warmUp;
-  hsr::traceReference(scene, threads, warmUp);  // also builds the BVH, once
+  hsr::traceReference(scene, threads, warmUp, traversal);  // also builds the BVHs, once
   for (auto _ : state) {
     hsr::Stats stats;
-    benchmark::DoNotOptimize(hsr::traceReference(scene, threads, stats).frame.ids.data());
+    benchmark::DoNotOptimize(hsr::traceReference(scene, threads, stats, traversal).frame.ids.data());
   }
-  state.SetLabel(std::string(kScenes[state.range(0)]) + " exact reference threads=" + std::to_string(threads));
+  state.SetLabel(std::string(kScenes[state.range(0)]) + " exact reference, " + (state.range(1) == 0 ? "packets" : "textbook") +
+                 " threads=" + std::to_string(threads));
   state.counters["exact fall-backs"] = double(warmUp.counter("reference exact fall-backs"));
   state.counters["rays/s"] = benchmark::Counter(double(scene.width()) * scene.height(), benchmark::Counter::kIsIterationInvariantRate);
 }
@@ -123,7 +126,7 @@ BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(raster)->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
-BENCHMARK(reference)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
+BENCHMARK(reference)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
