@@ -21,17 +21,6 @@ CameraTransform::CameraTransform(const Camera& camera, int width, int height)
   inverseScaleY_ = 1.0 / scaleY_;
 }
 
-dvec3 CameraTransform::viewFromWorld(const dvec3& p) const {
-  const dvec3 relative = p - camera_.eye;
-  return {glm::dot(relative, right_), glm::dot(relative, up_), -glm::dot(relative, forward_)};
-}
-
-ClipVertex CameraTransform::clipFromWorld(const dvec3& p) const {
-  const dvec3 v = viewFromWorld(p);
-  const double d = -v.z;
-  return {scaleX_ * v.x, scaleY_ * v.y, d, perspective() ? d : 1.0};
-}
-
 dmat4 CameraTransform::clipFromWorldMatrix() const {
   // Each clip coordinate is a scaled view axis applied to p - eye: a row (axis, -axis . eye).
   const auto row = [&](const dvec3& axis, double scale) { return dvec4(axis * scale, -glm::dot(axis, camera_.eye) * scale); };
@@ -54,10 +43,6 @@ std::array<Plane, 6> CameraTransform::frustumPlanes() const {
     planes[i] = {dvec3(sides[i]) / length, sides[i].w / length};
   }
   return planes;
-}
-
-dvec2 CameraTransform::pixelFromClip(const ClipVertex& v) const {
-  return {(v.x / v.w * 0.5 + 0.5) * width_, (0.5 - v.y / v.w * 0.5) * height_};
 }
 
 Ray CameraTransform::rayThroughPixel(double px, double py) const {

@@ -41,8 +41,15 @@ class CameraTransform {
   CameraTransform(const Camera& camera, int width, int height);
 
   // Rotation of (p - eye): subtracting the eye first keeps precision far from the origin.
-  dvec3 viewFromWorld(const dvec3& p) const;
-  ClipVertex clipFromWorld(const dvec3& p) const;
+  dvec3 viewFromWorld(const dvec3& p) const {
+    const dvec3 relative = p - camera_.eye;
+    return {glm::dot(relative, right_), glm::dot(relative, up_), -glm::dot(relative, forward_)};
+  }
+  ClipVertex clipFromWorld(const dvec3& p) const {
+    const dvec3 v = viewFromWorld(p);
+    const double d = -v.z;
+    return {scaleX_ * v.x, scaleY_ * v.y, d, perspective() ? d : 1.0};
+  }
   // clipFromWorld as one matrix: (x, y, d, w) = clipFromWorldMatrix() * (p, 1).
   dmat4 clipFromWorldMatrix() const;
   // The six planes bounding what the camera sees (the image's four sides, the near and
@@ -50,7 +57,7 @@ class CameraTransform {
   // (Gribb and Hartmann 2001); indexed by FrustumSide.
   std::array<Plane, 6> frustumPlanes() const;
   // Pixel coordinates (x right, y down, conventions.hpp) of a clip vertex with w > 0.
-  dvec2 pixelFromClip(const ClipVertex& v) const;
+  dvec2 pixelFromClip(const ClipVertex& v) const { return {(v.x / v.w * 0.5 + 0.5) * width_, (0.5 - v.y / v.w * 0.5) * height_}; }
   // The world-space ray through a point in pixel coordinates: from the eye under
   // perspective, parallel to the view axis from the near-plane rectangle under orthographic.
   Ray rayThroughPixel(double px, double py) const;

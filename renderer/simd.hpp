@@ -32,6 +32,9 @@ inline bool cpuHasAvx2() {
   return has;
 }
 
+// Four floats: one SSE register, which the baseline x86-64 has, so no AVX2 needed.
+using Float4 = float __attribute__((vector_size(16)));
+
 using Double4 = double __attribute__((vector_size(32)));
 using Mask4 = std::int64_t __attribute__((vector_size(32)));
 // Eight doubles: two AVX2 registers, which the compiler pairs up operation by operation

@@ -7,6 +7,7 @@
 
 #include "renderer/conventions.hpp"
 #include "renderer/raster.hpp"
+#include "renderer/simd.hpp"
 
 namespace hsr::culling::occlusion {
 namespace {
@@ -37,20 +38,6 @@ int convexHull(std::array<dvec2, 8> points, int count, dvec2* hull) {
 }  // namespace
 
 DepthMap::DepthMap(int w, int h) : width(w), height(h), keys(std::size_t(w) * std::size_t(h), kEmpty) {}
-
-float roundedUp(double value) {
-  if (std::isinf(value)) return static_cast<float>(value);
-  float f = static_cast<float>(value);
-  if (static_cast<double>(f) < value) f = std::nextafter(f, kEmpty);
-  return std::nextafter(f, kEmpty);
-}
-
-float roundedDown(double value) {
-  if (std::isinf(value)) return static_cast<float>(value);
-  float f = static_cast<float>(value);
-  if (static_cast<double>(f) > value) f = std::nextafter(f, -kEmpty);
-  return std::nextafter(f, -kEmpty);
-}
 
 MapView::MapView(const CameraTransform& viewCamera, int mapWidth, int mapHeight)
     : camera(viewCamera),
@@ -127,9 +114,23 @@ void TileMaxima::invalidate(const BoxFootprint& box) {
 float TileMaxima::maximum(int tileX, int tileY) {
   const std::size_t index = std::size_t(tileY) * std::size_t(columns_) + std::size_t(tileX);
   if (stale_[index]) {
+    const int x0 = tileX * kTile, x1 = std::min(map_.width, x0 + kTile), y1 = std::min(map_.height, (tileY + 1) * kTile);
     float largest = -kEmpty;
-    for (int y = tileY * kTile; y < std::min(map_.height, (tileY + 1) * kTile); ++y)
-      for (int x = tileX * kTile; x < std::min(map_.width, (tileX + 1) * kTile); ++x) largest = std::max(largest, map_.at(x, y));
+    if (x1 - x0 == kTile) {
+      // A whole tile's rows, four texels to a vector (the compiler leaves this
+      // reduction scalar by itself: it would have to reorder the comparisons).
+      Float4 lanes = {-kEmpty, -kEmpty, -kEmpty, -kEmpty};
+      for (int y = tileY * kTile; y < y1; ++y)
+        for (int x = x0; x < x1; x += 4) {
+          Float4 four;
+          __builtin_memcpy(&four, &map_.keys[std::size_t(y) * std::size_t(map_.width) + std::size_t(x)], sizeof four);
+          lanes = four > lanes ? four : lanes;
+        }
+      largest = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+    } else {
+      for (int y = tileY * kTile; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) largest = std::max(largest, map_.at(x, y));
+    }
     maxima_[index] = largest;
     stale_[index] = 0;
   }
@@ -178,8 +179,10 @@ bool Pyramid::hidden(const BoxFootprint& box, std::int64_t& texelsRead) const {
 }
 
 void OccluderRasterizer::triangle(const dvec3& a, const dvec3& b, const dvec3& c) {
-  const std::array<ClipVertex, 3> clip = {view_.camera.clipFromWorld(a), view_.camera.clipFromWorld(b),
-                                          view_.camera.clipFromWorld(c)};
+  triangleInClipSpace({view_.camera.clipFromWorld(a), view_.camera.clipFromWorld(b), view_.camera.clipFromWorld(c)});
+}
+
+void OccluderRasterizer::triangleInClipSpace(const std::array<ClipVertex, 3>& clip) {
   ++trianglesRasterized;
   if (rule_ == Rule::center) centerTriangle(clip);
   else conservativeTriangle(clip);
@@ -216,8 +219,8 @@ void OccluderRasterizer::box(const std::array<dvec3, 8>& corners) {
   if (rule_ == Rule::center || crossesNear) {
     // The front faces as triangles, clipped where they cross the near plane.
     eachFrontFace([&](const std::array<int, 4>& quad) {
-      triangle(corners[std::size_t(quad[0])], corners[std::size_t(quad[1])], corners[std::size_t(quad[2])]);
-      triangle(corners[std::size_t(quad[0])], corners[std::size_t(quad[2])], corners[std::size_t(quad[3])]);
+      triangleInClipSpace({clip[std::size_t(quad[0])], clip[std::size_t(quad[1])], clip[std::size_t(quad[2])]});
+      triangleInClipSpace({clip[std::size_t(quad[0])], clip[std::size_t(quad[2])], clip[std::size_t(quad[3])]});
     });
     return;
   }
@@ -277,6 +280,10 @@ void OccluderRasterizer::centerTriangle(const std::array<ClipVertex, 3>& clip) {
       const float rowStart =
           static_cast<float>(sign * screen.depthAt(conventions::kPixelCenterOffset, y + conventions::kPixelCenterOffset));
       float* row = &map_.at(0, y);
+      // The map is far larger than the cache and a run is a few cache lines of it: ask
+      // for the run two rows down now, so it is there when its turn comes.
+      if (y + 2 <= screen.maxY)
+        for (int x = first; x <= last + 16; x += 16) __builtin_prefetch(row + 2 * map_.width + x, 1);
       for (int x = first; x <= last; ++x) row[x] = std::min(row[x], rowStart + kx * static_cast<float>(x));
       written += last - first + 1;
     }

@@ -18,7 +18,10 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "renderer/bvh.hpp"
@@ -39,10 +42,24 @@ struct DepthMap {
   float& at(int x, int y) { return keys[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
 };
 
+// The next float above f: std::nextafter(f, +infinity) for a finite f (-0 and +0 alike
+// go to the smallest positive float), by its bits, without a call into the maths
+// library (the conservative rule takes two per texel it writes).
+inline float nextUp(float f) {
+  if (f == 0) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);  // a positive's magnitude grows, a negative's shrinks
+}
+
 // A double rounded to float in a chosen direction, and one ulp further: a key computed in
 // double within a few of its ulps of the truth still lands on the safe side.
-float roundedUp(double value);
-float roundedDown(double value);
+inline float roundedUp(double value) {
+  if (std::isinf(value)) return static_cast<float>(value);
+  float f = static_cast<float>(value);
+  if (static_cast<double>(f) < value) f = nextUp(f);
+  return nextUp(f);
+}
+inline float roundedDown(double value) { return -roundedUp(-value); }
 
 // The view's camera, seen at the map's resolution: the same view volume, its pixels scaled.
 struct MapView {
@@ -121,6 +138,7 @@ class OccluderRasterizer {
   struct Plane {
     double k0, kx, ky;  // key(x, y) = k0 + kx x + ky y, in map texels
   };
+  void triangleInClipSpace(const std::array<ClipVertex, 3>& clip);
   void centerTriangle(const std::array<ClipVertex, 3>& clip);
   void conservativeTriangle(const std::array<ClipVertex, 3>& clip);
   // The texels wholly inside a convex polygon (map texels, either winding), each written
