@@ -55,9 +55,9 @@ inline float nextUp(float f) {
 // double within a few of its ulps of the truth still lands on the safe side.
 inline float roundedUp(double value) {
   if (std::isinf(value)) return static_cast<float>(value);
-  float f = static_cast<float>(value);
-  if (static_cast<double>(f) < value) f = nextUp(f);
-  return nextUp(f);
+  const float nearest = static_cast<float>(value);
+  const float above = static_cast<double>(nearest) < value ? nextUp(nearest) : nearest;  // a select, not a branch it would mispredict
+  return nextUp(above);
 }
 inline float roundedDown(double value) { return -roundedUp(-value); }
 
@@ -122,6 +122,16 @@ class Pyramid {
   std::vector<DepthMap> levels_;
 };
 
+// An occluder face's key as a plane over the map: key(x, y) = k0 + kx x + ky y, in texels.
+struct KeyPlane {
+  double k0, kx, ky;
+};
+
+// A face's key along one row of the map: key(x) = atZero + slope x.
+struct RowKey {
+  double atZero, slope;
+};
+
 // Rasterizes occluders into a map, by one rule. Occluders are given in world space.
 class OccluderRasterizer {
  public:
@@ -135,15 +145,12 @@ class OccluderRasterizer {
   std::int64_t trianglesRasterized = 0, texelsWritten = 0;
 
  private:
-  struct Plane {
-    double k0, kx, ky;  // key(x, y) = k0 + kx x + ky y, in map texels
-  };
   void triangleInClipSpace(const std::array<ClipVertex, 3>& clip);
   void centerTriangle(const std::array<ClipVertex, 3>& clip);
   void conservativeTriangle(const std::array<ClipVertex, 3>& clip);
   // The texels wholly inside a convex polygon (map texels, either winding), each written
   // with the largest of the planes' keys over it.
-  void conservativePolygon(const dvec2* corners, int count, const Plane* planes, int planeCount);
+  void conservativePolygon(const dvec2* corners, int count, const KeyPlane* planes, int planeCount);
   bool facesEye(const std::array<dvec3, 8>& corners, int axis, int side) const;
 
   const MapView& view_;

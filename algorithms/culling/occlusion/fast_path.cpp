@@ -1,0 +1,75 @@
+// The occluder map's fast path (fast_path.hpp says what it computes and why it is the
+// same). Only the functions marked HSR_AVX2 use AVX2 (renderer/simd.hpp).
+#include "algorithms/culling/occlusion/fast_path.hpp"
+
+#include <limits>
+
+#include "renderer/simd.hpp"
+
+namespace hsr::culling::occlusion {
+namespace {
+
+// Eight floats, and eight 32-bit integers: one AVX2 register each.
+using Float8 = float __attribute__((vector_size(32)));
+using Int8 = std::int32_t __attribute__((vector_size(32)));
+
+// nextUp (depth_map.hpp) lane by lane: a positive float's bits plus one, a negative's
+// minus one, and a zero the smallest positive float.
+HSR_AVX2 Float8 nextUp(Float8 f) {
+  const Int8 bits = Int8(f);
+  const Float8 stepped = Float8(f > 0 ? bits + 1 : bits - 1);
+  const float smallest = std::numeric_limits<float>::denorm_min();
+  return f == 0 ? Float8{} + smallest : stepped;
+}
+
+// Eight doubles (two vectors of four) to eight floats, each rounded to the nearest.
+HSR_AVX2 Float8 narrowed(Double4 low, Double4 high) {
+  return Float8(_mm256_set_m128(_mm256_cvtpd_ps(__m256d(high)), _mm256_cvtpd_ps(__m256d(low))));
+}
+
+// Eight floats widened back to doubles, four at a time.
+HSR_AVX2 Double4 widenedHalf(Float8 f, int half) {
+  return Double4(_mm256_cvtps_pd(half == 0 ? _mm256_castps256_ps128(__m256(f)) : _mm256_extractf128_ps(__m256(f), 1)));
+}
+
+// Two masks of four 64-bit lanes as one of eight 32-bit lanes.
+HSR_AVX2 Int8 narrowedMask(Mask4 low, Mask4 high) {
+  using Int4 = std::int32_t __attribute__((vector_size(16)));
+  return Int8(_mm256_set_m128i(__m128i(__builtin_convertvector(high, Int4)), __m128i(__builtin_convertvector(low, Int4))));
+}
+
+// roundedUp lane by lane: to the nearest float, up one where that fell below, and up
+// one more; an infinity stays itself.
+HSR_AVX2 Float8 roundedUp(Double4 low, Double4 high) {
+  const Float8 nearest = narrowed(low, high);
+  const Int8 fellBelow = narrowedMask(widenedHalf(nearest, 0) < low, widenedHalf(nearest, 1) < high);
+  const Float8 above = fellBelow ? nextUp(nearest) : nearest;
+  const double infinity = std::numeric_limits<double>::infinity();
+  const Int8 infinite = narrowedMask((low == infinity) | (low == -infinity), (high == infinity) | (high == -infinity));
+  return infinite ? nearest : nextUp(above);
+}
+
+}  // namespace
+
+HSR_AVX2 int conservativeRowEightAtATime(float* row, int first, int last, const RowKey* keys, int count) {
+  int x = first;
+  for (; x + 7 <= last; x += 8) {
+    Double4 farthest[2];
+    for (int half = 0; half < 2; ++half) {
+      const Double4 texels = double(x + 4 * half) + Double4{0, 1, 2, 3};
+      farthest[half] = lanesOf(-std::numeric_limits<double>::infinity());
+      for (int k = 0; k < count; ++k) {
+        const Double4 key = keys[k].atZero + keys[k].slope * texels;
+        farthest[half] = farthest[half] < key ? key : farthest[half];  // std::max(farthest, key)
+      }
+    }
+    const Float8 up = roundedUp(farthest[0], farthest[1]);
+    Float8 held;
+    __builtin_memcpy(&held, row + x, sizeof held);
+    const Float8 kept = up < held ? up : held;  // std::min(held, up)
+    __builtin_memcpy(row + x, &kept, sizeof kept);
+  }
+  return x;
+}
+
+}  // namespace hsr::culling::occlusion
