@@ -6,11 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <cstring>
 #include <random>
 
+#include "algorithms/culling/occlusion/fast_path.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
 #include "culling/culling_support.hpp"
 #include "renderer/error.hpp"
+#include "renderer/simd.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -110,6 +113,29 @@ void expectConservativeMap(const std::string& scene, int mapWidth, int mapHeight
         }
     }
   EXPECT_GT(written, mapWidth * mapHeight / 10) << scene << ": the occluders drew something";
+}
+
+// The conservative rule's fast path (fast_path.hpp) writes a row as the textbook loop
+// does, bit for bit: random faces' keys (negative, as -1 / d under perspective, and
+// positive, as d under orthographic, of magnitudes from 1e-4 to 1e4), random runs of a
+// row, over texels holding random keys, empty ones among them.
+TEST(Occlusion, ConservativeRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
+  std::mt19937 random(27);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double magnitude = std::pow(10.0, -4 + 8 * unit(random)), sign = trial % 3 == 0 ? 1.0 : -1.0;
+    RowKey keys[3];
+    const int count = 1 + trial % 3;
+    for (RowKey& key : keys) key = {sign * magnitude * (1 + unit(random)), magnitude * (unit(random) - 0.5) * 1e-3};
+    std::vector<float> held(64);
+    for (float& texel : held) texel = unit(random) < 0.2 ? std::numeric_limits<float>::infinity() : float(sign * magnitude * (1 + 2 * unit(random)));
+    const int first = int(unit(random) * 20), last = first + int(unit(random) * 43);
+    std::vector<float> textbook = held, fast = held;
+    conservativeRow(textbook.data(), first, last, keys, count);
+    conservativeRow(fast.data(), conservativeRowEightAtATime(fast.data(), first, last, keys, count), last, keys, count);
+    ASSERT_EQ(std::memcmp(fast.data(), textbook.data(), fast.size() * sizeof(float)), 0) << "trial " << trial;
+  }
 }
 
 TEST(Occlusion, TheConservativeRuleWritesOnlyWhatTheReferenceConfirms) {

@@ -47,6 +47,14 @@ HSR_AVX2 void keepNearerWithAvx2(float* row, int first, int last, float rowStart
 
 }  // namespace
 
+void conservativeRow(float* row, int first, int last, const RowKey* keys, int count) {
+  for (int x = first; x <= last; ++x) {
+    double farthest = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < count; ++k) farthest = std::max(farthest, keys[k].atZero + keys[k].slope * x);
+    row[x] = std::min(row[x], roundedUp(farthest));
+  }
+}
+
 DepthMap::DepthMap(int w, int h) : width(w), height(h), keys(std::size_t(w) * std::size_t(h), kEmpty) {}
 
 MapView::MapView(const CameraTransform& viewCamera, int mapWidth, int mapHeight)
@@ -392,11 +400,7 @@ void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, co
     float* row = &map_.at(0, y);
     // Eight texels at a time where the CPU has AVX2 (fast_path.hpp: the same bits), the
     // rest one at a time.
-    for (int x = cpuHasAvx2() ? conservativeRowEightAtATime(row, first, last, keys, planeCount) : first; x <= last; ++x) {
-      double farthest = -std::numeric_limits<double>::infinity();
-      for (int k = 0; k < planeCount; ++k) farthest = std::max(farthest, keys[k].atZero + keys[k].slope * x);
-      row[x] = std::min(row[x], roundedUp(farthest));
-    }
+    conservativeRow(row, cpuHasAvx2() ? conservativeRowEightAtATime(row, first, last, keys, planeCount) : first, last, keys, planeCount);
     texelsWritten += last - first + 1;
   }
 }

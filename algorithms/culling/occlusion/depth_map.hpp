@@ -132,6 +132,11 @@ struct RowKey {
   double atZero, slope;
 };
 
+// The conservative rule's texels first .. last of a row, the textbook loop: each keeps
+// the nearer of what it holds and the farthest of the faces' keys there, rounded up
+// (`keys` give each face's key at the corner of the texel where it is largest).
+void conservativeRow(float* row, int first, int last, const RowKey* keys, int count);
+
 // Rasterizes occluders into a map, by one rule. Occluders are given in world space.
 class OccluderRasterizer {
  public:
