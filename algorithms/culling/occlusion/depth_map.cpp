@@ -94,7 +94,7 @@ BoxFootprint footprint(const MapView& view, const std::array<dvec3, 8>& corners)
   // rectangle's edge inside it.
   constexpr double kMargin = 1e-6;
   const auto clampedFloor = [](double value, int limit) {
-    return static_cast<int>(std::clamp(std::floor(value), 0.0, double(limit)));
+    return static_cast<int>(std::clamp(value, 0.0, double(limit)));  // clamped to [0, limit], truncation is the floor
   };
   box.x0 = clampedFloor(lo.x - kMargin, view.width), box.x1 = clampedFloor(hi.x + kMargin + 1, view.width);
   box.y0 = clampedFloor(lo.y - kMargin, view.height), box.y1 = clampedFloor(hi.y + kMargin + 1, view.height);
