@@ -216,7 +216,9 @@ bool OccluderRasterizer::facesEye(const std::array<dvec3, 8>& corners, int axis,
   const dvec3 inward = corners[std::size_t(base ^ (1 << axis))] - origin;
   if (glm::dot(normal, inward) > 0) normal = -normal;
   const dvec3 towardsEye = view_.camera.perspective() ? view_.camera.camera().eye - origin : -view_.camera.forward();
-  return glm::dot(normal, towardsEye) >= -1e-9 * glm::length(normal) * glm::length(towardsEye);
+  // dot(n, e) >= -1e-9 |n| |e|, squared where it is negative (no square roots).
+  const double alongEye = glm::dot(normal, towardsEye);
+  return alongEye >= 0 || alongEye * alongEye <= 1e-18 * glm::dot(normal, normal) * glm::dot(towardsEye, towardsEye);
 }
 
 void OccluderRasterizer::box(const std::array<dvec3, 8>& corners) {
