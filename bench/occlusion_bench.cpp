@@ -61,7 +61,7 @@ void occludees(benchmark::State& state, bool withPyramid) {
   const DepthMap map = occluderDepthMap(c.prepared, view, Knobs{}, c.everyObject, stats);
   const Pyramid pyramid(map);
   std::vector<BoxFootprint> boxes;
-  for (const hsr::Instance& instance : c.prepared.instances()) boxes.push_back(footprint(view, cornersOf(instance.box)));
+  for (const hsr::Instance& instance : c.prepared.instances()) boxes.push_back(footprint(view, instance.box));
   std::int64_t hidden = 0, read = 0;
   for (auto _ : state) {
     hidden = 0;

@@ -45,11 +45,11 @@ class CameraTransform {
     const dvec3 relative = p - camera_.eye;
     return {glm::dot(relative, right_), glm::dot(relative, up_), -glm::dot(relative, forward_)};
   }
-  ClipVertex clipFromWorld(const dvec3& p) const {
-    const dvec3 v = viewFromWorld(p);
+  ClipVertex clipFromView(const dvec3& v) const {
     const double d = -v.z;
     return {scaleX_ * v.x, scaleY_ * v.y, d, perspective() ? d : 1.0};
   }
+  ClipVertex clipFromWorld(const dvec3& p) const { return clipFromView(viewFromWorld(p)); }
   // clipFromWorld as one matrix: (x, y, d, w) = clipFromWorldMatrix() * (p, 1).
   dmat4 clipFromWorldMatrix() const;
   // The six planes bounding what the camera sees (the image's four sides, the near and

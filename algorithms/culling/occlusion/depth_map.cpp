@@ -75,12 +75,23 @@ std::array<dvec3, 8> cornersOf(const Aabb& box) {
   return corners;
 }
 
-BoxFootprint footprint(const MapView& view, const std::array<dvec3, 8>& corners) {
+BoxFootprint footprint(const MapView& view, const Aabb& bounds) {
   BoxFootprint box;
   dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   double nearest = std::numeric_limits<double>::infinity();
-  for (const dvec3& corner : corners) {
-    const ClipVertex v = view.camera.clipFromWorld(corner);
+  // The view transform is affine: each corner's view coordinates are the low corner's
+  // moved by the box's sides, transformed once (a few ulps from transforming each
+  // corner, far inside the margins below).
+  const CameraTransform& camera = view.camera;
+  const dvec3 low = camera.viewFromWorld(bounds.lo), size = bounds.hi - bounds.lo;
+  const dvec3 sides[3] = {size.x * dvec3(camera.right().x, camera.up().x, -camera.forward().x),
+                          size.y * dvec3(camera.right().y, camera.up().y, -camera.forward().y),
+                          size.z * dvec3(camera.right().z, camera.up().z, -camera.forward().z)};
+  for (int corner = 0; corner < 8; ++corner) {
+    dvec3 inView = low;
+    for (int axis = 0; axis < 3; ++axis)
+      if (corner >> axis & 1) inView += sides[axis];
+    const ClipVertex v = camera.clipFromView(inView);
     if (v.d < view.volume.near) {
       box.crossesNear = true;
       return box;

@@ -81,7 +81,7 @@ struct BoxFootprint {
   float nearest = 0;
   bool empty() const { return x0 >= x1 || y0 >= y1; }
 };
-BoxFootprint footprint(const MapView& view, const std::array<dvec3, 8>& corners);
+BoxFootprint footprint(const MapView& view, const Aabb& box);
 std::array<dvec3, 8> cornersOf(const Aabb& box);
 
 // Hidden when every texel of the footprint holds a key nearer than the box's nearest;

@@ -59,7 +59,7 @@ double estimatedDepthComplexity(const PreparedScene& scene, const MapView& view,
   const double texels = double(view.width) * double(view.height);
   double covered = 0;
   for (const std::uint32_t instance : instancesIn(scene, in)) {
-    const BoxFootprint box = footprint(view, cornersOf(scene.instances()[instance].box));
+    const BoxFootprint box = footprint(view, scene.instances()[instance].box);
     covered += box.crossesNear ? texels : box.empty() ? 0.0 : double(box.x1 - box.x0) * double(box.y1 - box.y0);
   }
   return covered / texels;
@@ -119,7 +119,7 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
   std::vector<float> nearest;
   nearest.reserve(occluders.size());
   for (const std::uint32_t instance : occluders) {
-    const BoxFootprint& box = boxes.emplace_back(footprint(view, cornersOf(scene.instances()[instance].box)));
+    const BoxFootprint& box = boxes.emplace_back(footprint(view, scene.instances()[instance].box));
     nearest.push_back(box.crossesNear ? -std::numeric_limits<float>::infinity() : box.nearest);
   }
   const std::vector<std::uint32_t> order = nearestFirst(nearest);
@@ -237,7 +237,7 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const
   std::int64_t tested = 0, culled = 0, texelsRead = 0;
   VisibleSet out = keepObjects(scene, in, [&](std::uint32_t instance) {
     ++tested;
-    const BoxFootprint box = footprint(view, cornersOf(scene.instances()[instance].box));
+    const BoxFootprint box = footprint(view, scene.instances()[instance].box);
     const bool hidden = pyramid ? pyramid->hidden(box, texelsRead) : hiddenOnMap(map, box, texelsRead);
     culled += hidden;
     return !hidden;
