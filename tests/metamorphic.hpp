@@ -209,7 +209,7 @@ inline EdgeOnFaces edgeOnFaces(const PreparedScene& original, const PreparedScen
 inline bool alongEdgeOnFace(const FeatureEdge& junction, const PreparedScene& scene, const std::vector<std::uint32_t>& triangles) {
   const CameraTransform& camera = scene.camera();
   for (const std::uint32_t t : triangles) {
-    std::array<dvec2, 3> corners;
+    std::array<dvec2, 3> corners{};  // (read only when every corner is in front, and so set)
     bool inFront = true;
     for (std::size_t k = 0; k < 3; ++k) {
       const ClipVertex clip = camera.clipFromWorld(scene.positions()[scene.triangles()[t][k]]);
