@@ -8,7 +8,9 @@
 //   mpq_class  exact rationals, for the fall-back where a bound leaves a decision open.
 // A decision taken against a bound is a bool for one ray and a Mask4 for four lanes
 // (Truth<Number>); `a ? b : c` chooses by it either way. No function here takes or
-// returns a Double4 by value to or from AVX2 code: only structs and references cross.
+// returns a Double4 by value to or from AVX2 code: only structs and references cross;
+// the small ones that return one are always inlined into their caller (a call left in an
+// unoptimized build would pass it the baseline's way, and crash).
 // The ones called per triangle are always inlined (HSR_INLINE): compiled as a function
 // of their own, the four-lane form would get the baseline's two-lane instructions.
 #pragma once
@@ -27,11 +29,11 @@ namespace hsr::woop {
 template <typename Number>
 using Truth = decltype(std::declval<Number>() < std::declval<Number>());
 
-inline double magnitudeOf(double x) { return std::abs(x); }
-inline Double4 magnitudeOf(const Double4& x) { return Double4(Mask4(x) & 0x7FFF'FFFF'FFFF'FFFF); }  // the sign bit cleared
+HSR_INLINE double magnitudeOf(double x) { return std::abs(x); }
+HSR_INLINE Double4 magnitudeOf(const Double4& x) { return Double4(Mask4(x) & 0x7FFF'FFFF'FFFF'FFFF); }  // the sign bit cleared
 
 template <typename Number>
-Number broadcast(double value) {
+HSR_INLINE Number broadcast(double value) {
   if constexpr (std::is_same_v<Number, Double4>) return Double4{value, value, value, value};
   else return Number(value);
 }
