@@ -35,22 +35,6 @@ void emitTriangle(const dvec2 pixel[3], const double t[3], const CameraTransform
     out.corners.push_back({dvec3(pixel[0], t[0]), dvec3(pixel[1], t[1]), dvec3(pixel[2], t[2])});
 }
 
-// Projects a convex clip-space polygon and emits it as a fan of screen triangles.
-void emitPolygon(const ClipPolygon& polygon, const CameraTransform& camera, std::uint32_t triangle, Part& out,
-                 Counts& counts) {
-  dvec2 pixel[9];
-  double t[9];
-  for (int i = 0; i < polygon.count; ++i) {
-    pixel[i] = camera.pixelFromClip(polygon.vertices[i]);
-    t[i] = camera.screenAffineDepth(polygon.vertices[i].d);
-  }
-  for (int i = 1; i + 1 < polygon.count; ++i) {
-    const dvec2 fanPixel[3] = {pixel[0], pixel[i], pixel[i + 1]};
-    const double fanT[3] = {t[0], t[i], t[i + 1]};
-    emitTriangle(fanPixel, fanT, camera, triangle, out, counts);
-  }
-}
-
 // The vertices the triangle stage will read, as runs [first, end) of positions() cut
 // into pieces of at most kPiece, so that threads share the work evenly whichever
 // objects survived culling: every vertex without a VisibleSet, else the vertices of each
@@ -95,23 +79,13 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
   // Left uninitialized: every element a triangle reads is written by the loop below, in
   // parallel. A vertex in front of the near plane is also projected here, once, however
   // many triangles share it (on a closed mesh, about six).
-  const auto clip = std::make_unique_for_overwrite<ClipVertex[]>(positions.size());
-  const auto outcodes = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
-  const auto pixels = std::make_unique_for_overwrite<dvec2[]>(positions.size());
-  const auto depths = std::make_unique_for_overwrite<double[]>(positions.size());
+  const auto vertices = std::make_unique_for_overwrite<ScreenVertex[]>(positions.size());
   const int workers = resolveThreadCount(threads);
   {
     PhaseTimer vertexTimer(stats, "geometry: vertices");
     const auto pieces = vertexPieces(scene, submitted);
     parallelFor(pieces.size(), workers, [&](std::size_t piece, int) {
-      for (std::uint32_t v = pieces[piece].first; v < pieces[piece].second; ++v) {
-        clip[v] = camera.clipFromWorld(positions[v]);
-        outcodes[v] = volume.outside(clip[v]);
-        if (!(outcodes[v] & kNearPlane)) {
-          pixels[v] = camera.pixelFromClip(clip[v]);
-          depths[v] = camera.screenAffineDepth(clip[v].d);
-        }
-      }
+      for (std::uint32_t v = pieces[piece].first; v < pieces[piece].second; ++v) vertices[v] = screenVertex(camera, volume, positions[v]);
     });
     std::int64_t transformed = 0;
     for (const auto& [first, end] : pieces) transformed += end - first;
@@ -137,22 +111,12 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
     for (std::size_t k = begin; k < end; ++k) {
       const std::size_t i = submitted ? submitted->triangles[k] : k;
       const Triangle& t = triangles[i];
-      const std::uint32_t codes[3] = {outcodes[t[0]], outcodes[t[1]], outcodes[t[2]]};
-      // All three vertices outside one plane: no point of the triangle is visible.
-      if (codes[0] & codes[1] & codes[2]) {
-        ++counts[part].outside;
-        continue;
-      }
-      const std::uint32_t crossed = (codes[0] | codes[1] | codes[2]) & kClippingPlanes;
-      if (!crossed) {  // the common case: already projected by the vertex stage
-        const dvec2 corners[3] = {pixels[t[0]], pixels[t[1]], pixels[t[2]]};
-        const double cornerDepths[3] = {depths[t[0]], depths[t[1]], depths[t[2]]};
-        emitTriangle(corners, cornerDepths, camera, static_cast<std::uint32_t>(i), out, counts[part]);
-        continue;
-      }
-      ++counts[part].clipped;
-      const ClipPolygon polygon = clipTriangle({clip[t[0]], clip[t[1]], clip[t[2]]}, volume, crossed);
-      if (polygon.count >= 3) emitPolygon(polygon, camera, static_cast<std::uint32_t>(i), out, counts[part]);
+      const TriangleFate fate = triangleStage(vertices[t[0]], vertices[t[1]], vertices[t[2]], camera, volume,
+                                              [&](const dvec2 pixel[3], const double depth[3]) {
+                                                emitTriangle(pixel, depth, camera, static_cast<std::uint32_t>(i), out, counts[part]);
+                                              });
+      counts[part].outside += fate == TriangleFate::outside;
+      counts[part].clipped += fate == TriangleFate::clipped;
     }
   });
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "renderer/camera.hpp"
+#include "renderer/clip.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/raster.hpp"
@@ -37,6 +38,60 @@ struct GeometryOptions {
   // Only these triangles (what culling stages kept); nullptr: all of them.
   const VisibleSet* submitted = nullptr;
 };
+
+// The vertex stage for one vertex: in clip space, the clipping planes (and the image's
+// edges) it lies outside of, and, when it is in front of the near plane, where it
+// projects: its pixel position and screen-affine depth t.
+struct ScreenVertex {
+  ClipVertex clip;
+  std::uint32_t outside;
+  dvec2 pixel;
+  double depth;
+};
+inline ScreenVertex screenVertex(const CameraTransform& camera, const ClipVolume& volume, const dvec3& world) {
+  ScreenVertex vertex;
+  vertex.clip = camera.clipFromWorld(world);
+  vertex.outside = volume.outside(vertex.clip);
+  if (!(vertex.outside & kNearPlane)) {
+    vertex.pixel = camera.pixelFromClip(vertex.clip);
+    vertex.depth = camera.screenAffineDepth(vertex.clip.d);
+  }
+  return vertex;
+}
+
+// What the triangle stage did with one triangle.
+enum class TriangleFate { outside, projected, clipped };
+
+// The triangle stage for one triangle whose corners went through the vertex stage:
+// dropped when all three lie outside one plane, else projected (clipped first at the
+// planes it crosses, its polygon cut into a fan) and handed to emit(pixel[3], t[3]) as
+// corner pixel positions and depths, one call per piece.
+template <typename Emit>
+TriangleFate triangleStage(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, const CameraTransform& camera,
+                           const ClipVolume& volume, Emit&& emit) {
+  // All three vertices outside one plane: no point of the triangle is visible.
+  if (a.outside & b.outside & c.outside) return TriangleFate::outside;
+  const std::uint32_t crossed = (a.outside | b.outside | c.outside) & kClippingPlanes;
+  if (!crossed) {  // the common case: the vertex stage projected the corners already
+    const dvec2 pixel[3] = {a.pixel, b.pixel, c.pixel};
+    const double depth[3] = {a.depth, b.depth, c.depth};
+    emit(pixel, depth);
+    return TriangleFate::projected;
+  }
+  const ClipPolygon polygon = clipTriangle({a.clip, b.clip, c.clip}, volume, crossed);
+  dvec2 pixel[9];
+  double depth[9];
+  for (int i = 0; i < polygon.count; ++i) {
+    pixel[i] = camera.pixelFromClip(polygon.vertices[i]);
+    depth[i] = camera.screenAffineDepth(polygon.vertices[i].d);
+  }
+  for (int i = 1; i + 1 < polygon.count; ++i) {
+    const dvec2 fanPixel[3] = {pixel[0], pixel[i], pixel[i + 1]};
+    const double fanDepth[3] = {depth[0], depth[i], depth[i + 1]};
+    emit(fanPixel, fanDepth);
+  }
+  return TriangleFate::clipped;
+}
 
 // Counts in stats: "triangles in", "triangles outside view" (rejected whole),
 // "triangles clipped", "triangles between pixel centers" (zero area or no center
