@@ -8,66 +8,49 @@
 #include "algorithms/culling/culling.hpp"
 
 namespace hsr::culling::frustum {
-namespace {
 
-enum class Side { outside, crossing, inside };
+ViewVolume::ViewVolume(const PreparedScene& scene, const CameraTransform& camera) : planes(camera.frustumPlanes()) {
+  double magnitude = 0;
+  for (const Instance& instance : scene.instances())
+    magnitude = std::max({magnitude, glm::length(glm::abs(instance.box.lo)), glm::length(glm::abs(instance.box.hi))});
+  for (const Plane& plane : planes) magnitude = std::max(magnitude, std::abs(plane.offset));
+  slack = 0x1p-40 * 2 * magnitude;
+}
 
-// The six planes, and the margin a distance must clear to count as outside: 2^-40 of the
-// largest magnitude in play, thousands of times the rounding error of a distance
-// (a few units in the last place), and far below anything a pixel can show.
-struct Volume {
-  std::array<Plane, 6> planes;
-  double slack = 0;
-  std::int64_t planesTested = 0;
+// A box against one plane: outside when even its corner farthest along the normal is
+// behind the plane (Akenine-Möller et al., Real-Time Rendering, "plane/box" by projected
+// extent).
+ViewVolume::Side ViewVolume::boxSide(int side, const dvec3& center, const dvec3& halfExtent) {
+  ++planesTested;
+  const Plane& plane = planes[std::size_t(side)];
+  const double reach = glm::dot(halfExtent, glm::abs(plane.normal)), distance = plane.distance(center);
+  if (distance < -(reach + slack)) return Side::outside;
+  return distance > reach ? Side::inside : Side::crossing;
+}
 
-  Volume(const PreparedScene& scene, const CameraTransform& camera) : planes(camera.frustumPlanes()) {
-    double magnitude = 0;
-    for (const Instance& instance : scene.instances())
-      magnitude = std::max({magnitude, glm::length(glm::abs(instance.box.lo)), glm::length(glm::abs(instance.box.hi))});
-    for (const Plane& plane : planes) magnitude = std::max(magnitude, std::abs(plane.offset));
-    slack = 0x1p-40 * 2 * magnitude;
-  }
-
-  // A box given by its center and half extent, against one plane: outside when even its
-  // corner farthest along the normal is behind the plane (Akenine-Möller et al., Real-Time
-  // Rendering, "plane/box" by projected extent).
-  Side boxSide(int side, const dvec3& center, const dvec3& halfExtent) {
+bool ViewVolume::sphereOutside(const dvec3& center, double radius) {
+  for (const Plane& plane : planes) {
     ++planesTested;
-    const Plane& plane = planes[std::size_t(side)];
-    const double reach = glm::dot(halfExtent, glm::abs(plane.normal)), distance = plane.distance(center);
-    if (distance < -(reach + slack)) return Side::outside;
-    return distance > reach ? Side::inside : Side::crossing;
+    if (plane.distance(center) < -(radius + slack)) return true;
   }
+  return false;
+}
 
-  bool sphereOutside(const dvec3& center, double radius) {
-    for (const Plane& plane : planes) {
-      ++planesTested;
-      if (plane.distance(center) < -(radius + slack)) return true;
-    }
-    return false;
+bool ViewVolume::boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask) {
+  for (int side = 0; side < 6; ++side) {
+    if (!(mask & (1u << side))) continue;
+    const Side result = boxSide(side, center, halfExtent);
+    if (result == Side::outside) return false;
+    if (result == Side::inside) mask &= ~(1u << side);
   }
+  return true;
+}
 
-  // The box against the planes still in `mask` (bit i: plane i unsettled); clears the
-  // bits of the planes the box is wholly inside. False when it is outside one.
-  bool boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask) {
-    for (int side = 0; side < 6; ++side) {
-      if (!(mask & (1u << side))) continue;
-      const Side result = boxSide(side, center, halfExtent);
-      if (result == Side::outside) return false;
-      if (result == Side::inside) mask &= ~(1u << side);
-    }
-    return true;
-  }
-};
-
-constexpr std::uint32_t kAllPlanes = 0b111111;
-
-dvec3 centerOf(const Aabb& box) { return box.center(); }
-dvec3 halfExtentOf(const Aabb& box) { return (box.hi - box.lo) * 0.5; }
+namespace {
 
 // The hierarchical test: down the object BVH with plane masking. Marks the instances not
 // proven outside; counts the objects tested in the leaves reached.
-std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, Volume& volume, std::int64_t& objectsTested,
+std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolume& volume, std::int64_t& objectsTested,
                                             Stats& stats) {
   const Bvh& bvh = scene.objectBvh(stats);
   std::vector<std::uint8_t> keep(scene.instances().size(), 0);
@@ -75,7 +58,7 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, Volume& 
     std::uint32_t node, mask;
   };
   std::vector<Visit> stack;
-  if (!bvh.empty()) stack.push_back({0, kAllPlanes});
+  if (!bvh.empty()) stack.push_back({0, ViewVolume::kAllPlanes});
   std::int64_t visited = 0;
   while (!stack.empty()) {
     auto [index, mask] = stack.back();
@@ -98,7 +81,7 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, Volume& 
       std::uint32_t objectMask = mask;
       ++objectsTested;
       const Aabb& box = scene.instances()[instance].box;
-      keep[instance] = volume.boxMayBeInside(centerOf(box), halfExtentOf(box), objectMask);
+      keep[instance] = volume.boxMayBeInside(box, objectMask);
     }
   }
   stats.add("frustum: bvh nodes visited", visited);
@@ -110,7 +93,7 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, Volume& 
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
                 int threads, Stats& stats) {
   PhaseTimer timer(stats, "culling: frustum");
-  Volume volume(scene, camera);
+  ViewVolume volume(scene, camera);
   VisibleSet out;
   // Per object: each object that still has triangles in `in` is tested once.
   std::int64_t objectsTested = 0, objectsCulled = 0;
@@ -131,8 +114,8 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
     case Variant::aabb:
       out = keepObjectsThat([&](const Instance& instance) {
         ++objectsTested;
-        std::uint32_t mask = kAllPlanes;
-        return volume.boxMayBeInside(centerOf(instance.box), halfExtentOf(instance.box), mask);
+        std::uint32_t mask = ViewVolume::kAllPlanes;
+        return volume.boxMayBeInside(instance.box, mask);
       });
       break;
     case Variant::bvh: {

@@ -21,6 +21,9 @@
 // triangle the reference sees (a false cull is a bug).
 #pragma once
 
+#include <array>
+#include <cstdint>
+
 #include "algorithms/culling/culling.hpp"
 #include "renderer/camera.hpp"
 #include "renderer/prepare.hpp"
@@ -31,6 +34,29 @@ namespace hsr::culling::frustum {
 
 // In the order of the stage's variants (culling.cpp).
 enum class Variant { sphere, aabb, bvh, triangle, anyVertex };
+
+// The six planes, and the margin a distance must clear to count as outside: 2^-40 of the
+// largest magnitude in play (the scene's boxes, the planes' offsets), thousands of times
+// the rounding error of a distance (a few units in the last place), and far below
+// anything a pixel can show. Counts the planes it tests.
+struct ViewVolume {
+  enum class Side { outside, crossing, inside };
+  static constexpr std::uint32_t kAllPlanes = 0b111111;
+
+  std::array<Plane, 6> planes;
+  double slack = 0;
+  std::int64_t planesTested = 0;
+
+  ViewVolume(const PreparedScene& scene, const CameraTransform& camera);
+  // A box given by its center and half extent, against plane `side`.
+  Side boxSide(int side, const dvec3& center, const dvec3& halfExtent);
+  bool sphereOutside(const dvec3& center, double radius);
+  // The box against the planes still in `mask` (bit i: plane i unsettled); clears the
+  // bits of the planes the box is wholly inside. False when it is outside one: what a
+  // hierarchy's traversal passes down, so that children skip the planes settled above.
+  bool boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask);
+  bool boxMayBeInside(const Aabb& box, std::uint32_t& mask) { return boxMayBeInside(box.center(), (box.hi - box.lo) * 0.5, mask); }
+};
 
 // The triangles of `in` not proven outside the view volume. Counts, as they apply:
 // "frustum: objects tested", "frustum: objects culled", "frustum: planes tested",
