@@ -55,6 +55,9 @@ struct KnobSpec {
   };
   std::optional<Range> range = std::nullopt;  // set for a numeric knob
   std::vector<std::string> variants = {};     // the values of the owner's "variant" knob it applies to; empty: all
+  // A choice that may also be given bare, as a value right after the variant
+  // (occlusion:queries:chc for occlusion:queries:strategy=chc).
+  bool bare = false;
 
   bool appliesTo(const std::string& variant) const;
 };
@@ -181,6 +184,13 @@ class KnobTable {
   // with another variant, it is an error rather than something silently ignored.
   KnobTable& onlyFor(std::vector<std::string> variants) {
     knobs_.back().spec.variants = std::move(variants);
+    return *this;
+  }
+
+  // The knob declared last (a choice) may also be given as a bare value right after the
+  // variant it applies to.
+  KnobTable& bare() {
+    knobs_.back().spec.bare = true;
     return *this;
   }
 

@@ -71,8 +71,9 @@ void printKnobs(const std::vector<KnobSpec>& knobs, const std::string& prefix) {
     }
     std::string applies;
     for (const auto& variant : knob.variants) applies += (applies.empty() ? ", variant " : " or ") + variant;
-    std::printf("    %s%s=%s   (default %s%s)\n      %s\n", prefix.c_str(), knob.name.c_str(), choices.c_str(),
-                knob.defaultValue.c_str(), applies.c_str(), knob.help.c_str());
+    std::printf("    %s%s=%s   (default %s%s)\n      %s%s\n", prefix.c_str(), knob.name.c_str(), choices.c_str(),
+                knob.defaultValue.c_str(), applies.c_str(), knob.help.c_str(),
+                knob.bare ? " (may be given bare, right after the variant: VARIANT:VALUE)" : "");
   }
 }
 

@@ -9,11 +9,18 @@
 namespace hsr::culling {
 namespace {
 
-std::string variantList(const StageEntry& stage) {
-  const std::vector<std::string>& variants = stage.variantKnob().choices;
+// "a, b or c".
+std::string choiceList(const std::vector<std::string>& choices) {
   std::string text;
-  for (std::size_t i = 0; i < variants.size(); ++i) text += (i == 0 ? "" : i + 1 == variants.size() ? " or " : ", ") + variants[i];
+  for (std::size_t i = 0; i < choices.size(); ++i) text += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
   return text;
+}
+
+// The knob of `stage` that may be given bare after `variant`, or nullptr.
+const KnobSpec* bareKnob(const StageEntry& stage, const std::string& variant) {
+  for (const KnobSpec& knob : stage.knobs)
+    if (knob.bare && knob.appliesTo(variant)) return &knob;
+  return nullptr;
 }
 
 }  // namespace
@@ -25,8 +32,11 @@ const std::vector<StageEntry>& stages() {
 
 std::string StageChoice::name() const {
   std::string text = stage->name + ":" + variant();
+  const KnobSpec* bare = bareKnob(*stage, variant());
+  if (bare) text += ":" + knobs.at(bare->name);
   for (const KnobSpec& knob : stage->knobs)
-    if (knob.name != "variant" && knobs.at(knob.name) != knob.defaultValue) text += ":" + knob.name + "=" + knobs.at(knob.name);
+    if (knob.name != "variant" && &knob != bare && knobs.at(knob.name) != knob.defaultValue)
+      text += ":" + knob.name + "=" + knobs.at(knob.name);
   return text;
 }
 
@@ -55,10 +65,19 @@ Pipeline parsePipeline(const std::string& text, const std::string& where) {
     if (variantGiven) {
       const std::vector<std::string>& variants = stage->variantKnob().choices;
       if (std::find(variants.begin(), variants.end(), parts[1]) == variants.end())
-        throw InputError(where + ": culling stage " + name + " has no variant '" + parts[1] + "'; expected " + variantList(*stage));
+        throw InputError(where + ": culling stage " + name + " has no variant '" + parts[1] + "'; expected " + choiceList(stage->variantKnob().choices));
       settings.emplace_back("variant", parts[1]);
     }
-    for (std::size_t i = variantGiven ? 2 : 1; i < parts.size(); ++i) {
+    std::size_t next = variantGiven ? 2 : 1;
+    // A bare value right after the variant sets the knob that takes one (occlusion:queries:chc).
+    const std::string variant = variantGiven ? parts[1] : stage->variantKnob().defaultValue;
+    if (const KnobSpec* bare = bareKnob(*stage, variant); bare && variantGiven && next < parts.size() && parts[next].find('=') == std::string::npos) {
+      if (std::find(bare->choices.begin(), bare->choices.end(), parts[next]) == bare->choices.end())
+        throw InputError(where + ": " + name + ":" + variant + " has no " + bare->name + " '" + parts[next] + "'; expected " +
+                         choiceList(bare->choices));
+      settings.emplace_back(bare->name, parts[next++]);
+    }
+    for (std::size_t i = next; i < parts.size(); ++i) {
       if (parts[i].find('=') == std::string::npos)
         throw InputError(where + ": '" + parts[i] + "' in '" + item + "' is not a setting; expected " + name +
                          "[:VARIANT] followed by :KNOB=VALUE settings");
@@ -104,8 +123,11 @@ VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int
                        const PreviousFrame* previous, StepRecorder* steps) {
   const CameraTransform& camera = scene.camera();
   VisibleSet set = VisibleSet::everything(scene);
-  for (const StageChoice& choice : pipeline) {
-    VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps});
+  if (previous && previous->memory) previous->memory->resize(std::max(previous->memory->size(), pipeline.size()));
+  for (std::size_t s = 0; s < pipeline.size(); ++s) {
+    const StageChoice& choice = pipeline[s];
+    std::unique_ptr<StageMemory>* memory = previous && previous->memory ? &(*previous->memory)[s] : nullptr;
+    VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps, memory});
     if (steps) recordStage(scene, camera, choice, set, kept, *steps);
     set = std::move(kept);
   }
@@ -137,6 +159,14 @@ VisibleSet keepObjects(const PreparedScene& scene, const VisibleSet& in, const s
     if (keep(instance)) out.triangles.insert(out.triangles.end(), begin, end);
   });
   return out;
+}
+
+std::vector<TriangleRun> trianglesByInstance(const PreparedScene& scene, const VisibleSet& in) {
+  std::vector<TriangleRun> runs(scene.instances().size());
+  forEachInstanceIn(scene, in, [&](std::uint32_t instance, auto begin, auto end) {
+    runs[instance] = {static_cast<std::uint32_t>(begin - in.triangles.begin()), static_cast<std::uint32_t>(end - in.triangles.begin())};
+  });
+  return runs;
 }
 
 std::vector<std::uint32_t> instancesIn(const PreparedScene& scene, const VisibleSet& in) {

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <functional>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,17 +25,31 @@
 #include "renderer/frame.hpp"
 #include "renderer/parallel.hpp"
 #include "renderer/prepare.hpp"
+#include "renderer/simulated_gpu.hpp"
 #include "renderer/stats.hpp"
 #include "renderer/steps.hpp"
 #include "renderer/visible_set.hpp"
 
 namespace hsr::culling {
 
-// What the previous frame left behind, for a stage that reuses it
-// (occlusion:previous-frame): its camera and its image, whose depth it reads.
+// What a stage carries from one frame of a walk to the next (occlusion:queries keeps
+// its hierarchy's visibility and its answers still in flight); each such stage derives
+// its own.
+struct StageMemory {
+  virtual ~StageMemory() = default;
+};
+
+// What earlier frames of a walk left behind, for the stages that use them: the previous
+// frame's camera and image, whose depth occlusion:previous-frame reads (null on the
+// first frame); a memory slot per stage of the pipeline, kept by the caller from frame
+// to frame; and the simulated GPU the walk is drawn on (renderer/simulated_gpu.hpp),
+// for occlusion:queries, which draws and queries as it goes (the caller begins and ends
+// its frames). Null memory or GPU: the stage starts from nothing, on a GPU of its own.
 struct PreviousFrame {
   Camera camera;
   const Frame* frame = nullptr;
+  std::vector<std::unique_ptr<StageMemory>>* memory = nullptr;
+  SimulatedGpu* gpu = nullptr;
 };
 
 // What a stage works on: the scene seen from its camera, and what earlier stages kept.
@@ -46,6 +61,7 @@ struct StageInput {
   Stats& stats;
   const PreviousFrame* previous;  // nullptr: none (the first frame, or a single image)
   StepRecorder* steps = nullptr;  // where the stage records its steps; null: not asked (renderer/steps.hpp)
+  std::unique_ptr<StageMemory>* memory = nullptr;  // this stage's slot in previous->memory, or null
 };
 
 // A stage as the pipeline and `hsr list` see it. Each stage file declares its own
@@ -113,6 +129,12 @@ VisibleSet keepTriangles(const VisibleSet& in, int threads, MakeTest&& makeTest)
 VisibleSet keepObjects(const PreparedScene& scene, const VisibleSet& in, const std::function<bool(std::uint32_t)>& keep);
 // The instances that have triangles in `in`, ascending.
 std::vector<std::uint32_t> instancesIn(const PreparedScene& scene, const VisibleSet& in);
+// For each instance, its triangles in `in`: the part [first, end) of in.triangles (empty
+// when it has none).
+struct TriangleRun {
+  std::uint32_t first = 0, end = 0;
+};
+std::vector<TriangleRun> trianglesByInstance(const PreparedScene& scene, const VisibleSet& in);
 
 // keepTriangles: each chunk writes its own list, and the lists are joined in chunk
 // order, so the output is the same for any thread count.

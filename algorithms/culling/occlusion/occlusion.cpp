@@ -1,6 +1,8 @@
 // Occlusion culling (occlusion.hpp has the methods and the knobs).
 #include "algorithms/culling/occlusion/occlusion.hpp"
 
+#include "algorithms/culling/occlusion/queries.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -31,16 +33,26 @@ StageEntry stage() {
   StageEntry entry = stageEntry("occlusion", "drop objects hidden behind nearer ones, by their boxes against a small depth map", knobTable());
   entry.mayDropVisible = [](const KnobValues& values) {
     const Knobs& knobs = values.as<Knobs>();
+    if (knobs.method == Method::queries) return knobs.strategy == QueryStrategy::delayed || knobs.threshold > 0;
     return knobs.method == Method::previousFrame || knobs.rule == Rule::center;
   };
   entry.conflict = [](const KnobValues& values) {
     const Knobs& knobs = values.as<Knobs>();
-    return knobs.occluders == Occluders::all && !(knobs.fraction == Knobs{}.fraction)
-               ? "fraction applies only with occluders=volume or solid-angle"
-               : std::string();
+    const Knobs defaults;
+    if (knobs.occluders == Occluders::all && !(knobs.fraction == defaults.fraction))
+      return std::string("fraction applies only with occluders=volume or solid-angle");
+    const bool chcppKnobsChanged = knobs.batch != defaults.batch || knobs.assumeVisible != defaults.assumeVisible ||
+                                   knobs.multiqueries != defaults.multiqueries || knobs.tightBounds != defaults.tightBounds;
+    if (knobs.method == Method::queries && knobs.strategy != QueryStrategy::chcpp && chcppKnobsChanged)
+      return std::string("batch, assume-visible, multiqueries and tight-bounds apply only to the chcpp strategy");
+    return std::string();
   };
-  entry.run = [](const KnobValues& knobs, const StageInput& input) {
-    return cull(input.scene, input.camera, knobs.as<Knobs>(), input.in, input.previous, input.stats, input.steps);
+  entry.run = [](const KnobValues& values, const StageInput& input) {
+    const Knobs& knobs = values.as<Knobs>();
+    if (knobs.method == Method::queries)
+      return cullWithQueries(input.scene, input.camera, knobs, input.in, input.memory, input.previous ? input.previous->gpu : nullptr,
+                             input.stats);
+    return cull(input.scene, input.camera, knobs, input.in, input.previous, input.stats, input.steps);
   };
   return entry;
 }

@@ -9,6 +9,10 @@
 //                    reduced with max, and an object is tested where it was in that frame.
 //                    An object that comes into view behind what was there appears one
 //                    frame late; the studies count those frames.
+//   queries          no map: hardware occlusion queries on a simulated GPU, over a
+//                    hierarchy of the objects, by one of four strategies (queries.hpp):
+//                    stop-and-wait, delayed, chc (Bittner et al. 2004), chcpp (Mattausch
+//                    et al. 2008).
 //
 // Knobs:
 //   map-width, map-height  the map's resolution (the view's aspect need not match: its
@@ -23,6 +27,7 @@
 //   shape                  mesh: an occluder's own triangles; box: its inner box, a closed
 //                          box wholly inside it (12 triangles, or one polygon under the
 //                          conservative rule), where the object has one (a box solid)
+//   strategy ... tight-bounds   the query methods' knobs (queries.hpp)
 #pragma once
 
 #include <array>
@@ -30,11 +35,14 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/culling/occlusion/depth_map.hpp"
+#include "algorithms/culling/occlusion/hierarchy.hpp"
+#include "renderer/simulated_gpu.hpp"
 
 namespace hsr::culling::occlusion {
 
-enum class Method { depthMap, previousFrame };
+enum class Method { depthMap, previousFrame, queries };
 enum class Occluders { all, volume, solidAngle };
+enum class QueryStrategy { stopAndWait, delayed, chc, chcpp };
 
 struct Knobs {
   Method method = Method::depthMap;
@@ -46,6 +54,16 @@ struct Knobs {
   // Run only when the objects' boxes cover the view at least this many times over
   // (estimatedDepthComplexity); 0: always.
   double minDepthComplexity = 0;
+  // The query methods (queries.hpp).
+  QueryStrategy strategy = QueryStrategy::chc;
+  int threshold = 0;  // visible when more fragments than this pass
+  int latency = 1;
+  LatencyUnit latencyIn = LatencyUnit::frames;
+  HierarchyKind hierarchy = HierarchyKind::bvh;
+  int batch = 50;          // chcpp: previously hidden nodes queried together
+  int assumeVisible = 8;   // chcpp: frames a visible leaf goes unqueried
+  bool multiqueries = true;  // chcpp
+  bool tightBounds = true;   // chcpp
 };
 
 inline const KnobTable<Knobs>& knobTable() {
@@ -54,15 +72,20 @@ inline const KnobTable<Knobs>& knobTable() {
           .variants(&Knobs::method,
                     {{Method::depthMap, "depth-map", "occluders rasterized into a small depth map, nearest first"},
                      {Method::previousFrame, "previous-frame",
-                      "the previous frame's depth, reduced to the map: objects coming into view appear a frame late"}},
-                    "where the depth map comes from")
+                      "the previous frame's depth, reduced to the map: objects coming into view appear a frame late"},
+                     {Method::queries, "queries",
+                      "occlusion queries on a simulated GPU over a hierarchy of the objects: stop-and-wait, delayed, chc or chcpp"}},
+                    "where the depth map comes from, or queries instead of a map")
           .number("map-width", &Knobs::mapWidth, {1, 4096}, {"64", "128", "512"}, "the depth map's width in texels")
+          .onlyFor({"depth-map", "previous-frame"})
           .number("map-height", &Knobs::mapHeight, {1, 4096}, {"64", "256"}, "the depth map's height in texels")
+          .onlyFor({"depth-map", "previous-frame"})
           .choice("raster", &Knobs::rule, {{Rule::conservative, "conservative"}, {Rule::center, "center"}},
                   "conservative: a texel only where one occluder covers it entirely, at its farthest depth there; center: the "
                   "rasterizer's pixel-center rule (can cull objects seen through gaps)")
           .onlyFor({"depth-map"})
           .onOff("pyramid", &Knobs::pyramid, "on: each box tested on the hierarchical-Z level where it spans at most 2x2 texels")
+          .onlyFor({"depth-map", "previous-frame"})
           .choice("occluders", &Knobs::occluders,
                   {{Occluders::all, "all"}, {Occluders::volume, "volume"}, {Occluders::solidAngle, "solid-angle"}},
                   "which objects are drawn into the map: all, or the largest by world volume or by solid angle")
@@ -72,7 +95,40 @@ inline const KnobTable<Knobs>& knobTable() {
           .onlyFor({"depth-map"})
           .number("min-depth-complexity", &Knobs::minDepthComplexity, {0, 1000}, {"1.5", "2", "4"},
                   "run only when the objects' boxes cover the view at least this many times over (estimated from their "
-                  "footprints on the map), else keep everything; 0: always");
+                  "footprints on the map), else keep everything; 0: always")
+          .onlyFor({"depth-map", "previous-frame"})
+          .choice("strategy", &Knobs::strategy,
+                  {{QueryStrategy::stopAndWait, "stop-and-wait"}, {QueryStrategy::delayed, "delayed"}, {QueryStrategy::chc, "chc"},
+                   {QueryStrategy::chcpp, "chcpp"}},
+                  "stop-and-wait: down the hierarchy, waiting for each answer; delayed: every leaf drawn by its newest answer, "
+                  "never waiting (objects coming into view appear late); chc: coherent hierarchical culling, last frame's "
+                  "visible leaves drawn while queries are in flight; chcpp: CHC++, with batched queries and multiqueries")
+          .onlyFor({"queries"})
+          .bare()
+          .number("threshold", &Knobs::threshold, {0, 1e5}, {"10", "100"},
+                  "a node is visible when more than this many of its box's fragments pass (0: exact)")
+          .onlyFor({"queries"})
+          .number("latency", &Knobs::latency, {0, 1000}, {"0", "2", "8"},
+                  "how late answers come back: after this many frames, or queries (latency-in)")
+          .onlyFor({"queries"})
+          .choice("latency-in", &Knobs::latencyIn, {{LatencyUnit::frames, "frames"}, {LatencyUnit::queries, "queries"}},
+                  "frames: an answer is in that many frames after its query; queries: once that many more queries were issued")
+          .onlyFor({"queries"})
+          .choice("hierarchy", &Knobs::hierarchy, {{HierarchyKind::bvh, "bvh"}, {HierarchyKind::kd, "kd"}},
+                  "the hierarchy queried: the object BVH, or a k-d tree of the objects")
+          .onlyFor({"queries"})
+          .number("batch", &Knobs::batch, {1, 10000}, {"1", "10", "200"},
+                  "chcpp: previously hidden nodes gathered before their queries are issued together")
+          .onlyFor({"queries"})
+          .number("assume-visible", &Knobs::assumeVisible, {1, 1000}, {"1", "4", "16"},
+                  "chcpp: frames a visible leaf is drawn without a query (the first wait drawn at random, to spread them)")
+          .onlyFor({"queries"})
+          .onOff("multiqueries", &Knobs::multiqueries,
+                 "chcpp: on: nodes likely to stay hidden share one query (re-asked one by one if it comes back visible)")
+          .onlyFor({"queries"})
+          .onOff("tight-bounds", &Knobs::tightBounds,
+                 "chcpp: on: a node queried by its children's or objects' boxes where they cover less than its own")
+          .onlyFor({"queries"});
   return table;
 }
 
