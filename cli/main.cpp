@@ -98,20 +98,23 @@ int main(int argc, char** argv) {
 
   hsr::studies::StudyOptions study;
   CLI::App* studyCommand = app.add_subcommand(
-      "study", "an experiment, reproduced: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects, shadow-map");
+      "study", "an experiment, reproduced: culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, effects, shadow-map");
   studyCommand->add_option("name", study.name,
-                           "the study: culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects or shadow-map")
+                           "the study: culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, effects or shadow-map")
       ->required();
   studyCommand->add_option("--scenes", study.scenes, "some of the study's scenes: cube,counters,trees,dragons (default all)");
   studyCommand->add_option("--frames", study.frames,
                            "frames: culling-combos over a full turn at 60 degrees/s (default 360), occlusion-walkthrough "
-                           "along its path (500); the timing repeats of hzb-resolution (30) and occluder-fraction (20)")
+                           "along its path (500), occlusion-queries' positions over its four levels (2000); the timing repeats of hzb-resolution (30) and occluder-fraction (20)")
       ->check(CLI::Range(1, 100000));
   studyCommand->add_option("--error-frames", study.errorFrames, "frames compared with the exact reference, evenly spread")
       ->check(CLI::Range(0, 100000))->capture_default_str();
   studyCommand->add_option("--size", study.size, "WIDTHxHEIGHT for every scene");
   threadsOption(studyCommand, study.threads);
   studyCommand->add_option("--out", study.out, "folder for the study's CSV and plot (default out/study/NAME)");
+  studyCommand->add_option("--shard", study.shard, "occlusion-queries: K/N, walk only this run's share K of N (its segments K, K+N, ...)");
+  studyCommand->add_option("--merge", study.merge, "occlusion-queries: the --out folders of shard runs, joined into one table and plot")
+      ->expected(1, -1);
 
   hsr::cli::DiffOptions diff;
   CLI::App* diffCommand = app.add_subcommand("diff", "compare two images: exit 0 within tolerance, 1 beyond");

@@ -363,16 +363,20 @@ std::filesystem::path studyFolder(const StudyOptions& options) {
 }
 
 int study(const StudyOptions& options) {
-  const std::vector<std::string> occlusionStudies = {"occlusion-walkthrough", "hzb-resolution", "occluder-fraction"};
+  const std::vector<std::string> occlusionStudies = {"occlusion-walkthrough", "occlusion-queries", "hzb-resolution", "occluder-fraction"};
   const std::vector<std::string> effectsStudies = {"effects", "shadow-map"};
   const auto among = [&](const std::vector<std::string>& names) {
     return std::find(names.begin(), names.end(), options.name) != names.end();
   };
   if (options.name != "culling-combos" && !among(occlusionStudies) && !among(effectsStudies))
     throw InputError("study " + options.name +
-                     ": unknown study; expected culling-combos, occlusion-walkthrough, hzb-resolution, occluder-fraction, effects "
+                     ": unknown study; expected culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, effects "
                      "or shadow-map");
   if (!options.size.empty()) parseSize(options.size, "--size");
+  if (options.name != "occlusion-queries" && (!options.shard.empty() || !options.merge.empty()))
+    throw InputError(std::string(options.shard.empty() ? "--merge" : "--shard") + ": study " + options.name +
+                     " is not sharded; expected study occlusion-queries");
+  if (options.name == "occlusion-queries") checkOcclusionQueriesOptions(options);
   const std::filesystem::path folder = studyFolder(options);
   if (options.name != "culling-combos") {
     if (!options.scenes.empty()) throw InputError("--scenes: study " + options.name + " has its own scenes; --scenes is for culling-combos");

@@ -357,6 +357,7 @@ int occluderFraction(const StudyOptions& options, const std::filesystem::path& f
 
 int occlusionStudy(const StudyOptions& options, const std::filesystem::path& folder) {
   if (options.name == "occlusion-walkthrough") return walkthrough(options, folder);
+  if (options.name == "occlusion-queries") return occlusionQueriesStudy(options, folder);
   if (options.name == "hzb-resolution") return hzbResolution(options, folder);
   return occluderFraction(options, folder);
 }

@@ -43,12 +43,18 @@ struct StudyOptions {
   int threads = 1;
   std::string size;
   std::string out;     // "": out/study/NAME
+  std::string shard;   // occlusion-queries: "K/N", this run's share of the walk; "": all of it
+  std::vector<std::string> merge;  // occlusion-queries: shard folders to join instead of walking
 };
 int study(const StudyOptions& options);
 // Where a study writes: --out, or out/study/NAME.
 std::filesystem::path studyFolder(const StudyOptions& options);
 // The occlusion studies (occlusion_studies.cpp), into `folder`.
 int occlusionStudy(const StudyOptions& options, const std::filesystem::path& folder);
+// occlusion-queries (occlusion_queries_study.cpp), into `folder`; its --shard and --merge
+// checked first (InputError), before the folder is made.
+void checkOcclusionQueriesOptions(const StudyOptions& options);
+int occlusionQueriesStudy(const StudyOptions& options, const std::filesystem::path& folder);
 // The effects studies (effects_studies.cpp), into `folder`.
 int effectsStudy(const StudyOptions& options, const std::filesystem::path& folder);
 

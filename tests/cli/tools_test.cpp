@@ -256,6 +256,43 @@ TEST(Study, CullingCombosWritesItsTableAndCountsTheWorkEachModeSaves) {
   EXPECT_GT(readImage(folder / "culling_combos.png").width, 0);
 }
 
+// occlusion-queries walked whole and in three shards merged: the same rows but for the
+// measured times, and the same table; only the whole run and the merge draw the plot.
+TEST(Study, OcclusionQueriesShardedAndMergedEqualsOneRun) {
+  const std::string common = std::string(HSR_BINARY) + " study occlusion-queries --frames 8 --size 48x27 --out ";
+  const auto whole = freshFolder("queries-whole");
+  test::CommandResult result = test::runCommand(common + whole.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::string shards;
+  for (int k = 1; k <= 3; ++k) {
+    const std::string part = std::to_string(k);
+    const auto shard = freshFolder("queries-shard-" + part);
+    result = test::runCommand(common + shard.string() + " --shard " + part + "/3");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    EXPECT_FALSE(std::filesystem::exists(shard / "occlusion_queries.png")) << "a shard's plot would show part of the walk";
+    shards += ' ';
+    shards += shard.string();
+  }
+  const auto merged = freshFolder("queries-merged");
+  result = test::runCommand(std::string(HSR_BINARY) + " study occlusion-queries --out " + merged.string() + " --merge" + shards);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_GT(readImage(merged / "occlusion_queries.png").width, 0);
+  const std::vector<std::string> measured = {"frame_ms", "waiting_ms", "frame_ms_mean", "frame_ms_variance", "frame_ms_p5", "frame_ms_p95",
+                                             "waiting_ms_mean"};
+  for (const std::string file : {"occlusion_queries_frames.csv", "occlusion_queries.csv"}) {
+    std::vector<std::string> header, mergedHeader;
+    const std::vector<Row> one = readCsv(whole / file, header), joined = readCsv(merged / file, mergedHeader);
+    EXPECT_EQ(header, mergedHeader) << file;
+    ASSERT_EQ(one.size(), joined.size()) << file;
+    EXPECT_EQ(one.size(), file == std::string("occlusion_queries.csv") ? 36u : 72u) << "4 levels x 9 methods (x 2 positions)";
+    for (std::size_t r = 0; r < one.size(); ++r)
+      for (const std::string& column : header)
+        if (std::find(measured.begin(), measured.end(), column) == measured.end()) {
+          EXPECT_EQ(one[r].at(column), joined[r].at(column)) << file << " row " << r << " " << column;
+        }
+  }
+}
+
 TEST(Render, ExplainSaysWhichPassesRunAndWhy) {
   const auto folder = freshFolder("explain");
   std::filesystem::create_directories(folder);

@@ -1,0 +1,356 @@
+// occlusion-queries (README "Occlusion queries"): the survey's walkthrough experiment.
+// Four levels of different depth complexity, each walked along a camera path; nine
+// culling methods draw every position on a simulated GPU (renderer/simulated_gpu.hpp),
+// so that the methods that cull on the CPU (depth map, HZB, previous frame) and those
+// that ask the GPU (the query strategies) are timed on one timeline: the frame ends when
+// both the CPU and the GPU have finished. A method without queries culls on the CPU,
+// then issues a draw per object it kept.
+//
+// The path is cut into segments of kSegmentFrames positions, each walked from a cold
+// start (no memory, a fresh GPU), so that segments are independent: --shard K/N walks
+// segments K, K + N, ... and writes their per-frame rows; --merge joins the rows of
+// several shard folders and writes the table and plots a single run would have.
+//
+// Per frame and method: the frame's time and the CPU's wait, triangles drawn, queries
+// issued and wasted (answered visible), and against the exact reference: objects late
+// (seen, not drawn, and not drawn since they came into view) and false culls (seen, not
+// drawn, though drawn earlier in the same spell of being seen: popping out).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "algorithms/culling/culling.hpp"
+#include "algorithms/registry.hpp"
+#include "renderer/error.hpp"
+#include "renderer/metrics.hpp"
+#include "renderer/reference.hpp"
+#include "renderer/simulated_gpu.hpp"
+#include "studies/common.hpp"
+#include "studies/interrupt.hpp"
+#include "studies/plot.hpp"
+#include "studies/results.hpp"
+#include "studies/studies.hpp"
+
+namespace hsr::studies {
+namespace {
+
+constexpr int kSegmentFrames = 50;
+constexpr int kDefaultPositions = 2000;  // the survey walked 2,216
+const char* const kFramesFile = "occlusion_queries_frames.csv";
+
+struct Level {
+  std::string name, file, description;
+};
+const std::vector<Level> kLevels = {{"city", "city_walk", "city streets at eye height"},
+                                    {"corridors", "corridors", "a corridor level at eye height"},
+                                    {"castle", "castle", "a castle from a third-person camera"},
+                                    {"map", "strategy_map", "a strategy map from above"}};
+
+struct Method {
+  std::string name, cull;
+};
+const std::vector<Method> kMethods = {{"none", ""},
+                                      {"frustum", "frustum"},
+                                      {"depth-map", "frustum,occlusion"},
+                                      {"hzb", "frustum,occlusion:pyramid=on"},
+                                      {"previous-frame", "frustum,occlusion:previous-frame"},
+                                      {"stop-and-wait", "frustum,occlusion:queries:stop-and-wait"},
+                                      {"delayed", "frustum,occlusion:queries:delayed"},
+                                      {"chc", "frustum,occlusion:queries:chc"},
+                                      {"chcpp", "frustum,occlusion:queries:chcpp"}};
+
+// Position `f` of `frames` on a level's path. The city walks its streets (the square
+// loop of occlusion-walkthrough); the other levels orbit their camera's target once.
+Camera pathCamera(const Level& level, const Camera& base, int f, int frames) {
+  if (level.file == "city_walk") {
+    const dvec2 corners[4] = {{-40, 40}, {-40, -40}, {40, -40}, {40, 40}};
+    const double along = 4.0 * f / frames;
+    const int leg = std::min(3, int(along));
+    const dvec2 from = corners[leg], to = corners[(leg + 1) % 4];
+    const dvec2 position = from + (along - leg) * (to - from), heading = glm::normalize(to - from);
+    Camera camera = base;
+    camera.eye = dvec3(position.x, 1.7, position.y);
+    camera.target = camera.eye + dvec3(heading.x, 0, heading.y);
+    return camera;
+  }
+  Camera camera = base;
+  const dmat4 turn = glm::rotate(dmat4(1), 2 * glm::pi<double>() * f / frames, dvec3(0, 1, 0));
+  camera.eye = base.target + dvec3(turn * dvec4(base.eye - base.target, 0));
+  return camera;
+}
+
+// One method walking one segment: what it carries from frame to frame.
+struct MethodWalk {
+  culling::Pipeline pipeline;
+  bool queries = false;
+  std::vector<std::unique_ptr<culling::StageMemory>> memory;
+  SimulatedGpu gpu;
+  Visibility last;  // previous-frame: the frame before, drawn by the z-buffer
+  Camera lastCamera;
+  bool hasLast = false;
+  std::vector<std::uint8_t> drawnInSpell;  // per object: drawn since it last came into view
+};
+
+// One frame of the per-frame CSV.
+struct FrameRow {
+  std::string level, method;
+  int segment = 0, frame = 0;
+  double ms = 0, waitingMs = 0;
+  std::int64_t triangles = 0, queries = 0, wasted = 0, late = 0, falseCulls = 0;
+};
+
+FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& seen,
+                   const std::vector<std::uint8_t>& seenBefore, MethodWalk& walk, int threads) {
+  const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
+  walk.gpu.beginFrame(scene.camera());
+  const culling::PreviousFrame previous{walk.lastCamera, walk.hasLast ? &walk.last.frame : nullptr, &walk.memory, &walk.gpu};
+  Stats stats;
+  const VisibleSet kept = culling::runPipeline(scene, walk.pipeline, threads, stats, &previous);
+  const std::vector<culling::TriangleRun> runs = culling::trianglesByInstance(scene, kept);
+  if (!walk.queries)  // the query strategies drew as they went
+    for (std::uint32_t object = 0; object < runs.size(); ++object)
+      if (runs[object].end > runs[object].first)
+        walk.gpu.draw(scene, object, {kept.triangles.data() + runs[object].first, runs[object].end - runs[object].first});
+  const GpuFrameTimes times = walk.gpu.endFrame();
+  if (walk.pipeline.size() > 1 && walk.pipeline.back().variant() == "previous-frame") {
+    // Untimed: the depth the next frame reprojects.
+    Stats untimed;
+    walk.last.frame = Frame(scene.width(), scene.height());
+    zbuffer.algorithm->visibility({scene, scene.camera(), &kept, threads, untimed}, zbuffer.knobs, walk.last);
+  }
+  walk.lastCamera = scene.camera().camera(), walk.hasLast = true;
+
+  FrameRow row;
+  row.ms = 1e3 * times.frame, row.waitingMs = 1e3 * times.waiting;
+  row.triangles = std::int64_t(kept.triangles.size());
+  row.queries = stats.counter("queries: issued"), row.wasted = stats.counter("queries: answered visible");
+  walk.drawnInSpell.resize(seen.size(), 0);
+  for (std::size_t object = 0; object < seen.size(); ++object) {
+    const bool drawn = runs[object].end > runs[object].first;
+    if (seen[object] && !seenBefore[object]) walk.drawnInSpell[object] = 0;  // a new spell in view
+    if (seen[object] && !drawn) (walk.drawnInSpell[object] ? row.falseCulls : row.late) += 1;
+    walk.drawnInSpell[object] = walk.drawnInSpell[object] || (seen[object] && drawn);
+  }
+  return row;
+}
+
+// The segments of the walk, in order: (level, first position).
+std::vector<std::pair<std::size_t, int>> segmentsOf(int positionsPerLevel) {
+  std::vector<std::pair<std::size_t, int>> segments;
+  for (std::size_t level = 0; level < kLevels.size(); ++level)
+    for (int first = 0; first < positionsPerLevel; first += kSegmentFrames) segments.emplace_back(level, first);
+  return segments;
+}
+
+std::vector<CsvRow> csvRows(const std::vector<FrameRow>& rows) {
+  std::vector<CsvRow> csv;
+  for (const FrameRow& r : rows)
+    csv.push_back({{"level", r.level}, {"segment", std::to_string(r.segment)}, {"frame", std::to_string(r.frame)}, {"method", r.method},
+                   {"frame_ms", formatted(r.ms, "%.6g")}, {"waiting_ms", formatted(r.waitingMs, "%.6g")},
+                   {"triangles", std::to_string(r.triangles)}, {"queries", std::to_string(r.queries)},
+                   {"wasted_queries", std::to_string(r.wasted)}, {"objects_late", std::to_string(r.late)},
+                   {"false_culls", std::to_string(r.falseCulls)}});
+  return csv;
+}
+
+// The per-frame rows of a shard folder, as its CSV has them.
+std::vector<FrameRow> readFrames(const std::filesystem::path& folder) {
+  const std::filesystem::path file = folder / kFramesFile;
+  std::ifstream in(file);
+  if (!in) throw InputError("--merge " + folder.string() + ": no " + kFramesFile + " in it; expected a folder a --shard run wrote");
+  std::string line;
+  std::getline(in, line);
+  const std::string header = "level,segment,frame,method,frame_ms,waiting_ms,triangles,queries,wasted_queries,objects_late,false_culls";
+  if (line != header) throw InputError("--merge " + file.string() + ": line 1 is not the header this study writes; expected " + header);
+  std::vector<FrameRow> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    std::vector<std::string> fields;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+    FrameRow row;
+    try {
+      if (fields.size() != 11) throw std::invalid_argument("fields");
+      row.level = fields[0], row.segment = std::stoi(fields[1]), row.frame = std::stoi(fields[2]), row.method = fields[3];
+      row.ms = std::stod(fields[4]), row.waitingMs = std::stod(fields[5]);
+      row.triangles = std::stoll(fields[6]), row.queries = std::stoll(fields[7]), row.wasted = std::stoll(fields[8]);
+      row.late = std::stoll(fields[9]), row.falseCulls = std::stoll(fields[10]);
+    } catch (const std::exception&) {
+      throw InputError("--merge " + file.string() + ":" + std::to_string(number) + ": not a row of 11 numbers and names; expected " + header);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The table (level x method): frame time's mean, variance and 5% extremes (the 5th and
+// 95th percentiles), and the means and totals of the rest; then the files: the frames in
+// the order of the walk (segment, position, method), whatever order they were measured
+// or merged in, the table, and with `plot` its plot.
+void writeResults(std::vector<FrameRow> frames, const std::filesystem::path& folder, bool plot) {
+  const auto methodIndex = [](const std::string& name) {
+    return std::find_if(kMethods.begin(), kMethods.end(), [&](const Method& m) { return m.name == name; }) - kMethods.begin();
+  };
+  std::stable_sort(frames.begin(), frames.end(), [&](const FrameRow& a, const FrameRow& b) {
+    return std::tuple(a.segment, a.frame, methodIndex(a.method)) < std::tuple(b.segment, b.frame, methodIndex(b.method));
+  });
+  std::vector<CsvRow> summary;
+  std::string json = "{\n  \"study\": \"occlusion-queries\",\n  \"rows\": [\n";
+  std::string table = "$table << EOD\n";
+  std::printf("\n  %-10s %-15s %9s %11s %8s %8s %11s %9s %8s %11s %7s %7s\n", "level", "method", "mean ms", "variance", "p5 ms",
+              "p95 ms", "waiting ms", "triangles", "queries", "late frames", "late", "false");
+  for (const Level& level : kLevels) {
+    table += level.name;
+    for (const Method& method : kMethods) {
+      std::vector<double> ms;
+      double waiting = 0, triangles = 0, queries = 0, wasted = 0;
+      std::int64_t lateFrames = 0, late = 0, falseCulls = 0;
+      for (const FrameRow& r : frames)
+        if (r.level == level.name && r.method == method.name) {
+          ms.push_back(r.ms), waiting += r.waitingMs, triangles += double(r.triangles), queries += double(r.queries);
+          wasted += double(r.wasted), lateFrames += r.late > 0, late += r.late, falseCulls += r.falseCulls;
+        }
+      if (ms.empty()) {
+        table += " ?";
+        continue;
+      }
+      const double n = double(ms.size());
+      double mean = 0, variance = 0;
+      for (const double v : ms) mean += v / n;
+      for (const double v : ms) variance += (v - mean) * (v - mean) / n;
+      std::sort(ms.begin(), ms.end());
+      const double p5 = ms[std::size_t(0.05 * (n - 1))], p95 = ms[std::size_t(0.95 * (n - 1))];
+      std::printf("  %-10s %-15s %9.3f %11.4g %8.3f %8.3f %11.3f %9.0f %8.1f %11lld %7lld %7lld\n", level.name.c_str(), method.name.c_str(),
+                  mean, variance, p5, p95, waiting / n, triangles / n, queries / n, static_cast<long long>(lateFrames),
+                  static_cast<long long>(late), static_cast<long long>(falseCulls));
+      const CsvRow row = {{"level", level.name}, {"method", method.name}, {"frames", std::to_string(ms.size())},
+                          {"frame_ms_mean", formatted(mean, "%.5g")}, {"frame_ms_variance", formatted(variance, "%.5g")},
+                          {"frame_ms_p5", formatted(p5, "%.5g")}, {"frame_ms_p95", formatted(p95, "%.5g")},
+                          {"waiting_ms_mean", formatted(waiting / n, "%.5g")}, {"triangles_mean", formatted(triangles / n, "%.1f")},
+                          {"queries_mean", formatted(queries / n, "%.2f")}, {"wasted_queries_mean", formatted(wasted / n, "%.2f")},
+                          {"late_frames", std::to_string(lateFrames)}, {"objects_late", std::to_string(late)},
+                          {"false_culls", std::to_string(falseCulls)}};
+      summary.push_back(row);
+      json += std::string(summary.size() > 1 ? ",\n" : "") + "    {";
+      for (std::size_t i = 0; i < row.size(); ++i) {
+        const bool text = i < 2;
+        json += (i ? ", \"" : "\"") + row[i].first + "\": " + (text ? "\"" + row[i].second + "\"" : row[i].second);
+      }
+      json += "}";
+      for (const double value : {mean, p5, p95}) {
+        table += ' ';
+        table += formatted(value, "%.5g");
+      }
+    }
+    table += "\n";
+  }
+  json += "\n  ]\n}\n";
+  OutputFiles files;
+  files.addText(folder / kFramesFile, csvOf(csvRows(frames)));
+  files.addText(folder / "occlusion_queries.csv", csvOf(summary));
+  files.addText(folder / "occlusion_queries.json", json);
+  if (plot) {
+    std::vector<std::string> titles;
+    for (const Method& method : kMethods) titles.push_back(method.name);
+    std::vector<double> shown;
+    for (const FrameRow& r : frames) shown.push_back(r.ms);
+    addPlot(files, folder, "occlusion_queries",
+            table + "EOD\nset title 'Occlusion queries: frame time per level (mean; bars: 5% to 95%)'\nset ylabel 'ms'\n" +
+                timeAxis('y', shown, true) +
+                "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
+                "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\nplot " +
+                histogramBars("$table", titles, 3) + "\n");
+  }
+  files.commit();
+  std::printf("wrote %s/{%s,occlusion_queries.csv,occlusion_queries.json%s}\n", folder.string().c_str(), kFramesFile,
+              plot ? ",occlusion_queries.{png,svg,gp}" : "");
+}
+
+// "K/N" with 1 <= K <= N <= 10000.
+std::pair<int, int> parseShard(const std::string& text) {
+  int k = 0, n = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &k, &slash, &n, &extra) != 3 || slash != '/' || n < 1 || n > 10000 || k < 1 || k > n)
+    throw InputError("--shard " + text + ": expected K/N, this run's share K of N shards, 1 <= K <= N <= 10000");
+  return {k, n};
+}
+
+}  // namespace
+
+void checkOcclusionQueriesOptions(const StudyOptions& options) {
+  if (!options.merge.empty() && !options.shard.empty()) throw InputError("--merge: a merge walks nothing; --shard is for the runs it joins");
+  if (!options.shard.empty()) parseShard(options.shard);
+  for (const std::string& shard : options.merge) readFrames(shard);
+}
+
+int occlusionQueriesStudy(const StudyOptions& options, const std::filesystem::path& folder) {
+  if (!options.merge.empty()) {
+    std::vector<FrameRow> frames;
+    for (const std::string& shard : options.merge) {
+      const std::vector<FrameRow> part = readFrames(shard);
+      frames.insert(frames.end(), part.begin(), part.end());
+    }
+    std::printf("occlusion queries: %zu frame rows merged from %zu shard folders\n", frames.size(), options.merge.size());
+    writeResults(std::move(frames), folder, true);
+    return 0;
+  }
+  const auto [shard, shards] = options.shard.empty() ? std::pair(1, 1) : parseShard(options.shard);
+  const int positions = options.frames > 0 ? options.frames : kDefaultPositions;
+  const int perLevel = std::max(1, positions / int(kLevels.size()));
+  const std::vector<std::pair<std::size_t, int>> segments = segmentsOf(perLevel);
+  std::vector<std::size_t> mine;
+  for (std::size_t s = std::size_t(shard - 1); s < segments.size(); s += std::size_t(shards)) mine.push_back(s);
+
+  std::vector<LoadedScene> scenes;
+  for (const Level& level : kLevels)
+    scenes.push_back(loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / "study" / (level.file + ".toml")).string(), options.size));
+  std::printf("occlusion queries: %d positions per level in segments of %d from a cold start, shard %d of %d (%zu of %zu segments), "
+              "%zu methods, %d thread(s); every position checked against the exact reference\n",
+              perLevel, kSegmentFrames, shard, shards, mine.size(), segments.size(), kMethods.size(), options.threads);
+
+  std::vector<FrameRow> frames;
+  Progress progress(mine.size());
+  const InterruptibleRun interruptible;  // stops after the segment in progress
+  std::size_t done = 0;
+  for (const std::size_t s : mine) {
+    if (InterruptibleRun::requested()) break;
+    const auto [levelIndex, first] = segments[s];
+    const Level& level = kLevels[levelIndex];
+    Scene& world = *scenes[levelIndex].scene;
+    const PreparedScene& scene = *scenes[levelIndex].prepared;
+    const Camera base = world.camera;
+    std::vector<MethodWalk> walks(kMethods.size());
+    for (std::size_t m = 0; m < kMethods.size(); ++m) {
+      if (!kMethods[m].cull.empty()) walks[m].pipeline = culling::parsePipeline(kMethods[m].cull, "study");
+      walks[m].queries = kMethods[m].cull.find("queries") != std::string::npos;
+    }
+    std::vector<std::uint8_t> seenBefore(scene.instances().size(), 0);
+    for (int f = first; f < std::min(perLevel, first + kSegmentFrames); ++f) {
+      world.camera = pathCamera(level, base, f, perLevel);
+      Stats referenceStats;
+      const ReferenceImage truth = traceReference(scene, options.threads, referenceStats);
+      const std::vector<std::uint8_t> seen = objectsWithAny(scene, visibleTriangles(truth, scene.triangleCount()));
+      for (std::size_t k = 0; k < kMethods.size(); ++k) {
+        const std::size_t m = (k + std::size_t(f)) % kMethods.size();  // each method in each place of the order in turn
+        FrameRow row = walkFrame(scene, seen, seenBefore, walks[m], options.threads);
+        row.level = level.name, row.method = kMethods[m].name, row.segment = int(s), row.frame = f;
+        frames.push_back(row);
+      }
+      seenBefore = seen;
+    }
+    world.camera = base;
+    progress.update(++done, level.name);
+  }
+  const bool complete = !InterruptibleRun::requested();
+  if (!complete) reportInterrupted(done, mine.size(), "segments");
+  // A shard's plot would show part of the walk: the merge draws it.
+  writeResults(std::move(frames), folder, complete && shards == 1);
+  return complete ? 0 : kInterruptedExit;
+}
+
+}  // namespace hsr::studies
