@@ -263,7 +263,8 @@ void writeResults(std::vector<FrameRow> frames, const std::filesystem::path& fol
             table + "EOD\nset title 'Occlusion queries: frame time per level (mean; bars: 5% to 95%)'\nset ylabel 'ms'\n" +
                 timeAxis('y', shown, true) +
                 "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
-                "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\nplot " +
+                "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\n"
+                "set linetype 9 lc rgb '#8c564b'\nplot " +  // gnuplot's colors repeat after eight
                 histogramBars("$table", titles, 3) + "\n");
   }
   files.commit();
