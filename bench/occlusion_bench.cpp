@@ -9,12 +9,20 @@
 //                        visible) or with the hierarchical-Z pyramid; items: tests
 //   zbuffer-depth        for scale: hsr's z-buffer (geometry stage and float depth
 //                        raster) of the whole city at 1920 x 1080
+//   gpu/query, gpu/draw  on the simulated GPU (renderer/simulated_gpu.hpp), at 1920 x 1080
+//                        with the 500 nearest buildings drawn: the next 100 buildings'
+//                        boxes queried, or the buildings themselves drawn (what a query
+//                        spares); items: buildings
+//   queries/STRATEGY     ten frames of a walk down a street of study/city_walk (640 x 360)
+//                        by each query strategy on one simulated GPU; items: frames
 #include <benchmark/benchmark.h>
 
 #include "algorithms/culling/occlusion/occlusion.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "bench_scenes.hpp"
+#include "algorithms/culling/culling.hpp"
 #include "renderer/screen_triangles.hpp"
+#include "renderer/simulated_gpu.hpp"
 
 namespace {
 
@@ -86,6 +94,69 @@ void zbufferDepth(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * std::int64_t(prepared.triangleCount()));
 }
 
+// The city on a simulated GPU at 1920 x 1080 with its 500 nearest buildings drawn, and
+// the next 100 to query or draw.
+struct GpuCity {
+  hsr::PreparedScene prepared{city().scene};
+  hsr::SimulatedGpu gpu;
+  std::vector<std::uint32_t> next;
+  GpuCity() {
+    prepared.setSize(1920, 1080);
+    gpu.beginFrame(prepared.camera());
+    const std::vector<std::uint32_t>& nearestFirst = city().everyObject;
+    for (std::size_t i = 0; i < 600 && i < nearestFirst.size(); ++i) {
+      if (i < 500)
+        draw(nearestFirst[i]);
+      else
+        next.push_back(nearestFirst[i]);
+    }
+  }
+  void draw(std::uint32_t object) {
+    const hsr::Instance& building = prepared.instances()[object];
+    std::vector<std::uint32_t> triangles(building.triangleCount);
+    for (std::uint32_t t = 0; t < building.triangleCount; ++t) triangles[t] = building.firstTriangle + t;
+    gpu.draw(prepared, object, triangles);
+  }
+};
+
+void gpuQuery(benchmark::State& state) {
+  static GpuCity c;
+  std::int64_t passed = 0;
+  for (auto _ : state)
+    for (const std::uint32_t object : c.next) passed += c.gpu.answer(c.gpu.query({&c.prepared.instances()[object].box, 1}));
+  benchmark::DoNotOptimize(passed);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(c.next.size()));
+}
+
+void gpuDraw(benchmark::State& state) {
+  static GpuCity c;
+  for (auto _ : state)
+    for (const std::uint32_t object : c.next) c.draw(object);  // drawn again and again: the same work each time
+  state.SetItemsProcessed(state.iterations() * std::int64_t(c.next.size()));
+}
+
+void queryWalk(benchmark::State& state, const std::string& strategy) {
+  hsr::Scene scene = hsr::loadScene(std::string(HSR_SOURCE_DIR) + "/scenes/study/city_walk.toml");
+  hsr::PreparedScene prepared(scene);
+  prepared.setSize(640, 360);
+  const hsr::culling::Pipeline pipeline = hsr::culling::parsePipeline("frustum,occlusion:queries:" + strategy);
+  const hsr::Camera start = scene.camera;
+  hsr::Stats stats;
+  for (auto _ : state) {
+    std::vector<std::unique_ptr<hsr::culling::StageMemory>> memory;
+    hsr::SimulatedGpu gpu;
+    scene.camera = start;
+    for (int frame = 0; frame < 10; ++frame) {
+      gpu.beginFrame(prepared.camera());
+      const hsr::culling::PreviousFrame previous{scene.camera, nullptr, &memory, &gpu};
+      benchmark::DoNotOptimize(hsr::culling::runPipeline(prepared, pipeline, 1, stats, &previous).triangles.data());
+      gpu.endFrame();
+      scene.camera.eye.z -= 0.5, scene.camera.target.z -= 0.5;
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * 10);
+}
+
 }  // namespace
 
 // Registered before main (bench_main.cpp), from the lists of variants and scenes.
@@ -98,5 +169,9 @@ const bool registered = [] {
   benchmark::RegisterBenchmark("occludees/flat", occludees, false)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("occludees/pyramid", occludees, true)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("zbuffer-depth", zbufferDepth)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("gpu/query", gpuQuery)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("gpu/draw", gpuDraw)->Unit(benchmark::kMillisecond);
+  for (const std::string strategy : {"stop-and-wait", "delayed", "chc", "chcpp"})
+    benchmark::RegisterBenchmark(("queries/" + strategy).c_str(), queryWalk, strategy)->Unit(benchmark::kMillisecond);
   return true;
 }();

@@ -188,6 +188,33 @@ std::vector<FrameRow> readFrames(const std::filesystem::path& folder) {
   return rows;
 }
 
+// The frame time along each level's walk, a panel per level and a line per method.
+// `frames` are in the walk's order: position by position, the methods in kMethods' order.
+std::string perFramePlot(const std::vector<FrameRow>& frames, const std::vector<double>& shown) {
+  std::string data, plots;
+  for (std::size_t l = 0; l < kLevels.size(); ++l) {
+    data += "$level" + std::to_string(l) + " << EOD\n";
+    for (std::size_t r = 0; r < frames.size(); ++r) {
+      if (frames[r].level != kLevels[l].name) continue;
+      if (frames[r].method == kMethods.front().name) {  // a new position: a new row
+        if (data.back() != '\n') data += '\n';
+        data += std::to_string(frames[r].frame);
+      }
+      data += ' ';
+      data += formatted(frames[r].ms, "%.5g");
+    }
+    data += "\nEOD\n";
+    plots += "set title '" + kLevels[l].name + " (" + kLevels[l].description + ")'\nplot ";
+    for (std::size_t m = 0; m < kMethods.size(); ++m)
+      plots += std::string(m ? ", " : "") + "$level" + std::to_string(l) + " using 1:" + std::to_string(m + 2) + " with lines lw 0.8 title '" +
+               kMethods[m].name + "'";
+    plots += "\n";
+  }
+  return data + "set multiplot layout 2,2 title 'Occlusion queries: frame time along each walk'\nset xlabel 'position'\nset ylabel 'ms'\n" +
+         timeAxis('y', shown, false) + "set grid\nset key top left font ',7' maxrows 3\nset linetype 9 lc rgb '#8c564b'\n" + plots +
+         "unset multiplot\n";
+}
+
 // The table (level x method): frame time's mean, variance and 5% extremes (the 5th and
 // 95th percentiles), and the means and totals of the rest; then the files: the frames in
 // the order of the walk (segment, position, method), whatever order they were measured
@@ -266,10 +293,11 @@ void writeResults(std::vector<FrameRow> frames, const std::filesystem::path& fol
                 "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\n"
                 "set linetype 9 lc rgb '#8c564b'\nplot " +  // gnuplot's colors repeat after eight
                 histogramBars("$table", titles, 3) + "\n");
+    addPlot(files, folder, "occlusion_queries_frames", perFramePlot(frames, shown));
   }
   files.commit();
   std::printf("wrote %s/{%s,occlusion_queries.csv,occlusion_queries.json%s}\n", folder.string().c_str(), kFramesFile,
-              plot ? ",occlusion_queries.{png,svg,gp}" : "");
+              plot ? ",occlusion_queries{,_frames}.{png,svg,gp}" : "");
 }
 
 // "K/N" with 1 <= K <= N <= 10000.
@@ -345,6 +373,8 @@ int occlusionQueriesStudy(const StudyOptions& options, const std::filesystem::pa
       seenBefore = seen;
     }
     world.camera = base;
+    std::printf("  %s, positions %d-%d: walked\n", level.name.c_str(), first, std::min(perLevel, first + kSegmentFrames) - 1);
+    std::fflush(stdout);
     progress.update(++done, level.name);
   }
   const bool complete = !InterruptibleRun::requested();

@@ -455,6 +455,22 @@ TEST(Study, CtrlCKeepsTheRowsAlreadyMeasured) {
   EXPECT_FALSE(std::filesystem::exists(folder / "shadow_map.png")) << "a plot of part of a study misleads";
 }
 
+// occlusion-queries stops after the segment in progress: its frames' rows, the table of
+// what was walked, and no plot.
+TEST(Study, CtrlCKeepsTheSegmentsAlreadyWalked) {
+  const auto folder = freshFolder("queries-interrupted");
+  const Interrupted run = interruptAfter("study occlusion-queries --frames 400 --size 160x90 --out " + folder.string(), "  city, positions 0-49");
+  ASSERT_TRUE(run.sent) << run.output;
+  EXPECT_EQ(run.exitCode, 130) << run.output;
+  const std::size_t measured = measuredRows(run.output, "8 segments");
+  EXPECT_GE(measured, 1u) << run.output;
+  EXPECT_LT(measured, 8u) << run.output;
+  std::vector<std::string> header;
+  EXPECT_EQ(readCsv(folder / "occlusion_queries_frames.csv", header).size(), measured * 50 * 9) << "50 positions, 9 methods a segment";
+  EXPECT_FALSE(readCsv(folder / "occlusion_queries.csv", header).empty());
+  EXPECT_FALSE(std::filesystem::exists(folder / "occlusion_queries.png")) << "a plot of part of a study misleads";
+}
+
 TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
   const auto folder = freshFolder("sweep");
   const test::CommandResult result =
