@@ -440,14 +440,23 @@ TEST(Sweep, CtrlCKeepsTheRowsAlreadyMeasured) {
 
 // A study stops the same way: here after the first line of the shadow-map table (six
 // rows, one per resolution, at bias 0), with the rows measured in its CSV and no plot.
+// Interrupts `hsr study ARGUMENTS` when it prints a line starting with `prefix`: it must
+// exit with 130 and say it measured at least `atLeast` and fewer than all `total` of its
+// `unit`; returns how many.
+std::size_t interruptStudy(const std::string& arguments, const std::string& prefix, std::size_t atLeast, std::size_t total,
+                           const std::string& unit) {
+  const Interrupted run = interruptAfter("study " + arguments, prefix);
+  EXPECT_TRUE(run.sent) << run.output;
+  EXPECT_EQ(run.exitCode, 130) << run.output;
+  const std::size_t measured = measuredRows(run.output, std::to_string(total) + " " + unit);
+  EXPECT_GE(measured, atLeast) << run.output;
+  EXPECT_LT(measured, total) << run.output;
+  return measured;
+}
+
 TEST(Study, CtrlCKeepsTheRowsAlreadyMeasured) {
   const auto folder = freshFolder("study-interrupted");
-  const Interrupted run = interruptAfter("study shadow-map --size 160x100 --frames 1 --out " + folder.string(), "  0 ");
-  ASSERT_TRUE(run.sent) << run.output;
-  EXPECT_EQ(run.exitCode, 130) << run.output;
-  const std::size_t measured = measuredRows(run.output, "42 rows");
-  EXPECT_GE(measured, 6u) << run.output;
-  EXPECT_LT(measured, 42u) << run.output;
+  const std::size_t measured = interruptStudy("shadow-map --size 160x100 --frames 1 --out " + folder.string(), "  0 ", 6, 42, "rows");
   std::vector<std::string> header;
   const std::vector<Row> rows = readCsv(folder / "shadow_map.csv", header);
   EXPECT_EQ(rows.size(), measured);
@@ -459,12 +468,8 @@ TEST(Study, CtrlCKeepsTheRowsAlreadyMeasured) {
 // what was walked, and no plot.
 TEST(Study, CtrlCKeepsTheSegmentsAlreadyWalked) {
   const auto folder = freshFolder("queries-interrupted");
-  const Interrupted run = interruptAfter("study occlusion-queries --frames 400 --size 160x90 --out " + folder.string(), "  city, positions 0-49");
-  ASSERT_TRUE(run.sent) << run.output;
-  EXPECT_EQ(run.exitCode, 130) << run.output;
-  const std::size_t measured = measuredRows(run.output, "8 segments");
-  EXPECT_GE(measured, 1u) << run.output;
-  EXPECT_LT(measured, 8u) << run.output;
+  const std::size_t measured =
+      interruptStudy("occlusion-queries --frames 400 --size 160x90 --out " + folder.string(), "  city, positions 0-49", 1, 8, "segments");
   std::vector<std::string> header;
   EXPECT_EQ(readCsv(folder / "occlusion_queries_frames.csv", header).size(), measured * 50 * 9) << "50 positions, 9 methods a segment";
   EXPECT_FALSE(readCsv(folder / "occlusion_queries.csv", header).empty());

@@ -8,6 +8,7 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/error.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/reference.hpp"
 #include "test_support.hpp"
@@ -21,6 +22,16 @@ inline VisibleSet cull(const PreparedScene& scene, const std::string& pipeline, 
 inline VisibleSet cull(const PreparedScene& scene, const std::string& pipeline) {
   Stats stats;
   return cull(scene, pipeline, stats);
+}
+
+// The one-line error parsing `text` as a --cull pipeline gives, or "(no error)".
+inline std::string pipelineError(const std::string& text) {
+  try {
+    culling::parsePipeline(text);
+  } catch (const InputError& error) {
+    return std::string(error.what());
+  }
+  return std::string("(no error)");
 }
 
 inline std::vector<std::uint8_t> keptMask(const VisibleSet& set, std::size_t triangles) {

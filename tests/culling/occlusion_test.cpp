@@ -322,27 +322,19 @@ TEST(Occlusion, TheStageRunsOnlyWhereTheDepthComplexityCanPay) {
 }
 
 TEST(Occlusion, KnobsAreCheckedWhenThePipelineIsRead) {
-  const auto errorOf = [](const std::string& text) {
-    try {
-      culling::parsePipeline(text);
-    } catch (const InputError& error) {
-      return std::string(error.what());
-    }
-    return std::string("(no error)");
-  };
   EXPECT_EQ(culling::parsePipeline("occlusion:depth-map:raster=center:map-width=64").front().name(),
             "occlusion:depth-map:map-width=64:raster=center");
   EXPECT_TRUE(culling::parsePipeline("occlusion:raster=center").front().wrong());
   EXPECT_TRUE(culling::parsePipeline("occlusion:previous-frame").front().wrong());
   EXPECT_FALSE(culling::parsePipeline("occlusion:pyramid=on").front().wrong());
-  EXPECT_EQ(errorOf("occlusion:map-width=0"),
+  EXPECT_EQ(pipelineError("occlusion:map-width=0"),
             "--cull map-width=0: culling stage occlusion map-width must be an integer in [1, 4096]");
-  EXPECT_EQ(errorOf("occlusion:previous-frame:raster=center"),
+  EXPECT_EQ(pipelineError("occlusion:previous-frame:raster=center"),
             "--cull raster=center: culling stage occlusion raster applies only to variant depth-map, not to variant previous-frame");
-  EXPECT_EQ(errorOf("occlusion:fraction=5%"), "--cull: occlusion:fraction=5%: fraction applies only with occluders=volume or solid-angle");
-  EXPECT_EQ(errorOf("occlusion:depth-map:center"),
+  EXPECT_EQ(pipelineError("occlusion:fraction=5%"), "--cull: occlusion:fraction=5%: fraction applies only with occluders=volume or solid-angle");
+  EXPECT_EQ(pipelineError("occlusion:depth-map:center"),
             "--cull: 'center' in 'occlusion:depth-map:center' is not a setting; expected occlusion[:VARIANT] followed by :KNOB=VALUE settings");
-  EXPECT_EQ(errorOf("frustum:sphere:raster=center"), "--cull raster=center: culling stage frustum has no knob 'raster'; expected one of variant");
+  EXPECT_EQ(pipelineError("frustum:sphere:raster=center"), "--cull raster=center: culling stage frustum has no knob 'raster'; expected one of variant");
 }
 
 }  // namespace

@@ -316,26 +316,18 @@ TEST(Queries, EveryObjectIsInSomeLeafAndEveryNodeBoxHoldsWhatIsBelowIt) {
 }
 
 TEST(Queries, KnobsAreCheckedWhenThePipelineIsRead) {
-  const auto errorOf = [](const std::string& text) {
-    try {
-      culling::parsePipeline(text);
-    } catch (const InputError& error) {
-      return std::string(error.what());
-    }
-    return std::string("(no error)");
-  };
   EXPECT_EQ(culling::parsePipeline("occlusion:queries:chcpp:batch=20").front().name(), "occlusion:queries:chcpp:batch=20");
   EXPECT_FALSE(culling::parsePipeline("occlusion:queries").front().wrong());
   EXPECT_TRUE(culling::parsePipeline("occlusion:queries:delayed").front().wrong());
   EXPECT_TRUE(culling::parsePipeline("occlusion:queries:threshold=10").front().wrong());
-  EXPECT_EQ(errorOf("occlusion:queries:latency=-1"),
+  EXPECT_EQ(pipelineError("occlusion:queries:latency=-1"),
             "--cull latency=-1: culling stage occlusion latency must be an integer in [0, 1000]");
-  EXPECT_EQ(errorOf("occlusion:queries:threshold=200000"),
+  EXPECT_EQ(pipelineError("occlusion:queries:threshold=200000"),
             "--cull threshold=200000: culling stage occlusion threshold must be an integer in [0, 100000]");
-  EXPECT_EQ(errorOf("occlusion:queries:chc:batch=10"), "--cull: occlusion:queries:chc:batch=10: batch, assume-visible, multiqueries and tight-bounds apply only to the chcpp strategy");
-  EXPECT_EQ(errorOf("occlusion:queries:fastest"),
+  EXPECT_EQ(pipelineError("occlusion:queries:chc:batch=10"), "--cull: occlusion:queries:chc:batch=10: batch, assume-visible, multiqueries and tight-bounds apply only to the chcpp strategy");
+  EXPECT_EQ(pipelineError("occlusion:queries:fastest"),
             "--cull: occlusion:queries has no strategy 'fastest'; expected stop-and-wait, delayed, chc or chcpp");
-  EXPECT_EQ(errorOf("occlusion:depth-map:latency=2"),
+  EXPECT_EQ(pipelineError("occlusion:depth-map:latency=2"),
             "--cull latency=2: culling stage occlusion latency applies only to variant queries, not to variant depth-map");
 }
 
