@@ -52,24 +52,6 @@ std::vector<std::uint8_t> objectsOf(const PreparedScene& scene, const VisibleSet
   return objectsWithAny(scene, keptMask(kept, scene.triangleCount()));
 }
 
-// The objects that the exact reference shows and that the z-buffer, culling nothing,
-// draws too, of which `kept` has no triangle. The queries rasterize boxes as the z-buffer
-// rasterizes triangles, at pixel centers snapped to the subpixel grid: a sliver of an
-// object the reference sees at a pixel center less than a subpixel inside its outline is
-// lost to both, and is the rasterizer's error (renderer/raster.hpp), not the culling's.
-std::int64_t objectsLost(const Judged& judged, const VisibleSet& kept) {
-  const PreparedScene& scene = judged.loaded.prepared;
-  const Frame drawn = renderKept(scene, VisibleSet::everything(scene));
-  std::vector<std::uint8_t> drawnTriangles(scene.triangleCount(), 0);
-  for (const std::uint32_t id : drawn.ids)
-    if (id != 0) drawnTriangles[id - 1] = 1;
-  const std::vector<std::uint8_t> seen = objectsWithAny(scene, judged.visible), zbuffer = objectsWithAny(scene, drawnTriangles),
-                                  keptObjects = objectsOf(scene, kept);
-  std::int64_t lost = 0;
-  for (std::size_t object = 0; object < seen.size(); ++object) lost += seen[object] && zbuffer[object] && !keptObjects[object];
-  return lost;
-}
-
 // The eye swung `degrees` around the vertical axis through the origin.
 void swingEye(Camera& camera, double degrees) {
   camera.eye = dvec3(glm::rotate(dmat4(1), glm::radians(degrees), dvec3(0, 1, 0)) * dvec4(camera.eye, 1));
@@ -194,14 +176,32 @@ const std::vector<std::string> kExactStrategies = {"stop-and-wait", "chc", "chcp
 
 TEST(Queries, TheExactStrategiesCullNothingTheReferenceSeesOnEveryShippedScene) {
   for (const std::filesystem::path& file : test::shippedScenes()) {
-    Judged judged(file, 96);
+    Judged judged(file, 161);
     const PreparedScene& scene = judged.loaded.prepared;
     for (const std::string& strategy : kExactStrategies)
       for (const std::string hierarchy : {"bvh", "kd"}) {
         const std::string pipeline = "frustum,occlusion:queries:" + strategy + ":hierarchy=" + hierarchy;
-        EXPECT_EQ(objectsLost(judged, cull(scene, pipeline)), 0) << file << " " << pipeline;
+        EXPECT_EQ(judged.objectsFalselyCulled(cull(scene, pipeline)), 0) << file << " " << pipeline;
       }
   }
+}
+
+// Why queries widen boxes (queries.cpp, kMarginPixels): on the strategy map at 96
+// pixels, units the reference sees at one pixel center have boxes whose exact outline,
+// snapped, leaves that center out, so even alone on an empty buffer their query passes
+// nothing. Widened by 1/16 pixel, every such unit is kept.
+TEST(Queries, AnObjectSeenAtOnePixelIsKeptThoughItsExactBoxCoversNoPixelCenter) {
+  Judged judged(test::sourcePath("scenes/study/strategy_map.toml"), 96);
+  const PreparedScene& scene = judged.loaded.prepared;
+  const std::vector<std::uint8_t> seen = objectsWithAny(scene, judged.visible);
+  SimulatedGpu gpu;
+  gpu.beginFrame(scene.camera());
+  int missedByTheExactBox = 0;
+  for (std::size_t object = 0; object < seen.size(); ++object)
+    if (seen[object]) missedByTheExactBox += gpu.answer(gpu.query(std::span(&scene.instances()[object].box, 1))) == 0;
+  EXPECT_GE(missedByTheExactBox, 1);
+  for (const std::string& strategy : kExactStrategies)
+    EXPECT_EQ(judged.objectsFalselyCulled(cull(scene, "occlusion:queries:" + strategy)), 0) << strategy;
 }
 
 // A walk around occ_orbit's wall: still, then a fast turn (boxes come into view from
@@ -224,7 +224,7 @@ TEST(Queries, TheExactStrategiesCullNothingTheReferenceSeesAlongAWalk) {
         judged.retrace();
         const PreparedScene& scene = judged.loaded.prepared;
         const VisibleSet kept = walk.frame(scene);
-        ASSERT_EQ(objectsLost(judged, kept), 0) << strategy << " " << hierarchy << ", frame " << frame;
+        ASSERT_EQ(judged.objectsFalselyCulled(kept), 0) << strategy << " " << hierarchy << ", frame " << frame;
         // chc and chcpp: whatever the last frame showed that the frustum keeps is drawn again.
         const std::vector<std::uint8_t> drawn = objectsOf(scene, kept), inView = objectsOf(scene, cull(scene, "frustum"));
         if (strategy != "stop-and-wait") {
@@ -251,7 +251,7 @@ TEST(Queries, DelayedQueriesShowAnObjectComingIntoViewExactlyTheirLatencyLate) {
     judged.retrace();
     for (int frame = 0; frame < latency; ++frame)
       EXPECT_GE(judged.objectsFalselyCulled(walk.frame(judged.loaded.prepared)), 1) << "latency " << latency << ", frame " << frame;
-    EXPECT_EQ(objectsLost(judged, walk.frame(judged.loaded.prepared)), 0) << "latency " << latency;
+    EXPECT_EQ(judged.objectsFalselyCulled(walk.frame(judged.loaded.prepared)), 0) << "latency " << latency;
   }
 }
 

@@ -23,6 +23,22 @@ std::uint64_t mixed(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+// Query boxes are grown by this much of a pixel. The rasterizer snaps a box's corners
+// to 1/256 pixel and leaves out pixel centers on its outline's right and bottom edges,
+// so an object seen at a pixel center a hair inside its box's outline could be missed;
+// and a box's face resting on a surface already drawn (an object standing on the
+// ground) ties with it in float depth. Grown by 1/16 pixel, and so moved that much
+// nearer, the box covers every such pixel, and its query passes there.
+constexpr double kMarginPixels = 1.0 / 16;
+
+// How wide a pixel is in the world at view depth 1 under perspective (it grows with the
+// depth), or at any depth under orthographic projection: the larger of its two sides.
+double worldPerPixelAtUnitDepth(const CameraTransform& camera) {
+  // A view-space point one unit right and up, one unit ahead, in clip space.
+  const ClipVertex clip = camera.clipFromView(dvec3(1, 1, -1));
+  return std::max(2 / (clip.x * camera.width()), 2 / (clip.y * camera.height()));
+}
+
 // A node waiting in the traversal queue: nearest first (ties by index, so every run
 // walks the same way), with the view volume's planes its parent was not wholly inside.
 struct Queued {
@@ -45,7 +61,8 @@ class Traversal {
   Traversal(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in, QueryMemory& memory,
             SimulatedGpu& gpu)
       : scene_(scene), camera_(camera), knobs_(knobs), in_(in), memory_(memory), gpu_(gpu), hierarchy_(*memory.hierarchy),
-        volume_(scene, camera), runs_(trianglesByInstance(scene, in)), drawn_(scene.instances().size(), 0), frame_(memory.frame) {}
+        volume_(scene, camera), runs_(trianglesByInstance(scene, in)), drawn_(scene.instances().size(), 0), frame_(memory.frame),
+        worldPerPixel_(worldPerPixelAtUnitDepth(camera)) {}
 
   void stopAndWait();
   void delayed();
@@ -62,7 +79,13 @@ class Traversal {
   void enqueue(std::uint32_t index, std::uint32_t planes);
   Queued nearest();
   bool inView(Queued& entry);
+  // The box grown by kMarginPixels of a pixel (at its farthest point), as it is queried.
+  Aabb widened(const Aabb& box) const;
+  // Whether a node's box, widened, reaches the near plane: visible, never queried.
   bool atEye(const Aabb& box) const;
+  // The boxes a node is bounded by (chcpp's tight bounds, or its own), and those widened,
+  // as it is queried.
+  std::vector<Aabb> boundingBoxes(std::uint32_t index) const;
   std::vector<Aabb> queryBoxes(std::uint32_t index) const;
   bool visible(std::int64_t passed) const { return passed > knobs_.threshold; }
   void drawLeaf(std::uint32_t index);
@@ -88,6 +111,7 @@ class Traversal {
   std::vector<TriangleRun> runs_;
   std::vector<std::uint8_t> drawn_;
   const std::int64_t frame_;
+  const double worldPerPixel_;  // a pixel's width in the world at view depth 1 (perspective), or anywhere (orthographic)
 
   std::priority_queue<Queued, std::vector<Queued>, std::greater<>> traversal_;
   std::deque<InFlight> inFlight_;
@@ -127,8 +151,20 @@ bool Traversal::inView(Queued& entry) {
   return volume_.boxMayBeInside(node(entry.node).box, entry.planes);
 }
 
-bool Traversal::atEye(const Aabb& box) const {
-  // Some corner nearer than the near plane: the box's nearest point along the view axis.
+Aabb Traversal::widened(const Aabb& box) const {
+  const dvec3& forward = camera_.forward();
+  const double farthest =
+      glm::dot(box.center() - camera_.camera().eye, forward) + glm::dot((box.hi - box.lo) * 0.5, glm::abs(forward));
+  const double margin = kMarginPixels * worldPerPixel_ * (camera_.perspective() ? std::max(farthest, camera_.camera().near) : 1.0);
+  Aabb grown;
+  grown.lo = box.lo - dvec3(margin), grown.hi = box.hi + dvec3(margin);
+  return grown;
+}
+
+bool Traversal::atEye(const Aabb& node) const {
+  // Some corner of the box as queried nearer than the near plane: its nearest point
+  // along the view axis.
+  const Aabb box = widened(node);
   const dvec3& forward = camera_.forward();
   const dvec3 center = box.center(), half = (box.hi - box.lo) * 0.5;
   const double nearest = glm::dot(center - camera_.camera().eye, forward) - glm::dot(half, glm::abs(forward));
@@ -136,7 +172,7 @@ bool Traversal::atEye(const Aabb& box) const {
   return nearest <= camera_.camera().near + slack;
 }
 
-std::vector<Aabb> Traversal::queryBoxes(std::uint32_t index) const {
+std::vector<Aabb> Traversal::boundingBoxes(std::uint32_t index) const {
   const HierarchyNode& at = node(index);
   if (knobs_.strategy != QueryStrategy::chcpp || !knobs_.tightBounds) return {at.box};
   // Tight bounds: of the node's box, its children's boxes and its grandchildren's (a
@@ -170,6 +206,12 @@ std::vector<Aabb> Traversal::queryBoxes(std::uint32_t index) const {
   consider(std::move(children));
   consider(std::move(grandchildren));
   return best;
+}
+
+std::vector<Aabb> Traversal::queryBoxes(std::uint32_t index) const {
+  std::vector<Aabb> boxes = boundingBoxes(index);
+  for (Aabb& box : boxes) box = widened(box);
+  return boxes;
 }
 
 void Traversal::drawLeaf(std::uint32_t index) {
