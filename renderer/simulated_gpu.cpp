@@ -75,7 +75,6 @@ void SimulatedGpu::draw(const PreparedScene& scene, std::uint32_t instance, std:
                       });
                     });
     }
-    ++counts_.draws;
     counts_.trianglesDrawn += std::int64_t(triangles.size());
   });
 }
@@ -116,7 +115,6 @@ PendingQuery SimulatedGpu::query(std::span<const Aabb> boxes) {
           }
         }
     }
-    ++counts_.queries;
     counts_.boxesQueried += std::int64_t(boxes.size());
     counts_.fragmentsPassed += pending.passed_;
   });

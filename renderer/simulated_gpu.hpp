@@ -69,8 +69,8 @@ struct GpuFrameTimes {
 
 // What one frame did.
 struct GpuCounts {
-  std::int64_t draws = 0, trianglesDrawn = 0, fragmentsWritten = 0;
-  std::int64_t queries = 0, boxesQueried = 0, queryFragments = 0, fragmentsPassed = 0;
+  std::int64_t trianglesDrawn = 0, fragmentsWritten = 0;
+  std::int64_t boxesQueried = 0, queryFragments = 0, fragmentsPassed = 0;
   std::int64_t stalls = 0;  // answers read before they were in
 };
 

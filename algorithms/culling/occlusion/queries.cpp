@@ -499,7 +499,7 @@ VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& ca
   SimulatedGpu& device = gpu ? *gpu : *ownGpu;
   device.setLatency({knobs.latency, knobs.latencyIn});
 
-  const std::int64_t stallsBefore = device.counts().stalls;
+  const GpuCounts before = device.counts();
   Traversal traversal(scene, camera, knobs, in, *remembered, device);
   if (!remembered->hierarchy->nodes().empty()) {
     switch (knobs.strategy) {
@@ -510,7 +510,14 @@ VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& ca
     }
   }
   traversal.count(stats);
-  stats.add("queries: stalls", device.counts().stalls - stallsBefore);
+  // What this stage asked of the GPU (a walk's GPU counts the whole frame).
+  const GpuCounts& after = device.counts();
+  stats.add("queries: stalls", after.stalls - before.stalls);
+  stats.add("queries: boxes queried", after.boxesQueried - before.boxesQueried);
+  stats.add("queries: box fragments tested", after.queryFragments - before.queryFragments);
+  stats.add("queries: box fragments passed", after.fragmentsPassed - before.fragmentsPassed);
+  stats.add("queries: triangles drawn", after.trianglesDrawn - before.trianglesDrawn);
+  stats.add("queries: fragments written", after.fragmentsWritten - before.fragmentsWritten);
   if (ownGpu) {
     const GpuFrameTimes times = ownGpu->endFrame();
     stats.addSeconds("queries: frame", times.frame);

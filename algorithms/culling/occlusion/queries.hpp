@@ -77,7 +77,8 @@ struct QueryMemory : StageMemory {
 // once), "queries: nodes queried", "queries: answered visible" (a query that spared
 // nothing: wasted), "queries: stalls" (answers read before they were in), "queries:
 // multiqueries", "queries: multiqueries re-asked", "queries: boxes at the eye",
-// "queries: objects drawn".
+// "queries: objects drawn", and the GPU's work for it: "queries: boxes queried", "box
+// fragments tested", "box fragments passed", "triangles drawn", "fragments written".
 VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
                            std::unique_ptr<StageMemory>* memory, SimulatedGpu* gpu, Stats& stats);
 
