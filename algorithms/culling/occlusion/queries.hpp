@@ -30,8 +30,11 @@
 //                  wait. Tight bounds: a node is queried by its children's or objects'
 //                  boxes where those cover less than its own.
 //
-// A box reaching in front of the near plane (the eye in it or at it) is visible without a
-// query: a GPU clips the box open there and would count too few fragments.
+// Every box is queried grown by 1/16 of a pixel (queries.cpp, kMarginPixels), so that the
+// rasterizer's snapping of its outline, or a face resting on a surface already drawn,
+// cannot hide an object the exact reference sees. A box that, grown, reaches in front of
+// the near plane (the eye in it or at it) is visible without a query: a GPU clips the
+// box open there and would count too few fragments.
 //
 // With threshold 0, stop-and-wait, chc and chcpp draw every object the finished depth
 // buffer shows: a node is culled only when no fragment of its box passes against what is
