@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-mkdir -p out
+mkdir -p out/steps  # --steps makes its own folder, not the ones above it
 for scene in scenes/*.toml; do
   name=$(basename "$scene" .toml)
   ./build/hsr render "$scene" -o "out/$name.png" --ids "out/$name-ids.png" --depth "out/$name-depth.exr"
