@@ -88,7 +88,9 @@ Camera pathCamera(const Level& level, const Camera& base, int f, int frames) {
 // One method walking one segment: what it carries from frame to frame.
 struct MethodWalk {
   culling::Pipeline pipeline;
-  bool queries = false;
+  // The variant of the pipeline's last stage: "queries" draws as it goes; "previous-frame"
+  // reads the frame before.
+  bool lastStageIs(const std::string& variant) const { return !pipeline.empty() && pipeline.back().variant() == variant; }
   std::vector<std::unique_ptr<culling::StageMemory>> memory;
   SimulatedGpu gpu;
   Visibility last;  // previous-frame: the frame before, drawn by the z-buffer
@@ -107,20 +109,20 @@ struct FrameRow {
 
 FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& seen,
                    const std::vector<std::uint8_t>& seenBefore, MethodWalk& walk, int threads) {
-  const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
   walk.gpu.beginFrame(scene.camera());
   const culling::PreviousFrame previous{walk.lastCamera, walk.hasLast ? &walk.last.frame : nullptr, &walk.memory, &walk.gpu};
   Stats stats;
   const VisibleSet kept = culling::runPipeline(scene, walk.pipeline, threads, stats, &previous);
   const std::vector<culling::TriangleRun> runs = culling::trianglesByInstance(scene, kept);
-  if (!walk.queries)  // the query strategies drew as they went
+  if (!walk.lastStageIs("queries"))  // the query strategies drew as they went
     for (std::uint32_t object = 0; object < runs.size(); ++object)
       if (runs[object].end > runs[object].first)
         walk.gpu.draw(scene, object, {kept.triangles.data() + runs[object].first, runs[object].end - runs[object].first});
   const GpuFrameTimes times = walk.gpu.endFrame();
-  if (walk.pipeline.size() > 1 && walk.pipeline.back().variant() == "previous-frame") {
+  if (walk.lastStageIs("previous-frame")) {
     // Untimed: the depth the next frame reprojects.
     Stats untimed;
+    const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
     walk.last.frame = Frame(scene.width(), scene.height());
     zbuffer.algorithm->visibility({scene, scene.camera(), &kept, threads, untimed}, zbuffer.knobs, walk.last);
   }
@@ -356,7 +358,6 @@ int occlusionQueriesStudy(const StudyOptions& options, const std::filesystem::pa
     std::vector<MethodWalk> walks(kMethods.size());
     for (std::size_t m = 0; m < kMethods.size(); ++m) {
       if (!kMethods[m].cull.empty()) walks[m].pipeline = culling::parsePipeline(kMethods[m].cull, "study");
-      walks[m].queries = kMethods[m].cull.find("queries") != std::string::npos;
     }
     std::vector<std::uint8_t> seenBefore(scene.instances().size(), 0);
     for (int f = first; f < std::min(perLevel, first + kSegmentFrames); ++f) {

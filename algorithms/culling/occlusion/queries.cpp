@@ -39,6 +39,16 @@ double worldPerPixelAtUnitDepth(const CameraTransform& camera) {
   return std::max(2 / (clip.x * camera.width()), 2 / (clip.y * camera.height()));
 }
 
+// A box's nearest and farthest points along the view axis, measured from the eye.
+struct ViewExtent {
+  double nearest, farthest;
+};
+ViewExtent alongView(const CameraTransform& camera, const Aabb& box) {
+  const double center = glm::dot(box.center() - camera.camera().eye, camera.forward());
+  const double reach = glm::dot((box.hi - box.lo) * 0.5, glm::abs(camera.forward()));
+  return {center - reach, center + reach};
+}
+
 // A node waiting in the traversal queue: nearest first (ties by index, so every run
 // walks the same way), with the view volume's planes its parent was not wholly inside.
 struct Queued {
@@ -135,7 +145,7 @@ void Traversal::enqueue(std::uint32_t index, std::uint32_t planes) {
     const dvec3 outside = glm::max(glm::max(box.lo - eye, eye - box.hi), dvec3(0));
     distance = glm::dot(outside, outside);
   } else {
-    distance = glm::dot(box.center() - eye, camera_.forward()) - glm::dot((box.hi - box.lo) * 0.5, glm::abs(camera_.forward()));
+    distance = alongView(camera_, box).nearest;
   }
   traversal_.push({distance, index, planes});
 }
@@ -152,9 +162,7 @@ bool Traversal::inView(Queued& entry) {
 }
 
 Aabb Traversal::widened(const Aabb& box) const {
-  const dvec3& forward = camera_.forward();
-  const double farthest =
-      glm::dot(box.center() - camera_.camera().eye, forward) + glm::dot((box.hi - box.lo) * 0.5, glm::abs(forward));
+  const double farthest = alongView(camera_, box).farthest;
   const double margin = kMarginPixels * worldPerPixel_ * (camera_.perspective() ? std::max(farthest, camera_.camera().near) : 1.0);
   Aabb grown;
   grown.lo = box.lo - dvec3(margin), grown.hi = box.hi + dvec3(margin);
@@ -165,11 +173,8 @@ bool Traversal::atEye(const Aabb& node) const {
   // Some corner of the box as queried nearer than the near plane: its nearest point
   // along the view axis.
   const Aabb box = widened(node);
-  const dvec3& forward = camera_.forward();
-  const dvec3 center = box.center(), half = (box.hi - box.lo) * 0.5;
-  const double nearest = glm::dot(center - camera_.camera().eye, forward) - glm::dot(half, glm::abs(forward));
-  const double slack = 0x1p-40 * (glm::length(center - camera_.camera().eye) + glm::length(half));
-  return nearest <= camera_.camera().near + slack;
+  const double slack = 0x1p-40 * (glm::length(box.center() - camera_.camera().eye) + glm::length((box.hi - box.lo) * 0.5));
+  return alongView(camera_, box).nearest <= camera_.camera().near + slack;
 }
 
 std::vector<Aabb> Traversal::boundingBoxes(std::uint32_t index) const {
