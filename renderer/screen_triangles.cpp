@@ -111,7 +111,8 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
     for (std::size_t k = begin; k < end; ++k) {
       const std::size_t i = submitted ? submitted->triangles[k] : k;
       const Triangle& t = triangles[i];
-      const TriangleFate fate = triangleStage(vertices[t[0]], vertices[t[1]], vertices[t[2]], camera, volume,
+      const dvec3* const world[3] = {&positions[t[0]], &positions[t[1]], &positions[t[2]]};
+      const TriangleFate fate = triangleStage(vertices[t[0]], vertices[t[1]], vertices[t[2]], world, camera, volume,
                                               [&](const dvec2 pixel[3], const double depth[3]) {
                                                 emitTriangle(pixel, depth, camera, static_cast<std::uint32_t>(i), out, counts[part]);
                                               });

@@ -39,22 +39,24 @@ struct GeometryOptions {
   const VisibleSet* submitted = nullptr;
 };
 
-// The vertex stage for one vertex: in clip space, the clipping planes (and the image's
-// edges) it lies outside of, and, when it is in front of the near plane, where it
-// projects: its pixel position and screen-affine depth t.
+// The vertex stage for one vertex: the clipping planes (and the image's edges) it lies
+// outside of, and, when it is in front of the near plane, where it projects: its pixel
+// position and screen-affine depth t. Its clip-space position is not kept: only a
+// triangle that must be clipped needs it, and that one transforms its corners again
+// (the same operations, so the same bits). Kept, it would double the bytes every
+// triangle reads.
 struct ScreenVertex {
-  ClipVertex clip;
   std::uint32_t outside;
   dvec2 pixel;
   double depth;
 };
 inline ScreenVertex screenVertex(const CameraTransform& camera, const ClipVolume& volume, const dvec3& world) {
   ScreenVertex vertex;
-  vertex.clip = camera.clipFromWorld(world);
-  vertex.outside = volume.outside(vertex.clip);
+  const ClipVertex clip = camera.clipFromWorld(world);
+  vertex.outside = volume.outside(clip);
   if (!(vertex.outside & kNearPlane)) {
-    vertex.pixel = camera.pixelFromClip(vertex.clip);
-    vertex.depth = camera.screenAffineDepth(vertex.clip.d);
+    vertex.pixel = camera.pixelFromClip(clip);
+    vertex.depth = camera.screenAffineDepth(clip.d);
   }
   return vertex;
 }
@@ -62,13 +64,14 @@ inline ScreenVertex screenVertex(const CameraTransform& camera, const ClipVolume
 // What the triangle stage did with one triangle.
 enum class TriangleFate { outside, projected, clipped };
 
-// The triangle stage for one triangle whose corners went through the vertex stage:
-// dropped when all three lie outside one plane, else projected (clipped first at the
-// planes it crosses, its polygon cut into a fan) and handed to emit(pixel[3], t[3]) as
-// corner pixel positions and depths, one call per piece.
+// The triangle stage for one triangle whose corners went through the vertex stage
+// (`world`: the same corners in world space): dropped when all three lie outside one
+// plane, else projected (clipped first at the planes it crosses, its polygon cut into a
+// fan) and handed to emit(pixel[3], t[3]) as corner pixel positions and depths, one call
+// per piece.
 template <typename Emit>
-TriangleFate triangleStage(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, const CameraTransform& camera,
-                           const ClipVolume& volume, Emit&& emit) {
+TriangleFate triangleStage(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, const dvec3* const world[3],
+                           const CameraTransform& camera, const ClipVolume& volume, Emit&& emit) {
   // All three vertices outside one plane: no point of the triangle is visible.
   if (a.outside & b.outside & c.outside) return TriangleFate::outside;
   const std::uint32_t crossed = (a.outside | b.outside | c.outside) & kClippingPlanes;
@@ -78,7 +81,8 @@ TriangleFate triangleStage(const ScreenVertex& a, const ScreenVertex& b, const S
     emit(pixel, depth);
     return TriangleFate::projected;
   }
-  const ClipPolygon polygon = clipTriangle({a.clip, b.clip, c.clip}, volume, crossed);
+  const ClipPolygon polygon =
+      clipTriangle({camera.clipFromWorld(*world[0]), camera.clipFromWorld(*world[1]), camera.clipFromWorld(*world[2])}, volume, crossed);
   dvec2 pixel[9];
   double depth[9];
   for (int i = 0; i < polygon.count; ++i) {

@@ -66,8 +66,9 @@ void SimulatedGpu::draw(const PreparedScene& scene, std::uint32_t instance, std:
       vertices_[v] = screenVertex(*camera_, *volume_, scene.positions()[object.firstVertex + v]);
     for (const std::uint32_t t : triangles) {
       const Triangle& corners = scene.triangles()[t];
+      const dvec3* const world[3] = {&scene.positions()[corners[0]], &scene.positions()[corners[1]], &scene.positions()[corners[2]]};
       triangleStage(vertices_[corners[0] - object.firstVertex], vertices_[corners[1] - object.firstVertex],
-                    vertices_[corners[2] - object.firstVertex], *camera_, *volume_, [&](const dvec2 pixel[3], const double depth[3]) {
+                    vertices_[corners[2] - object.firstVertex], world, *camera_, *volume_, [&](const dvec2 pixel[3], const double depth[3]) {
                       rasterize(pixel, depth, [&](std::size_t at, float z) {
                         if (!Float32Depth::nearer(z, depth_[at])) return;
                         depth_[at] = z;
@@ -86,10 +87,12 @@ PendingQuery SimulatedGpu::query(std::span<const Aabb> boxes) {
     const dvec3& forward = camera_->forward();
     for (const Aabb& box : boxes) {
       // Corner i has bit 0 set for the high x side, bit 1 for high y, bit 2 for high z.
+      std::array<dvec3, 8> world;
       vertices_.resize(8);
-      for (int i = 0; i < 8; ++i)
-        vertices_[std::size_t(i)] = screenVertex(
-            *camera_, *volume_, {i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z});
+      for (std::size_t i = 0; i < 8; ++i) {
+        world[i] = {i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z};
+        vertices_[i] = screenVertex(*camera_, *volume_, world[i]);
+      }
       for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {
           // Only the faces turned to the eye: their outlines tile the box's, so a pixel
@@ -103,10 +106,10 @@ PendingQuery SimulatedGpu::query(std::span<const Aabb> boxes) {
           const int u = 1 << ((axis + 1) % 3), v = 1 << ((axis + 2) % 3), base = side << axis;
           const std::array<int, 4> around = {base, base | u, base | u | v, base | v};
           for (int half = 0; half < 2; ++half) {
-            const ScreenVertex& a = vertices_[std::size_t(around[0])];
-            const ScreenVertex& b = vertices_[std::size_t(around[std::size_t(1 + half)])];
-            const ScreenVertex& c = vertices_[std::size_t(around[std::size_t(2 + half)])];
-            triangleStage(a, b, c, *camera_, *volume_, [&](const dvec2 pixel[3], const double depth[3]) {
+            const std::size_t a = std::size_t(around[0]), b = std::size_t(around[std::size_t(1 + half)]),
+                              c = std::size_t(around[std::size_t(2 + half)]);
+            const dvec3* const corners[3] = {&world[a], &world[b], &world[c]};
+            triangleStage(vertices_[a], vertices_[b], vertices_[c], corners, *camera_, *volume_, [&](const dvec2 pixel[3], const double depth[3]) {
               rasterize(pixel, depth, [&](std::size_t at, float z) {
                 ++counts_.queryFragments;
                 pending.passed_ += !Float32Depth::nearer(depth_[at], z);  // the "less or equal" test: z at or nearer
