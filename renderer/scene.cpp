@@ -315,6 +315,148 @@ void readEffects(TableReader& reader, Scene& scene) {
   }
 }
 
+// "(1, 2.5, -3)", for messages.
+std::string pointText(const dvec3& p) {
+  std::ostringstream text;
+  text << "(" << p.x << ", " << p.y << ", " << p.z << ")";
+  return text.str();
+}
+
+void readCell(TableReader& cell, std::size_t index, Scene& scene) {
+  Cell result;
+  const toml::source_region source = cell.find("name") ? cell.find("name")->source() : toml::source_region{};
+  result.name = cell.string("name");
+  if (result.name.empty()) cell.fail(cell.find("name"), "name", "must not be empty");
+  for (const Cell& other : scene.cells)
+    if (other.name == result.name) cell.fail(cell.find("name"), "name", "\"" + result.name + "\" names two cells; expected each name once");
+  result.from = cell.vector3("from", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
+  result.to = cell.vector3("to", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
+  cell.finish({"name", "from", "to"});
+  for (int axis = 0; axis < 3; ++axis)
+    if (!(result.from[axis] < result.to[axis])) cell.fail(cell.find("to"), "to", "must exceed from on every axis (a cell is a box with volume)");
+  // Cells must not overlap: a point in two would be in two places of the level at once.
+  for (const Cell& other : scene.cells) {
+    bool overlap = true;
+    for (int axis = 0; axis < 3; ++axis) overlap = overlap && result.from[axis] < other.to[axis] && other.from[axis] < result.to[axis];
+    if (overlap) cell.fail(cell.find("from"), "from", "cell \"" + result.name + "\" overlaps cell \"" + other.name + "\"; expected cells that at most touch");
+  }
+  result.where = cell.file().string() + ":" + std::to_string(source.begin.line) + ":" + std::to_string(source.begin.column) +
+                 ": cells[" + std::to_string(index) + "] \"" + result.name + "\"";
+  scene.cells.push_back(std::move(result));
+}
+
+// The polygon of a portal: its corners, or an axis-aligned rectangle by two corners.
+std::vector<dvec3> readPortalPolygon(TableReader& portal) {
+  if (portal.has("polygon")) {
+    if (portal.has("from") || portal.has("to"))
+      portal.fail(portal.find("from") ? portal.find("from") : portal.find("to"), "from", "give either polygon or from and to, not both");
+    const toml::array* corners = portal.array("polygon");
+    std::vector<dvec3> polygon;
+    for (std::size_t i = 0; i < corners->size(); ++i) {
+      const toml::array* corner = corners->get(i)->as_array();
+      const auto isCoordinate = [&](std::size_t axis) {
+        const toml::node* node = corner->get(axis);
+        return node->is_number() && std::abs(*node->value<double>()) <= kMaxCoordinate;
+      };
+      if (!corner || corner->size() != 3 || !isCoordinate(0) || !isCoordinate(1) || !isCoordinate(2))
+        portal.fail(corners->get(i), "polygon[" + std::to_string(i) + "]",
+                    "expected an array of 3 numbers in [-1e12, 1e12], got " + TableReader::describe(*corners->get(i)));
+      polygon.emplace_back(*corner->get(0)->value<double>(), *corner->get(1)->value<double>(), *corner->get(2)->value<double>());
+    }
+    if (polygon.size() < 3) portal.fail(portal.find("polygon"), "polygon", "expected at least 3 corners, got " + std::to_string(polygon.size()));
+    return polygon;
+  }
+  const dvec3 from = portal.vector3("from", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
+  const dvec3 to = portal.vector3("to", std::nullopt, -kMaxCoordinate, kMaxCoordinate);
+  int flat = -1, flats = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    if (from[axis] == to[axis]) flat = axis, ++flats;
+  if (flats != 1)
+    portal.fail(portal.find("to"), "to", "expected a rectangle: from and to equal on exactly one axis (the portal's plane), got " +
+                                             std::to_string(flats));
+  const int u = (flat + 1) % 3, v = (flat + 2) % 3;
+  std::vector<dvec3> polygon(4, from);
+  polygon[1][u] = to[u];
+  polygon[2][u] = to[u], polygon[2][v] = to[v];
+  polygon[3][v] = to[v];
+  return polygon;
+}
+
+// A portal joins two cells through the face they share: its plane is that face's, its
+// corners lie within it, and it is convex with an area (a line of sight crosses it once).
+void readPortal(TableReader& portal, std::size_t index, Scene& scene) {
+  Portal result;
+  const toml::array* names = portal.array("cells");
+  const auto cellIndex = [&](std::size_t i) -> std::uint32_t {
+    const auto name = names->get(i)->value<std::string>();
+    for (std::size_t c = 0; name && c < scene.cells.size(); ++c)
+      if (scene.cells[c].name == *name) return static_cast<std::uint32_t>(c);
+    portal.fail(names->get(i), "cells[" + std::to_string(i) + "]",
+                name ? "no cell is named \"" + *name + "\"; expected the name of a [[cells]] table" : "expected a cell's name");
+  };
+  if (!names || names->size() != 2) portal.fail(portal.find("cells"), "cells", "missing; expected the names of the 2 cells it joins");
+  std::uint32_t a = cellIndex(0), b = cellIndex(1);
+  if (a == b) portal.fail(names, "cells", "joins cell \"" + scene.cells[a].name + "\" to itself; expected two different cells");
+  result.polygon = readPortalPolygon(portal);
+  portal.finish({"cells", "polygon", "from", "to"});
+  // The face the two boxes share: touching on one axis, overlapping with area on the others.
+  const Cell* first = &scene.cells[a];
+  const Cell* second = &scene.cells[b];
+  int axis = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (first->to[k] == second->from[k]) axis = k;
+    if (second->to[k] == first->from[k]) axis = k, std::swap(a, b), std::swap(first, second);
+    if (axis >= 0) break;
+  }
+  dvec3 lo = glm::max(first->from, second->from), hi = glm::min(first->to, second->to);
+  bool share = axis >= 0;
+  for (int k = 0; share && k < 3; ++k) share = k == axis || lo[k] < hi[k];
+  if (!share)
+    portal.fail(names, "cells", "cells \"" + first->name + "\" and \"" + second->name +
+                                    "\" share no face; a portal joins two cells whose boxes touch along a face");
+  result.cells[0] = a, result.cells[1] = b;
+  result.axis = axis;
+  result.at = first->to[axis];
+  lo[axis] = hi[axis] = result.at;
+  // Corners written as decimals may miss the face by a rounding: within 1e-9 of the
+  // level's size they are moved onto it, beyond that they are refused.
+  const double tolerance = 1e-9 * std::max({1.0, glm::length(glm::abs(first->from) + glm::abs(second->to))});
+  const char* axes = "xyz";
+  for (std::size_t i = 0; i < result.polygon.size(); ++i) {
+    dvec3& corner = result.polygon[i];
+    for (int k = 0; k < 3; ++k) {
+      if (corner[k] < lo[k] - tolerance || corner[k] > hi[k] + tolerance) {
+        std::ostringstream expected;
+        expected << axes[axis] << " = " << result.at << " and the other coordinates within the face, " << pointText(lo) << " to "
+                 << pointText(hi);
+        portal.fail(portal.find(portal.has("polygon") ? "polygon" : "from"), portal.has("polygon") ? "polygon" : "from",
+                    "corner " + std::to_string(i) + " " + pointText(corner) + " is not on the boundary of cells \"" + first->name +
+                        "\" and \"" + second->name + "\"; expected " + expected.str());
+      }
+      corner[k] = std::clamp(corner[k], lo[k], hi[k]);
+    }
+  }
+  // Convex, with an area: every corner on the inner side of every edge (or on it),
+  // in the plane's own coordinates. (Equal turns alone would pass a star.)
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const std::size_t n = result.polygon.size();
+  const auto cross = [&](const dvec3& p, const dvec3& q, const dvec3& r) {
+    return (q[u] - p[u]) * (r[v] - p[v]) - (q[v] - p[v]) * (r[u] - p[u]);
+  };
+  double area = 0;
+  for (std::size_t i = 0; i < n; ++i) area += cross(result.polygon[0], result.polygon[i], result.polygon[(i + 1) % n]);
+  const char* key = portal.has("polygon") ? "polygon" : "from";
+  if (area == 0) portal.fail(portal.find(key), key, "the portal has no area; expected a polygon that opens a way between its cells");
+  for (std::size_t i = 0; i < n; ++i)
+    for (const dvec3& corner : result.polygon)
+      if (cross(result.polygon[i], result.polygon[(i + 1) % n], corner) * area < 0)
+        portal.fail(portal.find(key), key, "the polygon is not convex; expected its corners in order around a convex polygon");
+  const toml::source_region source = names->source();
+  result.where = portal.file().string() + ":" + std::to_string(source.begin.line) + ":" + std::to_string(source.begin.column) +
+                 ": portals[" + std::to_string(index) + "]";
+  scene.portals.push_back(std::move(result));
+}
+
 }  // namespace
 
 const std::vector<EffectName>& effectNames() {
@@ -400,7 +542,23 @@ Scene parseScene(const std::string& text, const std::filesystem::path& file) {
       objectReader.fail(nullptr, "copies", "the scene exceeds " + std::to_string(kMaxTriangles - 1) +
                                                 " triangles (the id image holds 24 bits)");
   }
-  reader.finish({"image", "camera", "effects", "shadows", "fog", "outline", "ambient", "lights", "objects"});
+  if (const toml::array* cells = reader.array("cells"))
+    for (std::size_t i = 0; i < cells->size(); ++i) {
+      const toml::table* cell = cells->get(i)->as_table();
+      if (!cell) reader.fail(cells->get(i), "cells", "expected [[cells]] tables");
+      TableReader cellReader(*cell, "cells[" + std::to_string(i) + "]", file);
+      readCell(cellReader, i, scene);
+    }
+  if (const toml::array* portals = reader.array("portals")) {
+    if (scene.cells.empty()) reader.fail(portals, "portals", "portals without cells; expected [[cells]] tables for them to join");
+    for (std::size_t i = 0; i < portals->size(); ++i) {
+      const toml::table* portal = portals->get(i)->as_table();
+      if (!portal) reader.fail(portals->get(i), "portals", "expected [[portals]] tables");
+      TableReader portalReader(*portal, "portals[" + std::to_string(i) + "]", file);
+      readPortal(portalReader, i, scene);
+    }
+  }
+  reader.finish({"image", "camera", "effects", "shadows", "fog", "outline", "ambient", "lights", "objects", "cells", "portals"});
   return scene;
 }
 

@@ -108,6 +108,25 @@ struct Effects {
   bool smoothNormals() const { return shading == Shading::lambert || shading == Shading::phong; }
 };
 
+// A level divided into cells, for the culling stages portals and pvs
+// (algorithms/culling/cells/): each cell an axis-aligned box, no two overlapping; a
+// portal a convex polygon in the face two cells share, the only way a line of sight
+// passes from one to the other. Whatever else bounds a cell is opaque, and nothing
+// outside every cell can be seen from inside one: the level's author promises both, and
+// the exact reference checks the promise in the tests.
+struct Cell {
+  std::string name;
+  dvec3 from{0}, to{0};  // the box's low and high corners, from < to on every axis
+  std::string where;     // "file:line:column: cells[i]", for messages about it later
+};
+struct Portal {
+  std::uint32_t cells[2] = {0, 0};  // indices into Scene::cells; cells[0]'s box lies below the portal's plane
+  int axis = 0;                     // the plane is coordinate `axis` == `at`
+  double at = 0;
+  std::vector<dvec3> polygon;       // convex, its corners in order
+  std::string where;
+};
+
 struct Scene {
   std::filesystem::path file;
   int width = 640, height = 480;
@@ -117,6 +136,8 @@ struct Scene {
   double ambient = 0.15;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;
+  std::vector<Cell> cells;  // empty: the scene is not divided (the stages portals and pvs refuse it)
+  std::vector<Portal> portals;
 };
 
 // Limits checked on load (and by the CLI for --size).
