@@ -1,4 +1,4 @@
-// The hsr subcommands of the command line itself: render, list and diff (compare, sweep
+// The hsr subcommands of the command line itself: render, list, diff and pvs (compare, sweep
 // and study are the studies', studies/studies.hpp). Each validates all of its input
 // before doing any work, throws InputError for bad input (main prints it as one line and
 // exits 2), and writes its output files only when all of them are complete.
@@ -33,5 +33,15 @@ struct DiffOptions {
   double tolerance = 0;  // per channel, in [0, 1]
 };
 int diff(const DiffOptions& options);
+
+// hsr pvs build: a level's potentially visible sets, cached beside it
+// (algorithms/culling/cells/pvs.hpp).
+struct PvsOptions {
+  std::string scene;
+  std::string build = "conservative";
+  std::string samples, resolution;  // "": the stage's defaults
+  int threads = 0;
+};
+int pvsBuild(const PvsOptions& options);
 
 }  // namespace hsr::cli

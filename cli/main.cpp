@@ -98,9 +98,9 @@ int main(int argc, char** argv) {
 
   hsr::studies::StudyOptions study;
   CLI::App* studyCommand = app.add_subcommand(
-      "study", "an experiment, reproduced: culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, effects, shadow-map");
+      "study", "an experiment, reproduced: culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, indoor, effects, shadow-map");
   studyCommand->add_option("name", study.name,
-                           "the study: culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, effects or shadow-map")
+                           "the study: culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, indoor, effects or shadow-map")
       ->required();
   studyCommand->add_option("--scenes", study.scenes, "some of the study's scenes: cube,counters,trees,dragons (default all)");
   studyCommand->add_option("--frames", study.frames,
@@ -125,6 +125,16 @@ int main(int argc, char** argv) {
 
   CLI::App* listCommand = app.add_subcommand("list", "list algorithms, their knobs, and the shipped scenes");
 
+  hsr::cli::PvsOptions pvs;
+  CLI::App* pvsCommand = app.add_subcommand("pvs", "a level's potentially visible sets (--cull pvs)");
+  pvsCommand->require_subcommand(1);
+  CLI::App* pvsBuildCommand = pvsCommand->add_subcommand("build", "build a level's visible sets and cache them beside the scene file");
+  pvsBuildCommand->add_option("scene", pvs.scene, "scene file with [[cells]] and [[portals]]")->required();
+  pvsBuildCommand->add_option("--build", pvs.build, "conservative (portal chains) or sampled (eye points traced exactly)")->capture_default_str();
+  pvsBuildCommand->add_option("--samples", pvs.samples, "sampled: eye points per cell (default 64)");
+  pvsBuildCommand->add_option("--resolution", pvs.resolution, "sampled: pixels a side of each cube-map face (default 64)");
+  threadsOption(pvsBuildCommand, pvs.threads);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -148,6 +158,7 @@ int main(int argc, char** argv) {
     if (*studyCommand) return reported(hsr::studies::study(study), hsr::studies::studyFolder(study), "hsr study " + study.name);
     if (*diffCommand) return hsr::cli::diff(diff);
     if (*listCommand) return hsr::cli::list();
+    if (*pvsCommand) return hsr::cli::pvsBuild(pvs);
   } catch (const hsr::InputError& error) {
     std::fprintf(stderr, "hsr: error: %s\n", error.what());
     return hsr::studies::kBadInput;

@@ -368,10 +368,10 @@ int study(const StudyOptions& options) {
   const auto among = [&](const std::vector<std::string>& names) {
     return std::find(names.begin(), names.end(), options.name) != names.end();
   };
-  if (options.name != "culling-combos" && !among(occlusionStudies) && !among(effectsStudies))
+  if (options.name != "culling-combos" && options.name != "indoor" && !among(occlusionStudies) && !among(effectsStudies))
     throw InputError("study " + options.name +
-                     ": unknown study; expected culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, effects "
-                     "or shadow-map");
+                     ": unknown study; expected culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, indoor, "
+                     "effects or shadow-map");
   if (!options.size.empty()) parseSize(options.size, "--size");
   if (options.name != "occlusion-queries" && (!options.shard.empty() || !options.merge.empty()))
     throw InputError(std::string(options.shard.empty() ? "--merge" : "--shard") + ": study " + options.name +
@@ -381,6 +381,7 @@ int study(const StudyOptions& options) {
   if (options.name != "culling-combos") {
     if (!options.scenes.empty()) throw InputError("--scenes: study " + options.name + " has its own scenes; --scenes is for culling-combos");
     makeFolder(folder, "--out");
+    if (options.name == "indoor") return indoorStudy(options, folder);
     return among(occlusionStudies) ? occlusionStudy(options, folder) : effectsStudy(options, folder);
   }
   StudyOptions resolved = options;

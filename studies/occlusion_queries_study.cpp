@@ -32,6 +32,7 @@
 #include "renderer/reference.hpp"
 #include "renderer/simulated_gpu.hpp"
 #include "studies/common.hpp"
+#include "studies/gpu_walk.hpp"
 #include "studies/interrupt.hpp"
 #include "studies/plot.hpp"
 #include "studies/results.hpp"
@@ -83,63 +84,6 @@ Camera pathCamera(const Level& level, const Camera& base, int f, int frames) {
   const dmat4 turn = glm::rotate(dmat4(1), 2 * glm::pi<double>() * f / frames, dvec3(0, 1, 0));
   camera.eye = base.target + dvec3(turn * dvec4(base.eye - base.target, 0));
   return camera;
-}
-
-// One method walking one segment: what it carries from frame to frame.
-struct MethodWalk {
-  culling::Pipeline pipeline;
-  // The variant of the pipeline's last stage: "queries" draws as it goes; "previous-frame"
-  // reads the frame before.
-  bool lastStageIs(const std::string& variant) const { return !pipeline.empty() && pipeline.back().variant() == variant; }
-  std::vector<std::unique_ptr<culling::StageMemory>> memory;
-  SimulatedGpu gpu;
-  Visibility last;  // previous-frame: the frame before, drawn by the z-buffer
-  Camera lastCamera;
-  bool hasLast = false;
-  std::vector<std::uint8_t> drawnInSpell;  // per object: drawn since it last came into view
-};
-
-// One frame of the per-frame CSV.
-struct FrameRow {
-  std::string level, method;
-  int segment = 0, frame = 0;
-  double ms = 0, waitingMs = 0;
-  std::int64_t triangles = 0, queries = 0, wasted = 0, late = 0, falseCulls = 0;
-};
-
-FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& seen,
-                   const std::vector<std::uint8_t>& seenBefore, MethodWalk& walk, int threads) {
-  walk.gpu.beginFrame(scene.camera());
-  const culling::PreviousFrame previous{walk.lastCamera, walk.hasLast ? &walk.last.frame : nullptr, &walk.memory, &walk.gpu};
-  Stats stats;
-  const VisibleSet kept = culling::runPipeline(scene, walk.pipeline, threads, stats, &previous);
-  const std::vector<culling::TriangleRun> runs = culling::trianglesByInstance(scene, kept);
-  if (!walk.lastStageIs("queries"))  // the query strategies drew as they went
-    for (std::uint32_t object = 0; object < runs.size(); ++object)
-      if (runs[object].end > runs[object].first)
-        walk.gpu.draw(scene, object, {kept.triangles.data() + runs[object].first, runs[object].end - runs[object].first});
-  const GpuFrameTimes times = walk.gpu.endFrame();
-  if (walk.lastStageIs("previous-frame")) {
-    // Untimed: the depth the next frame reprojects.
-    Stats untimed;
-    const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
-    walk.last.frame = Frame(scene.width(), scene.height());
-    zbuffer.algorithm->visibility({scene, scene.camera(), &kept, threads, untimed}, zbuffer.knobs, walk.last);
-  }
-  walk.lastCamera = scene.camera().camera(), walk.hasLast = true;
-
-  FrameRow row;
-  row.ms = 1e3 * times.frame, row.waitingMs = 1e3 * times.waiting;
-  row.triangles = std::int64_t(kept.triangles.size());
-  row.queries = stats.counter("queries: issued"), row.wasted = stats.counter("queries: answered visible");
-  walk.drawnInSpell.resize(seen.size(), 0);
-  for (std::size_t object = 0; object < seen.size(); ++object) {
-    const bool drawn = runs[object].end > runs[object].first;
-    if (seen[object] && !seenBefore[object]) walk.drawnInSpell[object] = 0;  // a new spell in view
-    if (seen[object] && !drawn) (walk.drawnInSpell[object] ? row.falseCulls : row.late) += 1;
-    walk.drawnInSpell[object] = walk.drawnInSpell[object] || (seen[object] && drawn);
-  }
-  return row;
 }
 
 // The segments of the walk, in order: (level, first position).
@@ -249,11 +193,7 @@ void writeResults(std::vector<FrameRow> frames, const std::filesystem::path& fol
         continue;
       }
       const double n = double(ms.size());
-      double mean = 0, variance = 0;
-      for (const double v : ms) mean += v / n;
-      for (const double v : ms) variance += (v - mean) * (v - mean) / n;
-      std::sort(ms.begin(), ms.end());
-      const double p5 = ms[std::size_t(0.05 * (n - 1))], p95 = ms[std::size_t(0.95 * (n - 1))];
+      const auto [mean, variance, p5, p95] = spreadOf(ms);
       std::printf("  %-10s %-15s %9.3f %11.4g %8.3f %8.3f %11.3f %9.0f %8.1f %11lld %7lld %7lld\n", level.name.c_str(), method.name.c_str(),
                   mean, variance, p5, p95, waiting / n, triangles / n, queries / n, static_cast<long long>(lateFrames),
                   static_cast<long long>(late), static_cast<long long>(falseCulls));
@@ -265,12 +205,7 @@ void writeResults(std::vector<FrameRow> frames, const std::filesystem::path& fol
                           {"late_frames", std::to_string(lateFrames)}, {"objects_late", std::to_string(late)},
                           {"false_culls", std::to_string(falseCulls)}};
       summary.push_back(row);
-      json += std::string(summary.size() > 1 ? ",\n" : "") + "    {";
-      for (std::size_t i = 0; i < row.size(); ++i) {
-        const bool text = i < 2;
-        json += (i ? ", \"" : "\"") + row[i].first + "\": " + (text ? "\"" + row[i].second + "\"" : row[i].second);
-      }
-      json += "}";
+      json += std::string(summary.size() > 1 ? ",\n" : "") + "    " + jsonObjectOf(row, 2);
       for (const double value : {mean, p5, p95}) {
         table += ' ';
         table += formatted(value, "%.5g");

@@ -55,6 +55,8 @@ int occlusionStudy(const StudyOptions& options, const std::filesystem::path& fol
 // checked first (InputError), before the folder is made.
 void checkOcclusionQueriesOptions(const StudyOptions& options);
 int occlusionQueriesStudy(const StudyOptions& options, const std::filesystem::path& folder);
+// indoor (indoor_study.cpp): cells, portals and visible sets against occlusion culling.
+int indoorStudy(const StudyOptions& options, const std::filesystem::path& folder);
 // The effects studies (effects_studies.cpp), into `folder`.
 int effectsStudy(const StudyOptions& options, const std::filesystem::path& folder);
 

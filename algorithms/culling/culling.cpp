@@ -2,6 +2,8 @@
 #include "algorithms/culling/culling.hpp"
 
 #include "algorithms/culling/backface.hpp"
+#include "algorithms/culling/cells/portals.hpp"
+#include "algorithms/culling/cells/pvs.hpp"
 #include "algorithms/culling/frustum.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
 #include "renderer/error.hpp"
@@ -26,7 +28,8 @@ const KnobSpec* bareKnob(const StageEntry& stage, const std::string& variant) {
 }  // namespace
 
 const std::vector<StageEntry>& stages() {
-  static const std::vector<StageEntry> entries = {backface::stage(), frustum::stage(), occlusion::stage()};
+  static const std::vector<StageEntry> entries = {backface::stage(), frustum::stage(), occlusion::stage(), portals::stage(),
+                                                 pvs::stage()};
   return entries;
 }
 
@@ -41,8 +44,9 @@ std::string StageChoice::name() const {
 }
 
 Pipeline parsePipeline(const std::string& text, const std::string& where) {
-  std::string names;
-  for (const StageEntry& stage : stages()) names += (names.empty() ? "" : " or ") + stage.name;
+  std::vector<std::string> stageNames;
+  for (const StageEntry& stage : stages()) stageNames.push_back(stage.name);
+  const std::string names = choiceList(stageNames);
   Pipeline pipeline;
   std::size_t begin = 0;
   while (true) {

@@ -8,6 +8,10 @@
 //   frustum  (frustum.cpp)   an object or triangle wholly outside the view volume
 //   occlusion (occlusion/)   an object behind what nearer objects drew into a small
 //                            depth map (or what the previous frame left in its depth)
+//   portals (cells/)         in a level divided into cells, a cell no chain of portals
+//                            from the eye's cell reaches within the view
+//   pvs (cells/)             in such a level, an object outside the set precomputed for
+//                            the eye's cell
 //
 // A pipeline runs stages in the order given, each on what the previous one kept, and
 // hands the surviving VisibleSet (renderer/visible_set.hpp) to a surface algorithm.
@@ -79,6 +83,8 @@ struct StageEntry {
   // Why these settings do not go together, or "" when they do.
   std::function<std::string(const KnobValues&)> conflict = [](const KnobValues&) { return std::string(); };
   std::function<VisibleSet(const KnobValues&, const StageInput&)> run = nullptr;
+  // Runs only on a level divided into [[cells]] (portals, pvs), and refuses others.
+  bool needsCells = false;
 
   const KnobSpec& variantKnob() const { return knobs.front(); }
 };

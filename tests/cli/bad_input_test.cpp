@@ -62,6 +62,9 @@ TEST_P(BadInput, OneLineExitTwoNoFile) {
 const std::string kCube = std::string(HSR_SOURCE_DIR) + "/scenes/cube.toml";
 const std::string kGoldenCube = std::string(HSR_SOURCE_DIR) + "/images/golden/zbuffer/cube.png";
 const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+// One room as a cell, with a floor; kInsideCamera puts the eye in it.
+const std::string kOneRoom = "[[objects]]\nshape = \"grid\"\n[[cells]]\nname = \"room\"\nfrom = [-1, 0, -1]\nto = [1, 1, 1]\n";
+const std::string kInsideCamera = "[camera]\neye = [0, 0.5, 0]\ntarget = [0, 0.5, -1]\n";
 
 INSTANTIATE_TEST_SUITE_P(
     Cli, BadInput,
@@ -123,7 +126,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"line-style-unknown", kCube + " --algo appel --line-style dotted -o OUT", "--line-style dotted: expected visible, hidden or qi"},
         Case{"cull-unknown-stage", kCube + " --cull backface,occlusionn -o OUT",
              "--cull: unknown culling stage 'occlusionn' in 'backface,occlusionn'; expected a comma-separated list of "
-             "backface or frustum or occlusion, each optionally :VARIANT and :KNOB=VALUE"},
+             "backface, frustum, occlusion, portals or pvs, each optionally :VARIANT and :KNOB=VALUE"},
         Case{"cull-unknown-variant", kCube + " --cull frustum:cone -o OUT",
              "--cull: culling stage frustum has no variant 'cone'; expected sphere, aabb, bvh, triangle or any-vertex"},
         Case{"cull-empty-stage", kCube + " --cull backface, -o OUT", "--cull: unknown culling stage '' in 'backface,'"},
@@ -200,7 +203,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"sweep-no-knob", kCube + " --out OUT", "give at least one --knob", "sweep"},
         Case{"sweep-unknown-knob", kCube + " --knob precision=1,2 --out OUT", "zbuffer has no knob 'precision'", "sweep"},
         Case{"study-unknown", "culling-combo --out OUT", "study culling-combo: unknown study; expected culling-combos, occlusion-walkthrough, occlusion-queries, hzb-resolution, occluder-fraction, "
-             "effects or shadow-map",
+             "indoor, effects or shadow-map",
              "study"},
         Case{"study-scenes-of-an-occlusion-study", "hzb-resolution --scenes cube --out OUT",
              "--scenes: study hzb-resolution has its own scenes; --scenes is for culling-combos", "study"},
@@ -246,7 +249,28 @@ INSTANTIATE_TEST_SUITE_P(
              "expected 320x240", "diff"},
         Case{"diff-tolerance-out-of-range", kGoldenCube + " " + kGoldenCube + " --tolerance 2", "--tolerance 2", "diff"},
         Case{"diff-heatmap-not-png", kGoldenCube + " " + kGoldenCube + " --heatmap " + test::outputPath("bad-heat.jpg").string(),
-             "expected a file name ending in .png", "diff"}),
+             "expected a file name ending in .png", "diff"},
+        // Levels divided into cells (the stages portals and pvs).
+        Case{"portals-without-cells", kCube + " --cull portals -o OUT",
+             "--cull portals: " + kCube + " has no cells; expected [[cells]] and [[portals]] tables dividing the level"},
+        Case{"portals-eye-in-no-cell", write("eye-outside.toml", kCamera + kOneRoom) + " --cull frustum,portals -o OUT",
+             "--cull portals: the eye (0, 0, 5) is in no cell of " + test::outputPath("eye-outside.toml").string() +
+                 "; expected it inside one of its 1 cells"},
+        Case{"portals-cell-without-objects",
+             write("empty-cell.toml", kInsideCamera + kOneRoom + "[[cells]]\nname = \"attic\"\nfrom = [-1, 1, -1]\nto = [1, 2, 1]\n") +
+                 " --cull portals -o OUT",
+             "empty-cell.toml:11:8: cells[1] \"attic\": no object meets this cell; expected every cell to hold at least one object"},
+        Case{"portals-orthographic", write("ortho-cells.toml", "[camera]\ntype = \"orthographic\"\neye = [0, 0.5, 0]\ntarget = [0, 0.5, -1]\nheight = 2\n" + kOneRoom) +
+                                         " --cull portals -o OUT",
+             "is orthographic; expected a perspective camera"},
+        Case{"pvs-eye-in-no-cell", test::outputPath("eye-outside.toml").string() + " --cull pvs -o OUT", "--cull pvs: the eye (0, 0, 5) is in no cell"},
+        Case{"pvs-samples-without-sampled", kCube + " --cull pvs:samples=4 -o OUT",
+             "--cull: pvs:samples=4: samples and resolution set how build=sampled samples; expected build=sampled with them"},
+        Case{"pvs-build-without-cells", kCube, "hsr pvs build: " + kCube + " has no cells", "pvs build"},
+        Case{"pvs-build-zero-samples", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --build sampled --samples 0",
+             "hsr pvs build samples=0: culling stage pvs samples must be an integer in [1, 100000]", "pvs build"},
+        Case{"pvs-build-unknown-build", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --build exact",
+             "culling stage pvs build must be one of conservative, sampled", "pvs build"}),
     [](const testing::TestParamInfo<Case>& param) {
       std::string name = param.param.name;
       std::replace(name.begin(), name.end(), '-', '_');

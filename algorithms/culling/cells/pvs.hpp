@@ -1,0 +1,99 @@
+// Potentially visible sets (Airey 1990; Teller and Séquin 1991; shipped by the
+// Quake-family engines): for every cell, once per level, the objects that can be seen
+// from somewhere in it. A frame then costs a lookup: the eye's cell's set is drawn.
+// Two ways to build the sets (knob `build`), the accuracy-against-time lesson applied to
+// precomputation:
+//
+//   sampled       Airey's way: eye points spread through each cell (`samples`, a Halton
+//                 sequence), from each the six faces of a cube map (`resolution`
+//                 pixels a side) traced with the exact reference; the set is every object
+//                 some ray hit. Aggressive: an object seen only from places no sample
+//                 stood, or between the rays, is missing, and a walkthrough that comes
+//                 there loses it (the indoor study counts the frames).
+//   conservative  Teller's idea with the Quake vis tool's test: from each portal S out of
+//                 the cell, chains of portals are followed as long as a line could pass
+//                 them all. A portal P further on is cut to the part beyond the plane of
+//                 every portal crossed, and by the separating planes of S and the last
+//                 portal passed (a plane through an edge of one and a corner of the
+//                 other, with each wholly on its own side: a line through both stays on
+//                 the far one); nothing left, no line. S itself is cut to the near side of
+//                 each portal's plane as the chain goes on. An object of a cell reached
+//                 is in the set unless its box is wholly behind one of those planes.
+//                 Never misses an object; keeps more than can be seen (every stabbing
+//                 line that the planes admit, and everything hidden by furniture).
+//
+// The sets are cached beside the scene (`hsr pvs build SCENE` writes
+// SCENE.pvs-conservative or SCENE.pvs-sampled-SxR, one line per cell) with a
+// fingerprint of the level: the stage reads a cache whose fingerprint matches, and
+// otherwise builds the sets itself, once per walk ("pvs: built now").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algorithms/culling/cells/cells.hpp"
+#include "algorithms/culling/culling.hpp"
+
+namespace hsr::culling::pvs {
+
+enum class Build { sampled, conservative };
+
+struct Knobs {
+  int variant = 0;  // one variant: the eye's cell's set
+  Build build = Build::conservative;
+  int samples = 64;     // sampled: eye points per cell
+  int resolution = 64;  // sampled: pixels a side of each cube-map face
+};
+
+inline const KnobTable<Knobs>& knobTable() {
+  static const KnobTable<Knobs> table =
+      KnobTable<Knobs>()
+          .variants(&Knobs::variant, {{0, "cell", "the precomputed set of the eye's cell: every object seen from somewhere in it"}},
+                    "the lookup")
+          .choice("build", &Knobs::build, {{Build::conservative, "conservative"}, {Build::sampled, "sampled"}},
+                  "conservative: chains of portals a line can pass (never misses); sampled: eye points traced with the exact "
+                  "reference (misses what no sample saw)")
+          .number("samples", &Knobs::samples, {1, 100000}, {"4", "16", "256"}, "sampled: eye points per cell")
+          .number("resolution", &Knobs::resolution, {1, 4096}, {"16", "128"}, "sampled: pixels a side of each cube-map face");
+  return table;
+}
+
+// Chains followed from one cell before its conservative build gives up and takes every
+// object of every cell connected to it (counted as "pvs: cells given up").
+inline constexpr std::int64_t kMaxChainsPerCell = 1 << 18;
+
+struct VisibleSets {
+  std::vector<std::vector<std::uint32_t>> objects;  // per cell, the instances in its set, ascending
+  double seconds = 0;                               // the build's time
+  std::int64_t work = 0;                            // sampled: rays traced; conservative: portal chains followed
+  std::int64_t cellsGivenUp = 0;                    // conservative: cells whose search hit kMaxChainsPerCell
+};
+
+// Builds the sets as `knobs` say, on `threads` threads (0: all cores; the same sets for
+// any count). Counts "pvs: rays traced" or "pvs: chains followed", "pvs: cells given
+// up", "pvs: objects in all sets" (summed over the cells), and phase "pvs build".
+VisibleSets build(const PreparedScene& scene, const cells::CellMap& map, const Knobs& knobs, int threads, Stats& stats);
+
+// The cache file of these settings, beside the scene file.
+std::filesystem::path cachePath(const PreparedScene& scene, const Knobs& knobs);
+// A hash of what the sets depend on: every object's box, the cells and the portals.
+std::string fingerprint(const PreparedScene& scene);
+// Writes the sets (whole or not at all). Throws InputError when the file cannot be written.
+void writeCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs, const VisibleSets& sets);
+// The cached sets, or nothing when the file is absent or was built for another level or
+// other settings. Throws InputError ("file:line: what, expected ...") for a file that is
+// not a cache.
+std::optional<VisibleSets> readCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs);
+
+// The triangles of `in` of the objects in the eye's cell's set (the union of the sets of
+// the cells the eye is in, on a shared face). Counts "pvs: objects in the set".
+VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const VisibleSets& sets, const CameraTransform& camera,
+                const VisibleSet& in, Stats& stats);
+
+// The stage's entry in culling::stages().
+StageEntry stage();
+
+}  // namespace hsr::culling::pvs
