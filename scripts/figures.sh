@@ -125,6 +125,11 @@ cp "$study/occluder_fraction.png" images/figures/culling/occluder_fraction.png
 ./build/hsr study occlusion-queries --out "$study" > /dev/null
 cp "$study/occlusion_queries.png" images/figures/culling/occlusion_queries.png
 cp "$study/occlusion_queries_frames.png" images/figures/culling/occlusion_queries_frames.png
+# Cells, portals and visible sets: the indoor study's table, its walk, and the map.
+./build/hsr study indoor --out "$study" > /dev/null
+for plot in indoor indoor_frames indoor_map; do cp "$study/$plot.png" "images/figures/culling/$plot.png"; done
+# The indoor level from its own camera, down the hall, drawn after portal culling.
+./build/hsr render scenes/study/indoor.toml --cull frustum,portals:narrowing=polygon --size 640x360 -o images/figures/culling/indoor_view.png
 # Effects: the showcase with each effect added in turn and the time of each pass, and
 # the shadow map's resolution x bias against exact shadow rays.
 mkdir -p images/figures/effects
