@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the levels divided into cells: scenes/study/indoor.toml whole (a long hall with
 rooms on both sides, every wall with a door), the cells and portals at the end of
-scenes/study/corridors.toml (everything after its line "# Cells and portals"), and the
+scenes/study/corridors.toml and scenes/study/castle.toml (everything after their line
+"# Cells and portals"), and the
 hard case scenes/hard/portal_rooms.toml (nine small rooms, doors off the middle). A
 portal-culled level needs dozens of cells and hundreds of portals, each placed exactly on
 a wall's centre line; written by hand they would drift from the walls they open.
@@ -329,8 +330,47 @@ color = [0.5, 0.46, 0.4]
     (STUDY.parent / "hard" / "portal_row.toml").write_text("".join(out + cells + portals), newline="\n")
 
 
+# ---------------------------------------------------------------------------------
+# castle: three courtyards inside closed curtain walls (10 high), parted by inner walls
+# (7 high) with a gap at each end; the ground outside; and the sky above the walls,
+# where the towers and the keep rise.
+
+def castle():
+    path = STUDY / "castle.toml"
+    text = path.read_text()
+    text = text[: text.index(MARKER)] if MARKER in text else text.rstrip("\n") + "\n\n"
+    out = [MARKER + " (written by scripts/make_levels.py): the three courtyards up to the inner\n"
+           "# walls' height (7), one cell over all three up to the curtain walls' (10), the\n"
+           "# ground outside in four boxes, and the sky above (to 60). The courtyards open into\n"
+           "# one another through the gaps at the inner walls' ends, and upward; everything opens\n"
+           "# into the sky. The curtain walls and their corner towers close the castle.\n"]
+    yards = [("west courtyard", -30, -10), ("middle courtyard", -10, 10), ("east courtyard", 10, 30)]
+    for name, x0, x1 in yards:
+        out.append(cell(name, [x0, 0, -30], [x1, 7, 30]))
+    out.append(cell("over the inner walls", [-30, 7, -30], [30, 10, 30]))
+    outside = [("outside south", [-100, 0, -100], [100, 10, -30]), ("outside north", [-100, 0, 30], [100, 10, 100]),
+               ("outside west", [-100, 0, -30], [-30, 10, 30]), ("outside east", [30, 0, -30], [100, 10, 30])]
+    for name, lo, hi in outside:
+        out.append(cell(name, lo, hi))
+    out.append(cell("sky", [-100, 10, -100], [100, 60, 100]))
+    for name, x0, x1 in yards:
+        out.append(portal(name, "over the inner walls", [x0, 7, -30], [x1, 7, 30]))
+    for (a, _, x), (b, _, _) in zip(yards, yards[1:]):
+        # The inner walls span z = -28 .. 28: a gap of 2 at each end.
+        out.append(portal(a, b, [x, 0, 28], [x, 7, 30]))
+        out.append(portal(a, b, [x, 0, -30], [x, 7, -28]))
+    out.append(portal("over the inner walls", "sky", [-30, 10, -30], [30, 10, 30]))
+    for name, lo, hi in outside:
+        out.append(portal(name, "sky", [lo[0], 10, lo[2]], [hi[0], 10, hi[2]]))
+    for z, side in ((-30, "outside south"), (30, "outside north")):
+        out.append(portal(side, "outside west", [-100, 0, z], [-30, 10, z]))
+        out.append(portal(side, "outside east", [30, 0, z], [100, 10, z]))
+    path.write_text(text + "".join(out), newline="\n")
+
+
 if __name__ == "__main__":
     indoor()
+    castle()
     portal_rooms()
     portal_row()
     corridors()

@@ -1,7 +1,8 @@
 // indoor (README "Cells, portals and potentially visible sets"): indoor visibility as
-// the classic engines did it, against the methods that need no cells. Two levels divided
-// into cells (scenes/study/indoor.toml, a hall with twelve rooms; corridors.toml, a grid
-// of corridors), each walked along a closed path at eye height; at every position nine
+// the classic engines did it, against the methods that need no cells. Three levels
+// divided into cells (scenes/study/indoor.toml, a hall with twelve rooms; corridors.toml,
+// a grid of corridors; castle.toml, walked inside its walls), each along a closed path
+// at eye height; at every position nine
 // methods draw on a simulated GPU (gpu_walk.hpp), as occlusion-queries times them, and
 // the exact reference says which objects are seen:
 //   frustum                      the baseline: no cells
@@ -35,14 +36,19 @@ constexpr int kDefaultFrames = 300;  // per level
 struct Level {
   std::string name, file, description;
   std::vector<dvec2> path;  // (x, z) corners of a closed walk
+  double eyeHeight;
 };
 const std::vector<Level> kLevels = {
     // Down the hall, up through a door, west through the five doors of the north rooms,
     // back to the hall, across to the south rooms, east through theirs, and back.
-    {"indoor", "indoor", "a hall with twelve rooms", {{-28, 0}, {25, 0}, {25, 6}, {-25, 6}, {-25, 0}, {-25, -6}, {25, -6}, {25, 0}}},
+    {"indoor", "indoor", "a hall with twelve rooms", {{-28, 0}, {25, 0}, {25, 6}, {-25, 6}, {-25, 0}, {-25, -6}, {25, -6}, {25, 0}}, 1.6},
     // East along a corridor through the gaps in its cross walls, round the wall's end,
     // west along the next one.
-    {"corridors", "corridors", "a grid of corridors", {{-42, 4}, {42, 4}, {42, 12}, {-42, 12}}}};
+    {"corridors", "corridors", "a grid of corridors", {{-42, 4}, {42, 4}, {42, 12}, {-42, 12}}, 1.6},
+    // Round the inside of the castle: along the north wall through the gaps at the
+    // inner walls' ends, down the east courtyard, back through the southern gaps, up
+    // the west courtyard.
+    {"castle", "castle", "the courtyards of a castle", {{-20, 28.5}, {20, 28.5}, {20, -28.5}, {-20, -28.5}}, 1.7}};
 
 struct Method {
   std::string name, cull;
@@ -57,9 +63,11 @@ const std::vector<Method> kMethods = {{"frustum", "frustum"},
                                       {"depth-map", "frustum,occlusion"},
                                       {"chc", "frustum,occlusion:queries:chc"}};
 
-// Position f of `frames` on a closed path, at even steps along it, the eye 1.6 up and
-// looking along the path; over the last 1.5 units of a leg the heading swings to the next.
-Camera alongPath(const Camera& base, const std::vector<dvec2>& corners, int f, int frames) {
+// Position f of `frames` on a level's closed path, at even steps along it, the eye at
+// the level's eye height and looking along the path; over the last 1.5 units of a leg
+// the heading swings to the next.
+Camera alongPath(const Camera& base, const Level& level, int f, int frames) {
+  const std::vector<dvec2>& corners = level.path;
   std::vector<double> lengths;
   double total = 0;
   for (std::size_t i = 0; i < corners.size(); ++i) total += lengths.emplace_back(glm::distance(corners[i], corners[(i + 1) % corners.size()]));
@@ -71,7 +79,7 @@ Camera alongPath(const Camera& base, const std::vector<dvec2>& corners, int f, i
   const dvec2 heading = glm::normalize((1 - swing) * glm::normalize(to - from) + swing * glm::normalize(next - to));
   const dvec2 position = from + std::min(along, lengths[leg]) / lengths[leg] * (to - from);
   Camera camera = base;
-  camera.eye = dvec3(position.x, 1.6, position.y);
+  camera.eye = dvec3(position.x, level.eyeHeight, position.y);
   camera.target = camera.eye + dvec3(heading.x, 0, heading.y);
   return camera;
 }
@@ -179,7 +187,7 @@ int indoorStudy(const StudyOptions& options, const std::filesystem::path& folder
           culling::pvs::build(scene, culling::cells::CellMap(scene, "study indoor"), walks[m].pipeline.back().knobs.as<culling::pvs::Knobs>(),
                               options.threads, stats);
       builds[l][m] = {sets.seconds, double(stats.counter("pvs: objects in all sets")) / double(world.cells.size())};
-      world.camera = alongPath(base, level.path, 0, frames);
+      world.camera = alongPath(base, level, 0, frames);
       const culling::PreviousFrame previous{world.camera, nullptr, &walks[m].memory, nullptr};
       culling::runPipeline(scene, walks[m].pipeline, options.threads, stats, &previous);
       std::printf("  %s, %s: sets built in %.3f s, %.1f objects a cell on average of %zu\n", level.name.c_str(), kMethods[m].name.c_str(),
@@ -188,7 +196,7 @@ int indoorStudy(const StudyOptions& options, const std::filesystem::path& folder
     std::vector<std::uint8_t> seenBefore(scene.instances().size(), 0);
     Progress progress{std::size_t(frames)};
     for (int f = 0; f < frames; ++f) {
-      world.camera = alongPath(base, level.path, f, frames);
+      world.camera = alongPath(base, level, f, frames);
       Stats referenceStats;
       const std::vector<std::uint8_t> seen =
           objectsWithAny(scene, visibleTriangles(traceReference(scene, options.threads, referenceStats), scene.triangleCount()));
@@ -280,7 +288,7 @@ int indoorStudy(const StudyOptions& options, const std::filesystem::path& folder
       plots += "\n";
     }
     addPlot(files, folder, "indoor_frames",
-            data + "set multiplot layout 2,1 title 'Indoor: objects drawn along each walk'\nset xlabel 'position'\nset ylabel 'objects'\n"
+            data + "set multiplot layout 3,1 title 'Indoor: objects drawn along each walk'\nset xlabel 'position'\nset ylabel 'objects'\n"
                    "set logscale y\nset grid\nset key top left font ',7' maxrows 3\nset linetype 9 lc rgb '#8c564b'\n" +
                 plots + "unset multiplot\n");
     writeMap(folder, files, *scenes.front().scene, *scenes.front().prepared);

@@ -22,6 +22,7 @@ const std::filesystem::path kRooms = test::sourcePath("scenes/hard/portal_rooms.
 const std::filesystem::path kIndoor = test::sourcePath("scenes/study/indoor.toml");
 const std::filesystem::path kCorridors = test::sourcePath("scenes/study/corridors.toml");
 const std::filesystem::path kRow = test::sourcePath("scenes/hard/portal_row.toml");
+const std::filesystem::path kCastle = test::sourcePath("scenes/study/castle.toml");
 
 // The brute force the traversal is checked against: a line of sight through every point
 // of a fine grid over the image, walked from the eye's cell to the next through the
@@ -127,7 +128,13 @@ std::vector<WalkCase> walks() {
            {{{-30, 1.6, 2}, {0, 1.6, 2}},
             {{-40, 1.6, 4}, {-40, 1.6, -30}},
             {{12, 1.6, -20}, {20, 1.6, -36}},
-            {{42, 1.6, 20}, {-40, 1.6, 22}}}}};
+            {{42, 1.6, 20}, {-40, 1.6, 22}}}},
+          {kCastle,
+           {{{0, 14, 62}, {0, 2, 10}},         // the third-person camera, in the sky
+            {{0, 1.7, 25}, {0, 1.7, 0}},       // in the middle courtyard, toward the keep
+            {{-20, 1.7, 28.5}, {20, 1.7, 28.5}},  // through the gaps at the inner walls' ends
+            {{0, 1.7, 60}, {0, 5, 0}},         // outside, toward the castle
+            {{20, 12, 0}, {-20, 0, 0}}}}};     // above the walls, looking down into the courtyards
 }
 
 TEST(Portals, NeverCullAnObjectTheReferenceSees) {
