@@ -33,6 +33,19 @@ def box(name, lo, hi, color):
             f"translate = {vector(center)}\ncolor = {vector(color)}\n")
 
 
+def header(comment, effects, size, eye, target, far, light, floor, floor_color, background=None, ambient=None):
+    """A level's opening: its comment, effects, image, camera, light, and floor (a grid)."""
+    text = comment + f'effects = ["{effects}"]\n'
+    if ambient is not None:
+        text += f"ambient = {number(ambient)}\n"
+    text += f"\n[image]\nwidth = {size[0]}\nheight = {size[1]}\n"
+    if background is not None:
+        text += f"background = {vector(background)}\n"
+    text += f"\n[camera]\neye = {vector(eye)}\ntarget = {vector(target)}\nfov_y = 70\nnear = 0.05\nfar = {far}\n"
+    text += f"\n[[lights]]\ndirection = {vector(light)}\n"
+    return text + f'\n[[objects]]\nname = "floor"\nshape = "grid"\nsize = {vector(floor)}\ncolor = {vector(floor_color)}\n\n'
+
+
 def cell(name, lo, hi):
     return f'\n[[cells]]\nname = "{name}"\nfrom = {vector(lo)}\nto = {vector(hi)}\n'
 
@@ -68,36 +81,13 @@ def wall_with_door(name, axis, at, lo, hi, door_center):
 
 
 def indoor():
-    out = ["""# The indoor study's level (hsr study indoor; written by scripts/make_levels.py): a hall
+    out = [header("""# The indoor study's level (hsr study indoor; written by scripts/make_levels.py): a hall
 # 60 long and 4 wide with six rooms on each side, 10 by 8, each room with a door to the
 # hall and a door to each neighbour, all on one line, so that a walk down a row of rooms
 # looks through five doors in a row. Furnished: a table, chairs, a shelf, crates; a
 # ceiling. Divided into 18 cells (six stretches of hall, twelve rooms) and 27 portals.
-effects = ["lambert"]
-ambient = 0.35
-
-[image]
-width = 960
-height = 540
-background = [0.1, 0.1, 0.12]
-
-[camera]
-eye = [-28, 1.6, 0]
-target = [0, 1.6, 0]
-fov_y = 70
-near = 0.05
-far = 200
-
-[[lights]]
-direction = [-0.5, -0.6, -0.35]
-
-[[objects]]
-name = "floor"
-shape = "grid"
-size = [60.2, 20.2]
-color = [0.45, 0.4, 0.36]
-
-"""]
+""", "lambert", (960, 540), [-28, 1.6, 0], [0, 1.6, 0], 200, [-0.5, -0.6, -0.35], [60.2, 20.2],
+                  [0.45, 0.4, 0.36], background=[0.1, 0.1, 0.12], ambient=0.35)]
     half_z = HALL_HALF + ROOM_DEPTH  # 10
     out.append(box("ceiling", [X0 - THICK / 2, HEIGHT, -half_z - THICK / 2], [-X0 + THICK / 2, HEIGHT + 0.2, half_z + THICK / 2], [0.85, 0.85, 0.82]) + "\n")
     for side, sign in (("north", 1), ("south", -1)):
@@ -216,36 +206,14 @@ def corridors():
 def portal_rooms():
     size, n = 6.0, 3
     lo = -size * n / 2  # -9
-    out = ["""# Nine rooms, three by three, 6 by 6 and 3 high, each wall between two rooms with one
+    out = [header("""# Nine rooms, three by three, 6 by 6 and 3 high, each wall between two rooms with one
 # door (written by scripts/make_levels.py): the doors sit at different places along
 # their walls, so what a chain of doors shows narrows quickly and differs between rect
 # and polygon narrowing. A pillar stands in each room. The portal tests
 # (tests/culling/cells_test.cpp) walk lines of sight through it cell by cell and compare
 # the cells they reach with the portal traversal's, from eyes all over the middle room.
-effects = ["flat"]
-
-[image]
-width = 320
-height = 240
-background = [0.2, 0.22, 0.28]
-
-[camera]
-eye = [1.5, 1.6, 2.2]
-target = [-3, 1.2, -6]
-fov_y = 70
-near = 0.05
-far = 100
-
-[[lights]]
-direction = [-0.4, -1, -0.3]
-
-[[objects]]
-name = "floor"
-shape = "grid"
-size = [18.2, 18.2]
-color = [0.5, 0.46, 0.4]
-
-"""]
+""", "flat", (320, 240), [1.5, 1.6, 2.2], [-3, 1.2, -6], 100, [-0.4, -1, -0.3], [18.2, 18.2],
+                  [0.5, 0.46, 0.4], background=[0.2, 0.22, 0.28])]
     hi = -lo
     for name, lo3, hi3 in (("west wall", [lo - THICK / 2, 0, lo], [lo + THICK / 2, HEIGHT, hi]),
                            ("east wall", [hi - THICK / 2, 0, lo], [hi + THICK / 2, HEIGHT, hi]),
@@ -285,33 +253,12 @@ color = [0.5, 0.46, 0.4]
 
 def portal_row():
     size, n = 4.0, 3
-    out = ["""# Three rooms in a row, 4 by 4 and 3 high, joined by doors on one line, a crate in the
+    out = [header("""# Three rooms in a row, 4 by 4 and 3 high, joined by doors on one line, a crate in the
 # middle of each (written by scripts/make_levels.py). Everything a chain of doors admits
 # is seen from somewhere in each room: the sampled visible sets, with enough samples,
 # equal the conservative ones (tests/culling/cells_test.cpp).
-effects = ["flat"]
-
-[image]
-width = 320
-height = 240
-
-[camera]
-eye = [-5, 1.6, 0.5]
-target = [6, 1.2, 0]
-fov_y = 70
-near = 0.05
-far = 100
-
-[[lights]]
-direction = [-0.4, -1, -0.3]
-
-[[objects]]
-name = "floor"
-shape = "grid"
-size = [12.2, 4.2]
-color = [0.5, 0.46, 0.4]
-
-"""]
+""", "flat", (320, 240), [-5, 1.6, 0.5], [6, 1.2, 0], 100, [-0.4, -1, -0.3], [12.2, 4.2],
+                  [0.5, 0.46, 0.4])]
     lo, hi = -size * n / 2, size * n / 2
     for name, lo3, hi3 in (("south wall", [lo - THICK / 2, 0, -2 - THICK / 2], [hi + THICK / 2, HEIGHT, -2 + THICK / 2]),
                            ("north wall", [lo - THICK / 2, 0, 2 - THICK / 2], [hi + THICK / 2, HEIGHT, 2 + THICK / 2]),
