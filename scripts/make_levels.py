@@ -46,6 +46,15 @@ def header(comment, effects, size, eye, target, far, light, floor, floor_color, 
     return text + f'\n[[objects]]\nname = "floor"\nshape = "grid"\nsize = {vector(floor)}\ncolor = {vector(floor_color)}\n\n'
 
 
+def replace_cells(file, comment, parts):
+    """Rewrites what follows the MARKER line of a level written by hand (or appends it):
+    the comment, then its cells and portals."""
+    path = STUDY / file
+    text = path.read_text()
+    text = text[: text.index(MARKER)] if MARKER in text else text.rstrip("\n") + "\n\n"
+    path.write_text(text + MARKER + " (written by scripts/make_levels.py): " + comment + "".join(parts), newline="\n")
+
+
 def cell(name, lo, hi):
     return f'\n[[cells]]\nname = "{name}"\nfrom = {vector(lo)}\nto = {vector(hi)}\n'
 
@@ -169,14 +178,12 @@ spacing = [10, 0, 3.2]
 # beyond the outermost walls.
 
 def corridors():
-    path = STUDY / "corridors.toml"
-    text = path.read_text()
-    text = text[: text.index(MARKER)] if MARKER in text else text.rstrip("\n") + "\n\n"
-    out = [MARKER + " (written by scripts/make_levels.py): each strip between two long walls cut\n"
-           "# into ten cells at the cross walls' centre lines, a portal at each gap between the\n"
-           "# cross walls' stubs; where the long walls end (|x| > 40) the strips open into one\n"
-           "# another and into a margin beyond the outermost walls. The walls are as tall as the\n"
-           "# cells (3), and nothing stands higher: a line of sight over a wall climbs into nothing.\n"]
+    comment = ("each strip between two long walls cut\n"
+               "# into ten cells at the cross walls' centre lines, a portal at each gap between the\n"
+               "# cross walls' stubs; where the long walls end (|x| > 40) the strips open into one\n"
+               "# another and into a margin beyond the outermost walls. The walls are as tall as the\n"
+               "# cells (3), and nothing stands higher: a line of sight over a wall climbs into nothing.\n")
+    out = []
     xs = [-45] + [-36 + 9 * i for i in range(9)] + [45]
     strips = [(-40 + 8 * j, -32 + 8 * j) for j in range(10)]
     out.append(cell("south margin", [-45, 0, -45], [45, 3, -40]))
@@ -196,7 +203,7 @@ def corridors():
             out.append(portal(lower, f"strip {j} part {i}", [x0, 0, z0], [x1, 3, z0]))
             if j == 9:
                 out.append(portal(f"strip {j} part {i}", "north margin", [x0, 0, z1], [x1, 3, z1]))
-    path.write_text(text + "".join(out), newline="\n")
+    replace_cells("corridors.toml", comment, out)
 
 
 # ---------------------------------------------------------------------------------
@@ -283,14 +290,12 @@ def portal_row():
 # where the towers and the keep rise.
 
 def castle():
-    path = STUDY / "castle.toml"
-    text = path.read_text()
-    text = text[: text.index(MARKER)] if MARKER in text else text.rstrip("\n") + "\n\n"
-    out = [MARKER + " (written by scripts/make_levels.py): the three courtyards up to the inner\n"
-           "# walls' height (7), one cell over all three up to the curtain walls' (10), the\n"
-           "# ground outside in four boxes, and the sky above (to 60). The courtyards open into\n"
-           "# one another through the gaps at the inner walls' ends, and upward; everything opens\n"
-           "# into the sky. The curtain walls and their corner towers close the castle.\n"]
+    comment = ("the three courtyards up to the inner\n"
+               "# walls' height (7), one cell over all three up to the curtain walls' (10), the\n"
+               "# ground outside in four boxes, and the sky above (to 60). The courtyards open into\n"
+               "# one another through the gaps at the inner walls' ends, and upward; everything opens\n"
+               "# into the sky. The curtain walls and their corner towers close the castle.\n")
+    out = []
     yards = [("west courtyard", -30, -10), ("middle courtyard", -10, 10), ("east courtyard", 10, 30)]
     for name, x0, x1 in yards:
         out.append(cell(name, [x0, 0, -30], [x1, 7, 30]))
@@ -312,7 +317,7 @@ def castle():
     for z, side in ((-30, "outside south"), (30, "outside north")):
         out.append(portal(side, "outside west", [-100, 0, z], [-30, 10, z]))
         out.append(portal(side, "outside east", [30, 0, z], [100, 10, z]))
-    path.write_text(text + "".join(out), newline="\n")
+    replace_cells("castle.toml", comment, out)
 
 
 if __name__ == "__main__":

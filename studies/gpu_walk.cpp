@@ -5,6 +5,9 @@
 
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
+#include "renderer/metrics.hpp"
+#include "renderer/reference.hpp"
+#include "studies/plot.hpp"
 
 namespace hsr::studies {
 
@@ -44,6 +47,22 @@ FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& 
   return row;
 }
 
+std::vector<FrameRow> walkPosition(const PreparedScene& scene, const std::string& level, const std::vector<Method>& methods,
+                                   std::vector<MethodWalk>& walks, std::vector<std::uint8_t>& seenBefore, int position, int threads) {
+  Stats referenceStats;
+  const std::vector<std::uint8_t> seen =
+      objectsWithAny(scene, visibleTriangles(traceReference(scene, threads, referenceStats), scene.triangleCount()));
+  std::vector<FrameRow> rows;
+  for (std::size_t k = 0; k < methods.size(); ++k) {
+    const std::size_t m = (k + std::size_t(position)) % methods.size();
+    FrameRow row = walkFrame(scene, seen, seenBefore, walks[m], threads);
+    row.level = level, row.method = methods[m].name, row.frame = position;
+    rows.push_back(row);
+  }
+  seenBefore = seen;
+  return rows;
+}
+
 Spread spreadOf(std::vector<double> values) {
   const double n = double(values.size());
   Spread spread{0, 0, 0, 0};
@@ -52,6 +71,16 @@ Spread spreadOf(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   spread.p5 = values[std::size_t(0.05 * (n - 1))], spread.p95 = values[std::size_t(0.95 * (n - 1))];
   return spread;
+}
+
+std::string levelTimesPlot(const std::string& study, const std::string& table, const std::vector<std::string>& methods,
+                           const std::vector<double>& shown) {
+  return table + "EOD\nset title '" + study + ": frame time per level (mean; bars: 5% to 95%)'\nset ylabel 'ms'\n" +
+         timeAxis('y', shown, true) +
+         "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
+         "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\n"
+         "set linetype 9 lc rgb '#8c564b'\nplot " +  // gnuplot's colors repeat after eight
+         histogramBars("$table", methods, 3) + "\n";
 }
 
 std::string jsonObjectOf(const CsvRow& row, std::size_t textFields) {

@@ -16,6 +16,11 @@
 
 namespace hsr::studies {
 
+// A method of a study: its name in tables and plots, and its culling pipeline (--cull).
+struct Method {
+  std::string name, cull;
+};
+
 // One method walking one stretch of a level: what it carries from frame to frame.
 struct MethodWalk {
   culling::Pipeline pipeline;
@@ -46,11 +51,25 @@ struct FrameRow {
 FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& seen, const std::vector<std::uint8_t>& seenBefore,
                    MethodWalk& walk, int threads);
 
+// One position of a walk at the scene's camera: the exact reference's verdict, then a
+// frame of each method (walkFrame), taken in an order rotated by `position` so that each
+// method comes in each place of the order in turn; rows labelled with the level, method
+// and position. `seenBefore`: what the reference showed at the position before, updated.
+std::vector<FrameRow> walkPosition(const PreparedScene& scene, const std::string& level, const std::vector<Method>& methods,
+                                   std::vector<MethodWalk>& walks, std::vector<std::uint8_t>& seenBefore, int position, int threads);
+
 // Mean, variance and the 5th and 95th percentiles of a column of values (not empty).
 struct Spread {
   double mean, variance, p5, p95;
 };
 Spread spreadOf(std::vector<double> values);
+
+// The frame-time plot of a walkthrough study (`study` names it in the title): a group of
+// bars per level, a bar per method with its 5th to 95th percentiles. `table` is a data
+// block named $table, a row per level: its name, then mean, p5 and p95 per method.
+// `shown`: every frame time, for the axis.
+std::string levelTimesPlot(const std::string& study, const std::string& table, const std::vector<std::string>& methods,
+                           const std::vector<double>& shown);
 
 // {"a": "x", "b": 1.5}: a row as a JSON object, its first `textFields` values quoted.
 std::string jsonObjectOf(const CsvRow& row, std::size_t textFields);

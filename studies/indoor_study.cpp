@@ -50,9 +50,6 @@ const std::vector<Level> kLevels = {
     // the west courtyard.
     {"castle", "castle", "the courtyards of a castle", {{-20, 28.5}, {20, 28.5}, {20, -28.5}, {-20, -28.5}}, 1.7}};
 
-struct Method {
-  std::string name, cull;
-};
 const std::vector<Method> kMethods = {{"frustum", "frustum"},
                                       {"portals rect", "frustum,portals"},
                                       {"portals polygon", "frustum,portals:narrowing=polygon"},
@@ -197,16 +194,8 @@ int indoorStudy(const StudyOptions& options, const std::filesystem::path& folder
     Progress progress{std::size_t(frames)};
     for (int f = 0; f < frames; ++f) {
       world.camera = alongPath(base, level, f, frames);
-      Stats referenceStats;
-      const std::vector<std::uint8_t> seen =
-          objectsWithAny(scene, visibleTriangles(traceReference(scene, options.threads, referenceStats), scene.triangleCount()));
-      for (std::size_t k = 0; k < kMethods.size(); ++k) {
-        const std::size_t m = (k + std::size_t(f)) % kMethods.size();  // each method in each place of the order in turn
-        FrameRow row = walkFrame(scene, seen, seenBefore, walks[m], options.threads);
-        row.level = level.name, row.method = kMethods[m].name, row.frame = f;
-        rows.push_back(row);
-      }
-      seenBefore = seen;
+      const std::vector<FrameRow> position = walkPosition(scene, level.name, kMethods, walks, seenBefore, f, options.threads);
+      rows.insert(rows.end(), position.begin(), position.end());
       progress.update(std::size_t(f + 1), level.name);
     }
     world.camera = base;
@@ -264,11 +253,7 @@ int indoorStudy(const StudyOptions& options, const std::filesystem::path& folder
     for (const Method& method : kMethods) titles.push_back(method.name);
     std::vector<double> shown;
     for (const FrameRow& r : rows) shown.push_back(r.ms);
-    addPlot(files, folder, "indoor",
-            table + "EOD\nset title 'Indoor: frame time per level (mean; bars: 5% to 95%)'\nset ylabel 'ms'\n" + timeAxis('y', shown, true) +
-                "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
-                "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\nset linetype 9 lc rgb '#8c564b'\nplot " +
-                histogramBars("$table", titles, 3) + "\n");
+    addPlot(files, folder, "indoor", levelTimesPlot("Indoor", table, titles, shown));
     // Objects drawn along each walk, a panel per level.
     std::string data, plots;
     for (std::size_t l = 0; l < kLevels.size(); ++l) {

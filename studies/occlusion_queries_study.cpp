@@ -53,9 +53,6 @@ const std::vector<Level> kLevels = {{"city", "city_walk", "city streets at eye h
                                     {"castle", "castle", "a castle from a third-person camera"},
                                     {"map", "strategy_map", "a strategy map from above"}};
 
-struct Method {
-  std::string name, cull;
-};
 const std::vector<Method> kMethods = {{"none", ""},
                                       {"frustum", "frustum"},
                                       {"depth-map", "frustum,occlusion"},
@@ -223,13 +220,7 @@ void writeResults(std::vector<FrameRow> frames, const std::filesystem::path& fol
     for (const Method& method : kMethods) titles.push_back(method.name);
     std::vector<double> shown;
     for (const FrameRow& r : frames) shown.push_back(r.ms);
-    addPlot(files, folder, "occlusion_queries",
-            table + "EOD\nset title 'Occlusion queries: frame time per level (mean; bars: 5% to 95%)'\nset ylabel 'ms'\n" +
-                timeAxis('y', shown, true) +
-                "set style data histogram\nset style histogram errorbars gap 1.5 lw 1\nset style fill solid 0.85 border -1\n"
-                "set boxwidth 0.9\nset grid ytics\nset key below horizontal maxcols 5 font ',9'\n"
-                "set linetype 9 lc rgb '#8c564b'\nplot " +  // gnuplot's colors repeat after eight
-                histogramBars("$table", titles, 3) + "\n");
+    addPlot(files, folder, "occlusion_queries", levelTimesPlot("Occlusion queries", table, titles, shown));
     addPlot(files, folder, "occlusion_queries_frames", perFramePlot(frames, shown));
   }
   files.commit();
@@ -297,16 +288,10 @@ int occlusionQueriesStudy(const StudyOptions& options, const std::filesystem::pa
     std::vector<std::uint8_t> seenBefore(scene.instances().size(), 0);
     for (int f = first; f < std::min(perLevel, first + kSegmentFrames); ++f) {
       world.camera = pathCamera(level, base, f, perLevel);
-      Stats referenceStats;
-      const ReferenceImage truth = traceReference(scene, options.threads, referenceStats);
-      const std::vector<std::uint8_t> seen = objectsWithAny(scene, visibleTriangles(truth, scene.triangleCount()));
-      for (std::size_t k = 0; k < kMethods.size(); ++k) {
-        const std::size_t m = (k + std::size_t(f)) % kMethods.size();  // each method in each place of the order in turn
-        FrameRow row = walkFrame(scene, seen, seenBefore, walks[m], options.threads);
-        row.level = level.name, row.method = kMethods[m].name, row.segment = int(s), row.frame = f;
+      for (FrameRow& row : walkPosition(scene, level.name, kMethods, walks, seenBefore, f, options.threads)) {
+        row.segment = int(s);
         frames.push_back(row);
       }
-      seenBefore = seen;
     }
     world.camera = base;
     std::printf("  %s, positions %d-%d: walked\n", level.name.c_str(), first, std::min(perLevel, first + kSegmentFrames) - 1);
