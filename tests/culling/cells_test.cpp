@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -96,8 +97,8 @@ TEST(Portals, TraversalReachesExactlyTheCellsLinesOfSightReach) {
   for (const Camera& camera : roomEyes(loaded.scene.camera)) {
     loaded.scene.camera = camera;
     Stats stats;
-    const auto polygon = culling::portals::cellsReached(loaded.prepared, map, loaded.prepared.camera(), Narrowing::polygon, stats);
-    const auto rect = culling::portals::cellsReached(loaded.prepared, map, loaded.prepared.camera(), Narrowing::rect, stats);
+    const auto polygon = culling::portals::cellsReached(loaded.prepared, map, loaded.prepared.camera(), {0, Narrowing::polygon}, stats);
+    const auto rect = culling::portals::cellsReached(loaded.prepared, map, loaded.prepared.camera(), {0, Narrowing::rect}, stats);
     const auto lines = cellsLinesReach(loaded.prepared, map, 3);
     // Never fewer than the lines reach (that would cull what is seen); by polygon, no
     // more either: every cell it reaches, some line reaches.
@@ -184,6 +185,18 @@ TEST(Portals, AndPvsKeepTheSameObjectsFarFromTheOrigin) {
   }
 }
 
+TEST(Portals, GivingUpKeepsEveryCellConnectedToTheEyes) {
+  test::LoadedScene loaded(kRooms);
+  Stats full, givenUp;
+  const VisibleSet searched = cull(loaded.prepared, "portals", full);
+  const VisibleSet everything = cull(loaded.prepared, "portals:max-passes=1", givenUp);
+  EXPECT_EQ(full.counter("portals: searches given up"), 0);
+  EXPECT_EQ(givenUp.counter("portals: searches given up"), 1);
+  // The nine rooms are all connected: every object, where the search kept a few.
+  EXPECT_EQ(everything.triangles, VisibleSet::everything(loaded.prepared).triangles);
+  EXPECT_LT(searched.triangles.size(), everything.triangles.size());
+}
+
 TEST(Portals, SameObjectsAndCountersOnOneAndTwoThreads) {
   test::LoadedScene loaded(kIndoor);
   Stats one, two;
@@ -229,6 +242,24 @@ TEST(Pvs, SampledWithEnoughSamplesEqualsConservativeInARowOfRooms) {
   std::size_t fewTotal = 0, manyTotal = 0;
   for (std::size_t cell = 0; cell < map.size(); ++cell) fewTotal += few.objects[cell].size(), manyTotal += many.objects[cell].size();
   EXPECT_LT(fewTotal, manyTotal);
+}
+
+TEST(Pvs, AConservativeSearchThatGivesUpTakesEveryConnectedObject) {
+  test::LoadedScene loaded(kRooms);
+  const CellMap map(loaded.prepared, "test");
+  culling::pvs::Knobs bounded;
+  bounded.maxChains = 1;  // every one of the nine rooms has more than one chain out
+  Stats stats;
+  const auto full = culling::pvs::build(loaded.prepared, map, {}, 1, stats);
+  const auto givenUp = culling::pvs::build(loaded.prepared, map, bounded, 1, stats);
+  EXPECT_EQ(full.cellsGivenUp, 0);
+  EXPECT_EQ(givenUp.cellsGivenUp, 9);
+  std::vector<std::uint32_t> all(loaded.prepared.instances().size());
+  std::iota(all.begin(), all.end(), 0u);
+  for (std::size_t cell = 0; cell < map.size(); ++cell) {
+    EXPECT_EQ(givenUp.objects[cell], all) << loaded.scene.cells[cell].name;
+    EXPECT_LT(full.objects[cell].size(), all.size()) << loaded.scene.cells[cell].name;
+  }
 }
 
 TEST(Pvs, SameSetsOnOneAndTwoThreads) {

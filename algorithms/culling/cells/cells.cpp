@@ -69,6 +69,19 @@ std::vector<std::uint32_t> CellMap::cellsAt(const dvec3& point, const std::strin
   return found;
 }
 
+std::vector<std::uint8_t> CellMap::connectedTo(const std::vector<std::uint32_t>& from) const {
+  std::vector<std::uint8_t> connected(size(), 0);
+  std::vector<std::uint32_t> frontier = from;
+  for (const std::uint32_t cell : from) connected[cell] = 1;
+  while (!frontier.empty()) {
+    const std::uint32_t cell = frontier.back();
+    frontier.pop_back();
+    for (const Door& door : doors(cell))
+      if (!connected[door.to]) connected[door.to] = 1, frontier.push_back(door.to);
+  }
+  return connected;
+}
+
 Plane CellMap::planeInto(const Portal& portal, std::uint32_t from) const {
   // cells[0] lies below the plane: leaving it, a line goes up the portal's axis.
   const double sign = from == portal.cells[0] ? 1 : -1;

@@ -60,6 +60,10 @@ class CellMap {
   // what an eye outside the level sees.
   std::vector<std::uint32_t> cellsAt(const dvec3& point, const std::string& where) const;
 
+  // Per cell, 1 when portals connect it to one of `from` (each of `from` included):
+  // where the stages' searches fall back to when they give up.
+  std::vector<std::uint8_t> connectedTo(const std::vector<std::uint32_t>& from) const;
+
   // The plane of a portal, facing the cell a line of sight enters when it crosses from
   // `from` (positive distances on the far side).
   Plane planeInto(const Portal& portal, std::uint32_t from) const;

@@ -28,8 +28,8 @@ struct View {
 // The search of one frame.
 class Traversal {
  public:
-  Traversal(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, Narrowing narrowing)
-      : scene_(scene), map_(map), camera_(camera), narrowing_(narrowing), eye_(camera.camera().eye),
+  Traversal(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, const Knobs& knobs)
+      : scene_(scene), map_(map), camera_(camera), narrowing_(knobs.narrowing), maxPasses_(knobs.maxPasses), eye_(camera.camera().eye),
         reached_(map.size()), onChain_(map.size(), 0) {
     // Slack for every comparison (cells.hpp), with coordinates relative to the eye.
     slack_ = map.slack(1e-9);
@@ -104,7 +104,7 @@ class Traversal {
         ++cutAway_;
         continue;
       }
-      if (++passes_ > kMaxPassesPerFrame) {
+      if (++passes_ > maxPasses_) {
         giveUp();
         return;
       }
@@ -166,21 +166,19 @@ class Traversal {
   // Too many chains: every cell connected to the eye's by portals, every object in them.
   void giveUp() {
     givenUp_ = true;
-    std::vector<std::uint32_t> frontier;
+    std::vector<std::uint32_t> reached;
     for (std::uint32_t cell = 0; cell < map_.size(); ++cell)
-      if (!reached_[cell].empty()) frontier.push_back(cell);
-    while (!frontier.empty()) {
-      const std::uint32_t cell = frontier.back();
-      frontier.pop_back();
-      for (const cells::CellMap::Door& door : map_.doors(cell))
-        if (reached_[door.to].empty()) reached_[door.to].push_back(image_), frontier.push_back(door.to);
-    }
+      if (!reached_[cell].empty()) reached.push_back(cell);
+    const std::vector<std::uint8_t> connected = map_.connectedTo(reached);
+    for (std::uint32_t cell = 0; cell < map_.size(); ++cell)
+      if (connected[cell] && reached_[cell].empty()) reached_[cell].push_back(image_);
   }
 
   const PreparedScene& scene_;
   const cells::CellMap& map_;
   const CameraTransform& camera_;
   Narrowing narrowing_;
+  std::int64_t maxPasses_;
   dvec3 eye_;
   double slack_ = 0;
   View image_{};
@@ -191,12 +189,12 @@ class Traversal {
 };
 
 // Steps 1 to 3.
-Traversal searched(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, Narrowing narrowing,
+Traversal searched(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, const Knobs& knobs,
                    Stats& stats) {
   if (!camera.perspective())
     throw InputError("--cull portals: the camera of " + scene.scene().file.string() +
                      " is orthographic; expected a perspective camera (the view is narrowed from the eye)");
-  Traversal traversal(scene, map, camera, narrowing);
+  Traversal traversal(scene, map, camera, knobs);
   traversal.search(map.cellsAt(camera.camera().eye, "--cull portals"));
   traversal.count(stats);
   return traversal;
@@ -205,13 +203,13 @@ Traversal searched(const PreparedScene& scene, const cells::CellMap& map, const 
 }  // namespace
 
 std::vector<std::uint8_t> cellsReached(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera,
-                                       Narrowing narrowing, Stats& stats) {
-  return searched(scene, map, camera, narrowing, stats).cellsReached();
+                                       const Knobs& knobs, Stats& stats) {
+  return searched(scene, map, camera, knobs, stats).cellsReached();
 }
 
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, const Knobs& knobs,
                 const VisibleSet& in, Stats& stats) {
-  Traversal traversal = searched(scene, map, camera, knobs.narrowing, stats);
+  Traversal traversal = searched(scene, map, camera, knobs, stats);
   const std::vector<std::uint8_t> kept = traversal.objectsKept(stats);
   std::int64_t objectsKept = 0;
   VisibleSet out = keepObjects(scene, in, [&](std::uint32_t object) { return kept[object] ? (++objectsKept, true) : false; });

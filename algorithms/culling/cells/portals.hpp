@@ -25,9 +25,9 @@
 // An eye on a portal's plane (walking through a doorway) sees through the whole portal
 // in every direction the view allows: the portal is passed without narrowing.
 //
-// Chains can multiply in a level with many loops. After kMaxPassesPerFrame portals
-// passed in one frame the search gives up and keeps every object of every cell the
-// portals connect to the eye's, counted as "portals: searches given up".
+// Chains can multiply in a level with many loops. After `max-passes` portals passed in
+// one frame (knob; 2^20 by default) the search gives up and keeps every object of every
+// cell the portals connect to the eye's, counted as "portals: searches given up".
 #pragma once
 
 #include <cstdint>
@@ -42,6 +42,7 @@ enum class Narrowing { rect, polygon };
 struct Knobs {
   int variant = 0;  // one variant: the traversal from the eye's cell
   Narrowing narrowing = Narrowing::rect;
+  int maxPasses = 1 << 20;
 };
 
 inline const KnobTable<Knobs>& knobTable() {
@@ -52,11 +53,11 @@ inline const KnobTable<Knobs>& knobTable() {
                     "the portal traversal")
           .choice("narrowing", &Knobs::narrowing, {{Narrowing::rect, "rect"}, {Narrowing::polygon, "polygon"}},
                   "rect: the screen rectangle of each portal (Luebke and Georges' cull box); polygon: the cone over the portal's "
-                  "own outline, tighter, never keeping more");
+                  "own outline, tighter, never keeping more")
+          .number("max-passes", &Knobs::maxPasses, {1, 1e9}, {"1000"},
+                  "portals passed in a frame before the search gives up and keeps every cell connected to the eye's");
   return table;
 }
-
-inline constexpr std::int64_t kMaxPassesPerFrame = 1 << 20;
 
 // The triangles of `in` of the objects kept. Counts "portals: cells visited" (a cell
 // reached by two chains counts twice), "portals: cells reached", "portals: portals
@@ -69,7 +70,7 @@ VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const Cam
 // Steps 1 to 3 alone: per cell, 1 when a chain of portals reaches it (the tests compare
 // it with lines of sight walked cell by cell). Counts as cull() does, objects aside.
 std::vector<std::uint8_t> cellsReached(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera,
-                                       Narrowing narrowing, Stats& stats);
+                                       const Knobs& knobs, Stats& stats);
 
 // The stage's entry in culling::stages().
 StageEntry stage();

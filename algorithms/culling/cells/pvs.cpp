@@ -94,8 +94,8 @@ std::vector<Plane> separatingPlanes(const cells::Polygon& first, const cells::Po
 
 class ConservativeSearch {
  public:
-  ConservativeSearch(const PreparedScene& scene, const cells::CellMap& map, std::uint32_t cell)
-      : scene_(scene), map_(map), home_(cell), seen_(scene.instances().size(), 0), onChain_(map.size(), 0),
+  ConservativeSearch(const PreparedScene& scene, const cells::CellMap& map, std::uint32_t cell, std::int64_t maxChains)
+      : scene_(scene), map_(map), home_(cell), maxChains_(maxChains), seen_(scene.instances().size(), 0), onChain_(map.size(), 0),
         origin_(scene.scene().cells[cell].from), onPlane_(map.slack(1e-9)), slack_(map.slack(1e-6)) {}
 
   std::vector<std::uint8_t> run(std::int64_t& chains, std::int64_t& givenUp) {
@@ -117,7 +117,7 @@ class ConservativeSearch {
   // In cell `cell`, entered through `pass`, after crossing the planes `crossed` (the
   // first of them the source's): its objects, and the chains on.
   void follow(std::uint32_t cell, const cells::Polygon& source, const cells::Polygon& pass, const std::vector<Plane>& crossed) {
-    if (++chains_ > kMaxChainsPerCell) {
+    if (++chains_ > maxChains_) {
       givenUp_ = true;
       return;
     }
@@ -165,21 +165,16 @@ class ConservativeSearch {
 
   // The give-up answer: every object of every cell the portals connect to this one.
   void everythingConnected() {
-    std::vector<std::uint8_t> reached(map_.size(), 0);
-    std::vector<std::uint32_t> frontier = {home_};
-    reached[home_] = 1;
-    while (!frontier.empty()) {
-      const std::uint32_t cell = frontier.back();
-      frontier.pop_back();
-      for (const std::uint32_t object : map_.objects(cell)) seen_[object] = 1;
-      for (const cells::CellMap::Door& door : map_.doors(cell))
-        if (!reached[door.to]) reached[door.to] = 1, frontier.push_back(door.to);
-    }
+    const std::vector<std::uint8_t> connected = map_.connectedTo({home_});
+    for (std::uint32_t cell = 0; cell < map_.size(); ++cell)
+      if (connected[cell])
+        for (const std::uint32_t object : map_.objects(cell)) seen_[object] = 1;
   }
 
   const PreparedScene& scene_;
   const cells::CellMap& map_;
   std::uint32_t home_;
+  std::int64_t maxChains_;
   std::vector<std::uint8_t> seen_, onChain_;
   dvec3 origin_;
   // A corner this close to a plane is on it; and every cut keeps this much more than
@@ -192,7 +187,7 @@ class ConservativeSearch {
 
 std::string settingsLine(const Knobs& knobs) {
   return knobs.build == Build::conservative
-             ? "build conservative"
+             ? "build conservative max-chains " + std::to_string(knobs.maxChains)
              : "build sampled samples " + std::to_string(knobs.samples) + " resolution " + std::to_string(knobs.resolution);
 }
 
@@ -210,7 +205,7 @@ VisibleSets build(const PreparedScene& scene, const cells::CellMap& map, const K
     const std::vector<std::uint8_t> seen =
         knobs.build == Build::sampled
             ? sampledSet(scene, *reference, scene.scene().cells[cell], knobs, work[cell])
-            : ConservativeSearch(scene, map, std::uint32_t(cell)).run(work[cell], givenUp[cell]);
+            : ConservativeSearch(scene, map, std::uint32_t(cell), knobs.maxChains).run(work[cell], givenUp[cell]);
     for (std::uint32_t object = 0; object < seen.size(); ++object)
       if (seen[object]) sets.objects[cell].push_back(object);
   });
@@ -331,6 +326,8 @@ StageEntry stage() {
     const Knobs defaults;
     if (knobs.build == Build::conservative && (knobs.samples != defaults.samples || knobs.resolution != defaults.resolution))
       return std::string("samples and resolution set how build=sampled samples; expected build=sampled with them");
+    if (knobs.build == Build::sampled && knobs.maxChains != defaults.maxChains)
+      return std::string("max-chains bounds the conservative build's search; expected build=conservative with it");
     return std::string();
   };
   entry.run = [](const KnobValues& values, const StageInput& input) {

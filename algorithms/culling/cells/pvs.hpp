@@ -46,6 +46,7 @@ struct Knobs {
   Build build = Build::conservative;
   int samples = 64;     // sampled: eye points per cell
   int resolution = 64;  // sampled: pixels a side of each cube-map face
+  int maxChains = 1 << 18;  // conservative: chains followed from a cell before giving up
 };
 
 inline const KnobTable<Knobs>& knobTable() {
@@ -57,19 +58,18 @@ inline const KnobTable<Knobs>& knobTable() {
                   "conservative: chains of portals a line can pass (never misses); sampled: eye points traced with the exact "
                   "reference (misses what no sample saw)")
           .number("samples", &Knobs::samples, {1, 100000}, {"4", "16", "256"}, "sampled: eye points per cell")
-          .number("resolution", &Knobs::resolution, {1, 4096}, {"16", "128"}, "sampled: pixels a side of each cube-map face");
+          .number("resolution", &Knobs::resolution, {1, 4096}, {"16", "128"}, "sampled: pixels a side of each cube-map face")
+          .number("max-chains", &Knobs::maxChains, {1, 1e9}, {"1000"},
+                  "conservative: portal chains followed from a cell before its search gives up and takes every object connected to it");
   return table;
 }
-
-// Chains followed from one cell before its conservative build gives up and takes every
-// object of every cell connected to it (counted as "pvs: cells given up").
-inline constexpr std::int64_t kMaxChainsPerCell = 1 << 18;
 
 struct VisibleSets {
   std::vector<std::vector<std::uint32_t>> objects;  // per cell, the instances in its set, ascending
   double seconds = 0;                               // the build's time
   std::int64_t work = 0;                            // sampled: rays traced; conservative: portal chains followed
-  std::int64_t cellsGivenUp = 0;                    // conservative: cells whose search hit kMaxChainsPerCell
+  std::int64_t cellsGivenUp = 0;                    // conservative: cells whose search passed `max-chains`: each takes
+                                                    // every object of every cell connected to it
 };
 
 // Builds the sets as `knobs` say, on `threads` threads (0: all cores; the same sets for
