@@ -160,9 +160,6 @@ TEST(Portals, NeverCullAnObjectTheReferenceSees) {
   }
 }
 
-// The instances that have triangles in a culled set.
-std::vector<std::uint32_t> objectsOf(const PreparedScene& scene, const VisibleSet& set) { return culling::instancesIn(scene, set); }
-
 TEST(Portals, AndPvsKeepTheSameObjectsFarFromTheOrigin) {
   // The indoor level moved a million units on every axis: its objects (as the scene's
   // copies), its cells and portals, and the eye along with it.
@@ -180,7 +177,7 @@ TEST(Portals, AndPvsKeepTheSameObjectsFarFromTheOrigin) {
     far.camera.eye += offset, far.camera.target += offset;
     const PreparedScene moved(far, {glm::translate(dmat4(1), offset)});
     for (const std::string pipeline : {"portals", "portals:narrowing=polygon", "pvs"})
-      EXPECT_EQ(objectsOf(moved, cull(moved, pipeline)), objectsOf(near.prepared, cull(near.prepared, pipeline)))
+      EXPECT_EQ(culling::instancesIn(moved, cull(moved, pipeline)), culling::instancesIn(near.prepared, cull(near.prepared, pipeline)))
           << pipeline << " at eye " << eye.x << " " << eye.z;
   }
 }
