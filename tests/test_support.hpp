@@ -18,6 +18,7 @@
 #include "algorithms/painter/painter.hpp"
 #include "algorithms/registry.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
+#include "algorithms/warnock/warnock.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
 #include "renderer/camera.hpp"
@@ -25,6 +26,7 @@
 #include "renderer/prepare.hpp"
 #include "renderer/reference.hpp"
 #include "renderer/scene.hpp"
+#include "renderer/screen_triangles.hpp"
 
 namespace hsr::test {
 
@@ -171,9 +173,11 @@ inline std::string describePixel(const Frame& frame, std::size_t pixel) {
 inline const AlgorithmEntry& algorithmOf(const zbuffer::Knobs&) { return findAlgorithm("zbuffer"); }
 inline const AlgorithmEntry& algorithmOf(const ray_casting::Knobs&) { return findAlgorithm("ray_casting"); }
 inline const AlgorithmEntry& algorithmOf(const painter::Knobs&) { return findAlgorithm("painter"); }
+inline const AlgorithmEntry& algorithmOf(const warnock::Knobs&) { return findAlgorithm("warnock"); }
 inline KnobValues valuesOf(const zbuffer::Knobs& knobs) { return zbuffer::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const ray_casting::Knobs& knobs) { return ray_casting::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const painter::Knobs& knobs) { return painter::knobTable().valuesOf(knobs); }
+inline KnobValues valuesOf(const warnock::Knobs& knobs) { return warnock::knobTable().valuesOf(knobs); }
 
 // The whole render of a surface algorithm (pipeline/pipeline.hpp): visibility, then the
 // passes the scene's effects call for.
@@ -223,6 +227,33 @@ inline painter::Knobs painterKnobs(painter::Variant variant) {
 inline Frame renderPainter(const PreparedScene& scene, const painter::Knobs& knobs, int threads = 2) {
   Stats stats;
   return render(scene, knobs, threads, stats);
+}
+
+// What an image-space algorithm that samples each pixel center exactly must show: the
+// screen triangles of the geometry stage, each pixel center tested against every one
+// whose box holds it, the nearest plane depth in double precision kept, a tie going to
+// the earlier triangle. The simplest loop there is (a z-buffer of doubles), against
+// which the subdividing and scanning algorithms are checked: ids, and depth as the
+// float of the view distance.
+inline Frame sampledOneByOne(const PreparedScene& scene) {
+  Stats stats;
+  const ScreenGeometry geometry = buildScreenTriangles(scene, {}, 1, stats);
+  Frame frame(scene.width(), scene.height());
+  std::fill(frame.ids.begin(), frame.ids.end(), conventions::kBackgroundId);
+  std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
+  std::vector<double> nearest(frame.pixelCount(), std::numeric_limits<double>::infinity());
+  const double nearer = geometry.camera.perspective() ? -1 : 1;  // t is 1/distance under perspective
+  for (const ScreenTriangle& tri : geometry.triangles)
+    for (int y = tri.minY; y <= tri.maxY; ++y)
+      rasterizeSpan(tri, y, tri.minX, tri.maxX + 1, [&](int x) {
+        const std::size_t pixel = std::size_t(y) * std::size_t(frame.width) + std::size_t(x);
+        const double t = tri.depthAt(x + 0.5, y + 0.5);
+        if (!(nearer * t < nearest[pixel])) return;
+        nearest[pixel] = nearer * t;
+        frame.ids[pixel] = tri.triangle + 1;
+        frame.depth[pixel] = static_cast<float>(geometry.camera.distanceFromScreenAffine(t));
+      });
+  return frame;
 }
 
 // Nearest hit of a ray among all triangles with a view distance in [near, far]

@@ -126,6 +126,8 @@ INSTANTIATE_TEST_SUITE_P(
                     Configured{"scenes/counters.toml", "painter", {}, ""},
                     Configured{"scenes/hard/cyclic_overlap.toml", "painter", {{"variant", "newell"}}, ""},
                     Configured{"scenes/counters.toml", "painter", {{"variant", "sort"}}, ""},
+                    Configured{"scenes/counters.toml", "warnock", {}, ""},
+                    Configured{"scenes/counters.toml", "warnock", {{"smallest-window", "4"}}, ""},
                     Configured{"scenes/counters.toml", "ray_casting", {}, ""},
                     Configured{"scenes/cube.toml", "ray_casting", {{"variant", "naive"}}, ""},
                     Configured{"scenes/cube.toml", "ray_casting", {{"variant", "march"}}, ""},
