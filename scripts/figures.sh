@@ -34,6 +34,18 @@ steps bsp scenes/hard/cyclic_overlap.toml --algo painter --size 320x240
 steps ray_casting scenes/counters.toml --algo ray_casting --size 320x180 --every 12
 steps floating_horizon scenes/ripple.toml --algo floating_horizon --size 400x300
 steps appel scenes/blocks.toml --algo appel --size 400x300 --every 4
+# Warnock: the subdivision after level 7 on the blocks (one frame of its steps), and
+# what stopping at 4 and 16 pixels gets wrong; its knob swept on counters.
+mkdir -p images/figures/warnock
+steps warnock scenes/blocks.toml --algo warnock --size 480x360
+cp "$study/steps-warnock/$(grep -m1 "level 7," "$study/steps-warnock/captions.txt" | cut -c1-4 | sed 's/^/step-/').png" \
+  images/figures/warnock/subdivision.png
+./build/hsr compare scenes/blocks.toml --algos warnock,warnock:smallest-window=4,warnock:smallest-window=16 --size 480x360 \
+  --out "$study" > /dev/null
+cp "$study/contact_sheet.png" images/figures/warnock/stops-blocks.png
+./build/hsr sweep scenes/counters.toml --algo warnock --knob smallest-window=1,2,4,8,16 --threads 1 --repeat 5 \
+  --out "$study" > /dev/null
+cp "$study/sweep.png" images/figures/warnock/sweep-counters.png
 ./build/hsr render scenes/city.toml --cull frustum,occlusion:pyramid=on --size 480x270 --every 100000 -o "$study/occlusion.png" \
   --steps "$study/steps-occlusion"
 frame() { echo "$study/steps-occlusion/step-$(grep -m1 "$1" "$study/steps-occlusion/captions.txt" | cut -c1-4).png"; }

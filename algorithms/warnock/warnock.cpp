@@ -114,8 +114,13 @@ struct Examined {
 };
 
 struct Counts {
-  std::array<std::int64_t, 5> windows{};
-  std::array<std::int64_t, 4> relations{};
+  std::array<std::int64_t, 5> windows{};    // by Rule
+  std::array<std::int64_t, 4> relations{};  // by Relation
+  Counts& operator+=(const Counts& other) {
+    for (std::size_t k = 0; k < windows.size(); ++k) windows[k] += other.windows[k];
+    for (std::size_t k = 0; k < relations.size(); ++k) relations[k] += other.relations[k];
+    return *this;
+  }
 };
 
 class Subdivision {
@@ -271,7 +276,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
 
   Counts total;
   std::vector<std::pair<Window, Rule>> decided;  // kept for the steps' pictures only
-  for (int depth = 0; !level.windows.empty(); ++depth) {
+  for (int levelNumber = 0; !level.windows.empty(); ++levelNumber) {
     // Each window of the level is examined on its own (any thread; it draws only its
     // own pixels), then the subdivided ones are cut, in the level's order, so the next
     // level is the same for any thread count.
@@ -281,11 +286,8 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       examined[w] = subdivision.examine(level.windows[w], level.lists[level.listOf[w]], counts[std::size_t(worker)]);
     });
     Counts atThisLevel;
-    for (const Counts& c : counts)
-      for (std::size_t k = 0; k < c.windows.size(); ++k) atThisLevel.windows[k] += c.windows[k];
-    for (const Counts& c : counts)
-      for (std::size_t k = 0; k < c.relations.size(); ++k) total.relations[k] += c.relations[k];
-    for (std::size_t k = 0; k < atThisLevel.windows.size(); ++k) total.windows[k] += atThisLevel.windows[k];
+    for (const Counts& c : counts) atThisLevel += c;
+    total += atThisLevel;
 
     Level next;
     for (std::size_t w = 0; w < level.windows.size(); ++w) {
@@ -300,7 +302,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       int widest = 0, highest = 0;
       for (const Window& window : level.windows) widest = std::max(widest, window.width()), highest = std::max(highest, window.height());
       request.steps->record(
-          "level " + std::to_string(depth) + ", windows up to " + std::to_string(widest) + " x " + std::to_string(highest) + " px: " + std::to_string(atThisLevel.windows[0]) + " empty, " +
+          "level " + std::to_string(levelNumber) + ", windows up to " + std::to_string(widest) + " x " + std::to_string(highest) + " px: " + std::to_string(atThisLevel.windows[0]) + " empty, " +
               std::to_string(atThisLevel.windows[1]) + " with one polygon, " + std::to_string(atThisLevel.windows[2]) +
               " surrounded, " + std::to_string(atThisLevel.windows[3]) + " at the smallest size, " +
               std::to_string(atThisLevel.windows[4]) + " subdivided",
