@@ -116,6 +116,7 @@ inline const std::vector<Configuration>& everyConfiguration() {
       {"painter", {{"variant", "sort"}, {"key", "farthest"}}, std::nullopt, true},
       {"painter", {{"variant", "newell"}}, std::nullopt, false, true},
       {"painter", {{"variant", "bsp"}}, std::nullopt, false, true},
+      {"warnock", {}, std::nullopt, false, true},
   };
   return all;
 }

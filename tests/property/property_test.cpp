@@ -41,6 +41,7 @@ const ExactAlgorithm kExact[] = {
     {"ray_casting", {{"variant", "bvh"}}, false},
     {"painter", {{"variant", "newell"}}, false},
     {"painter", {{"variant", "bsp"}}, false},
+    {"warnock", {{"smallest-window", "1"}}, false},
 };
 
 std::string label(const ExactAlgorithm& algorithm) { return std::string(algorithm.name) + ":" + algorithm.knobs.front().second; }

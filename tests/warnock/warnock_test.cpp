@@ -1,10 +1,11 @@
 // Warnock's area subdivision: down to one pixel it shows what sampling every pixel on
-// its own shows, bit for bit; each rule decides the windows made for it; stopping at
+// its own shows, bit for bit (shipped scenes, hard cases, random scenes); each rule decides the windows made for it; stopping at
 // larger windows trades pixels for time, measurably; any thread count, the same bits.
 #include <gtest/gtest.h>
 
 #include <cstring>
 
+#include "property/random_scene.hpp"
 #include "renderer/metrics.hpp"
 #include "test_support.hpp"
 
@@ -39,6 +40,22 @@ TEST(Warnock, SameImageAsSamplingEveryPixelOnItsOwn) {
     EXPECT_NO_FAILED_CASES(failures);
     EXPECT_TRUE(sameDepthBits(frame, sampled)) << path;
     EXPECT_GT(stats.counter("windows surrounded"), 0) << path;
+  }
+}
+
+// The property generator's random scenes (slivers, coplanar pairs, interpenetrating
+// triangles, perspective and orthographic cameras) at 150 x 101, the thousand the
+// property tests use.
+TEST(Warnock, SameImageAsSamplingEveryPixelOnItsOwnOnRandomScenes) {
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
+    const test::RandomScene random = test::randomScene(seed);
+    PreparedScene prepared(random.scene);
+    prepared.setSize(150, 101);
+    Stats stats;
+    const Frame frame = test::visibilityOf(prepared, warnock::Knobs{}, 1, stats);
+    const Frame sampled = test::sampledOneByOne(prepared);
+    ASSERT_EQ(frame.ids, sampled.ids) << "seed " << seed << " (camera " << random.camera << ")";
+    ASSERT_TRUE(sameDepthBits(frame, sampled)) << "seed " << seed;
   }
 }
 
