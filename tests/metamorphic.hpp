@@ -117,6 +117,7 @@ inline const std::vector<Configuration>& everyConfiguration() {
       {"painter", {{"variant", "newell"}}, std::nullopt, false, true},
       {"painter", {{"variant", "bsp"}}, std::nullopt, false, true},
       {"warnock", {}, std::nullopt, false, true},
+      {"watkins", {}, std::nullopt, false, true},
   };
   return all;
 }

@@ -19,6 +19,7 @@
 #include "algorithms/registry.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/warnock/warnock.hpp"
+#include "algorithms/watkins/watkins.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
 #include "renderer/camera.hpp"
@@ -174,10 +175,12 @@ inline const AlgorithmEntry& algorithmOf(const zbuffer::Knobs&) { return findAlg
 inline const AlgorithmEntry& algorithmOf(const ray_casting::Knobs&) { return findAlgorithm("ray_casting"); }
 inline const AlgorithmEntry& algorithmOf(const painter::Knobs&) { return findAlgorithm("painter"); }
 inline const AlgorithmEntry& algorithmOf(const warnock::Knobs&) { return findAlgorithm("warnock"); }
+inline const AlgorithmEntry& algorithmOf(const watkins::Knobs&) { return findAlgorithm("watkins"); }
 inline KnobValues valuesOf(const zbuffer::Knobs& knobs) { return zbuffer::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const ray_casting::Knobs& knobs) { return ray_casting::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const painter::Knobs& knobs) { return painter::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const warnock::Knobs& knobs) { return warnock::knobTable().valuesOf(knobs); }
+inline KnobValues valuesOf(const watkins::Knobs& knobs) { return watkins::knobTable().valuesOf(knobs); }
 
 // The whole render of a surface algorithm (pipeline/pipeline.hpp): visibility, then the
 // passes the scene's effects call for.

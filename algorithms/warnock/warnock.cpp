@@ -10,6 +10,7 @@
 
 #include "renderer/conventions.hpp"
 #include "renderer/parallel.hpp"
+#include "renderer/plane_depth.hpp"
 #include "renderer/screen_triangles.hpp"
 
 namespace hsr::warnock {
@@ -67,35 +68,26 @@ Relation relationTo(const ScreenTriangle& tri, const Window& window) {
   return insideWindow ? Relation::contained : Relation::intersecting;
 }
 
-// Depth as an order: smaller is nearer. t is 1/distance under perspective (larger is
-// nearer) and the distance itself under orthographic; either way affine across the screen.
-struct DepthOrder {
-  double sign;  // -1 under perspective, +1 under orthographic
-  double key(const ScreenTriangle& tri, int x, int y) const {
-    return sign * tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y));
-  }
-};
-
-// The range of a triangle's plane over a window's pixel centers, nearest to farthest.
-// The plane is affine, so its extremes lie at the corner centers; each value the
-// formula computes is within a few rounding errors of the true one, so the range is
-// widened by twice that bound and holds every value computed at any center inside.
+// The range of a triangle's plane over a window's pixel centers, nearest to farthest
+// (renderer/plane_depth.hpp: smaller is nearer). The plane is affine, so its extremes lie
+// at the corner centers. Each value computed at a corner is within a rounding bound of
+// the exact one, and so is each value computed at any center inside (the bound is
+// largest at a corner), so the range widened by twice the largest corner bound holds
+// every value computed at any center of the window.
 struct DepthRange {
   double nearest, farthest;
 };
 DepthRange depthRange(const ScreenTriangle& tri, const Window& window, const DepthOrder& order) {
   DepthRange range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  double magnitude = 0;
+  double bound = 0;
   for (const int x : {window.x0, window.x1 - 1})
     for (const int y : {window.y0, window.y1 - 1}) {
       const double key = order.key(tri, x, y);
       range.nearest = std::min(range.nearest, key);
       range.farthest = std::max(range.farthest, key);
-      magnitude = std::max(magnitude, std::abs(tri.t0) + std::abs(tri.tdx * (conventions::pixelCenter(x) - tri.x0)) +
-                                          std::abs(tri.tdy * (conventions::pixelCenter(y) - tri.y0)));
+      bound = std::max(bound, DepthOrder::roundingBound(tri, x, y));
     }
-  const double slack = 8 * std::numeric_limits<double>::epsilon() * magnitude;
-  return {range.nearest - slack, range.farthest + slack};
+  return {range.nearest - 2 * bound, range.farthest + 2 * bound};
 }
 
 // One level's windows still to examine, each with the polygons that met its parent
@@ -127,7 +119,7 @@ class Subdivision {
  public:
   Subdivision(const ScreenGeometry& geometry, const Knobs& knobs, Frame& frame)
       : triangles_(geometry.triangles), camera_(geometry.camera), knobs_(knobs), frame_(frame),
-        order_{geometry.camera.perspective() ? -1.0 : 1.0} {}
+        order_(geometry.camera) {}
 
   // Examines a window: step 1 classifies every polygon that met its parent, step 2
   // applies the rules in order, drawing the window when one decides it.

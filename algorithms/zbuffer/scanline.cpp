@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/active_triangles.hpp"
 #include "renderer/parallel.hpp"
 
 namespace hsr::zbuffer {
@@ -36,8 +37,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
   const auto& triangles = geometry.triangles;
 
   // Step 1: a bucket per row of the triangles whose first row it is, in submission order.
-  std::vector<std::vector<std::uint32_t>> startingAt(static_cast<std::size_t>(frame.height));
-  for (std::uint32_t i = 0; i < triangles.size(); ++i) startingAt[std::size_t(triangles[i].minY)].push_back(i);
+  const auto startingAt = trianglesByFirstRow(triangles, frame.height);
 
   // Rows are split into bands, one per worker; each band keeps its own row buffer and
   // active list, and writes only its own rows.
@@ -51,17 +51,12 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
       std::vector<typename Format::Stored> depthRow(static_cast<std::size_t>(frame.width));
       DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other bands
       // Step 2: the active list starts with the triangles that began above the band and reach into it.
-      std::vector<std::uint32_t> active, entering, merged;
-      for (std::uint32_t i = 0; i < triangles.size(); ++i)
-        if (std::size_t(triangles[i].minY) < first && std::size_t(triangles[i].maxY) >= first) active.push_back(i);
+      ActiveTriangles activeList(triangles, startingAt, first);
       for (std::size_t y = first; y < last; ++y) {
         // Step 3: retire the triangles that ended above this row, admit those starting on it,
         // keeping submission order so ties resolve exactly as in the full-frame buffer.
-        std::erase_if(active, [&](std::uint32_t i) { return std::size_t(triangles[i].maxY) < y; });
-        const auto& starting = startingAt[y];
-        merged.clear();
-        std::merge(active.begin(), active.end(), starting.begin(), starting.end(), std::back_inserter(merged));
-        active.swap(merged);
+        const std::size_t entering = activeList.advanceTo(y);
+        const std::vector<std::uint32_t>& active = activeList.active();
         // Step 4: clear the row, then depth-test every active triangle's span on it.
         const std::size_t row = y * std::size_t(frame.width);
         std::fill(depthRow.begin(), depthRow.end(), Format::kFar);
@@ -75,7 +70,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
         // Step 5: the row is final: decode its depth into the frame before the buffer is reused.
         for (int x = 0; x < frame.width; ++x)
           frame.depth[row + std::size_t(x)] = test.distance(frame.ids[row + std::size_t(x)], depthRow[std::size_t(x)], geometry.camera);
-        if (recording && recording->steps.due(y, last)) recordRow(*recording, geometry.camera, frame, y, triangles, active, starting.size());
+        if (recording && recording->steps.due(y, last)) recordRow(*recording, geometry.camera, frame, y, triangles, active, entering);
       }
       bandResults[band] = test;
     });

@@ -170,13 +170,15 @@ INSTANTIATE_TEST_SUITE_P(
              write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") +
                  " --algo ray_casting -o OUT",
              "ray_casting cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back "
-             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter or warnock)"},
+             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter or warnock or watkins)"},
         Case{"painter-knob-of-another-variant", kCube + " --algo painter --knob key=nearest -o OUT",
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",
              "painter split-cap must be an integer in [0, 1e+09]"},
         Case{"warnock-smallest-window-zero", kCube + " --algo warnock --knob smallest-window=0 -o OUT",
              "warnock smallest-window must be an integer in [1, 4096]"},
+        Case{"watkins-unknown-split", kCube + " --algo watkins --knob split=diagonal -o OUT",
+             "watkins split must be one of crossing, halves, none"},
         Case{"bsp-over-split-limit", std::string(HSR_SOURCE_DIR) + "/scenes/hard/cyclic_overlap.toml --algo painter --knob split-limit=0 -o OUT",
              "painter bsp: the tree needs more than 0 splits (--knob split-limit=0); raise the limit"},
         Case{"newell-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/trees.toml --algo painter --variant newell -o OUT",

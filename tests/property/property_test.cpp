@@ -42,6 +42,7 @@ const ExactAlgorithm kExact[] = {
     {"painter", {{"variant", "newell"}}, false},
     {"painter", {{"variant", "bsp"}}, false},
     {"warnock", {{"smallest-window", "1"}}, false},
+    {"watkins", {{"split", "crossing"}}, false},
 };
 
 std::string label(const ExactAlgorithm& algorithm) { return std::string(algorithm.name) + ":" + algorithm.knobs.front().second; }

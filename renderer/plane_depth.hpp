@@ -1,0 +1,39 @@
+// Depth compared plane against plane at pixel centers, as the image-space algorithms that
+// decide whole windows or spans from a few samples do (Warnock, Watkins): an order in
+// which smaller is nearer, and a bound on the rounding of each value, so that a decision
+// taken from a window's or a span's ends holds at every pixel center between them.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "renderer/camera.hpp"
+#include "renderer/conventions.hpp"
+#include "renderer/raster.hpp"
+
+namespace hsr {
+
+struct DepthOrder {
+  // t is 1/distance under perspective (larger is nearer) and the distance itself under
+  // orthographic; either way affine across the screen, and so is sign * t.
+  double sign;
+  explicit DepthOrder(const CameraTransform& camera) : sign(camera.perspective() ? -1.0 : 1.0) {}
+
+  // The triangle's plane at the center of pixel (x, y), as an order key: smaller is nearer.
+  double key(const ScreenTriangle& tri, int x, int y) const {
+    return sign * tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y));
+  }
+
+  // How far key() as computed at the center of pixel (x, y) may lie from the plane's exact
+  // value there: t0 + tdx (px - x0) + tdy (py - y0) takes five roundings, each at most
+  // half an ulp of a value no larger than the sum of the terms' magnitudes; 4 ε of that
+  // sum covers them. The magnitude is a convex function of (px, py), so its largest value
+  // over a rectangle of centers is at a corner: the bound at the corners holds inside.
+  static double roundingBound(const ScreenTriangle& tri, int x, int y) {
+    const double magnitude = std::abs(tri.t0) + std::abs(tri.tdx * (conventions::pixelCenter(x) - tri.x0)) +
+                             std::abs(tri.tdy * (conventions::pixelCenter(y) - tri.y0));
+    return 4 * std::numeric_limits<double>::epsilon() * magnitude;
+  }
+};
+
+}  // namespace hsr
