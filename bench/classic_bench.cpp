@@ -19,9 +19,13 @@ struct Configuration {
 const Configuration kConfigurations[] = {
     {"zbuffer", {}, "zbuffer"},
     {"zbuffer", {{"path", "scalar"}}, "zbuffer path=scalar"},
+    {"zbuffer", {{"variant", "scanline"}}, "zbuffer variant=scanline"},
     {"warnock", {}, "warnock"},
     {"warnock", {{"smallest-window", "4"}}, "warnock smallest-window=4"},
     {"warnock", {{"smallest-window", "16"}}, "warnock smallest-window=16"},
+    {"watkins", {}, "watkins"},
+    {"watkins", {{"split", "halves"}}, "watkins split=halves"},
+    {"watkins", {{"split", "none"}}, "watkins split=none"},
 };
 const char* const kBenchScenes[] = {"counters", "trees", "dragons"};
 

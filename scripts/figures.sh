@@ -46,6 +46,15 @@ cp "$study/contact_sheet.png" images/figures/warnock/stops-blocks.png
 ./build/hsr sweep scenes/counters.toml --algo warnock --knob smallest-window=1,2,4,8,16 --threads 1 --repeat 5 \
   --out "$study" > /dev/null
 cp "$study/sweep.png" images/figures/warnock/sweep-counters.png
+# Watkins: a row of the blocks cut into spans (one frame of its steps), and what the
+# split buys on the interpenetrating pair.
+mkdir -p images/figures/watkins
+steps watkins scenes/blocks.toml --algo watkins --size 480x360
+cp "$study/steps-watkins/$(grep -m1 "row 206:" "$study/steps-watkins/captions.txt" | cut -c1-4 | sed 's/^/step-/').png" \
+  images/figures/watkins/row-blocks.png
+./build/hsr compare scenes/hard/interpenetrating.toml --algos watkins,watkins:split=halves,watkins:split=none --size 320x240 \
+  --out "$study" > /dev/null
+cp "$study/contact_sheet.png" images/figures/watkins/split-interpenetrating.png
 ./build/hsr render scenes/city.toml --cull frustum,occlusion:pyramid=on --size 480x270 --every 100000 -o "$study/occlusion.png" \
   --steps "$study/steps-occlusion"
 frame() { echo "$study/steps-occlusion/step-$(grep -m1 "$1" "$study/steps-occlusion/captions.txt" | cut -c1-4).png"; }

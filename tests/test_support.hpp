@@ -7,6 +7,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -257,6 +258,21 @@ inline Frame sampledOneByOne(const PreparedScene& scene) {
         frame.depth[pixel] = static_cast<float>(geometry.camera.distanceFromScreenAffine(t));
       });
   return frame;
+}
+
+// Whether two frames hold the same depth, bit for bit (NaN and -0 included).
+inline bool sameDepthBits(const Frame& a, const Frame& b) {
+  return a.depth.size() == b.depth.size() && std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;
+}
+
+// A frame against sampledOneByOne's: the same id at every pixel (the first that differ
+// named) and the same depth bits. `where` names the algorithm and scene.
+inline void expectSameAsSampledOneByOne(const Frame& frame, const Frame& sampled, const std::string& where) {
+  CaseFailures failures("pixels where " + where + " and the per-pixel loop differ");
+  for (std::size_t p = 0; p < frame.pixelCount(); ++p)
+    failures.expect(frame.ids[p] == sampled.ids[p], [&] { return describePixel(frame, p) + ", per-pixel id " + std::to_string(sampled.ids[p]); });
+  EXPECT_NO_FAILED_CASES(failures);
+  EXPECT_TRUE(sameDepthBits(frame, sampled)) << where;
 }
 
 // Nearest hit of a ray among all triangles with a view distance in [near, far]

@@ -3,8 +3,6 @@
 // larger windows trades pixels for time, measurably; any thread count, the same bits.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "property/random_scene.hpp"
 #include "renderer/metrics.hpp"
 #include "test_support.hpp"
@@ -18,10 +16,6 @@ warnock::Knobs stoppingAt(int smallestWindow) {
   return knobs;
 }
 
-bool sameDepthBits(const Frame& a, const Frame& b) {
-  return a.depth.size() == b.depth.size() && std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;
-}
-
 // Every shipped scene and hard case, at a size no power of two divides (windows of
 // unequal halves, one-pixel-thin windows at the edges): the same ids and depths as the
 // per-pixel loop. Rule 3 decides whole windows from depth bounds at their corners; a
@@ -33,12 +27,7 @@ TEST(Warnock, SameImageAsSamplingEveryPixelOnItsOwn) {
     Stats stats;
     const Frame frame = test::visibilityOf(loaded.prepared, warnock::Knobs{}, 2, stats);
     const Frame sampled = test::sampledOneByOne(loaded.prepared);
-    test::CaseFailures failures("pixels where warnock and the per-pixel loop differ in " + path.filename().string());
-    for (std::size_t p = 0; p < frame.pixelCount(); ++p)
-      failures.expect(frame.ids[p] == sampled.ids[p],
-                      [&] { return test::describePixel(frame, p) + ", per-pixel id " + std::to_string(sampled.ids[p]); });
-    EXPECT_NO_FAILED_CASES(failures);
-    EXPECT_TRUE(sameDepthBits(frame, sampled)) << path;
+    test::expectSameAsSampledOneByOne(frame, sampled, "warnock on " + path.filename().string());
     EXPECT_GT(stats.counter("windows surrounded"), 0) << path;
   }
 }
@@ -55,7 +44,7 @@ TEST(Warnock, SameImageAsSamplingEveryPixelOnItsOwnOnRandomScenes) {
     const Frame frame = test::visibilityOf(prepared, warnock::Knobs{}, 1, stats);
     const Frame sampled = test::sampledOneByOne(prepared);
     ASSERT_EQ(frame.ids, sampled.ids) << "seed " << seed << " (camera " << random.camera << ")";
-    ASSERT_TRUE(sameDepthBits(frame, sampled)) << "seed " << seed;
+    ASSERT_TRUE(test::sameDepthBits(frame, sampled)) << "seed " << seed;
   }
 }
 
@@ -68,7 +57,7 @@ TEST(Warnock, SameBitsAndCountersOnAnyThreadCount) {
       Stats many;
       const Frame frame = test::visibilityOf(loaded.prepared, stoppingAt(smallest), threads, many);
       EXPECT_EQ(reference.ids, frame.ids) << threads << " threads";
-      EXPECT_TRUE(sameDepthBits(reference, frame));
+      EXPECT_TRUE(test::sameDepthBits(reference, frame));
       for (const std::string& counter : one.counterNames()) EXPECT_EQ(one.counter(counter), many.counter(counter)) << counter;
     }
   }

@@ -6,8 +6,6 @@
 // count, the same bits and counters.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "property/random_scene.hpp"
 #include "studies/allocation_meter.hpp"
 #include "test_support.hpp"
@@ -23,10 +21,6 @@ watkins::Knobs splitting(Split split) {
   return knobs;
 }
 
-bool sameDepthBits(const Frame& a, const Frame& b) {
-  return a.depth.size() == b.depth.size() && std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;
-}
-
 TEST(Watkins, SameImageAsSamplingEveryPixelOnItsOwn) {
   for (const auto& path : test::shippedScenes()) {
     if (test::isStudyLevel(path)) continue;
@@ -35,12 +29,7 @@ TEST(Watkins, SameImageAsSamplingEveryPixelOnItsOwn) {
     for (const Split split : {Split::crossing, Split::halves}) {
       Stats stats;
       const Frame frame = test::visibilityOf(loaded.prepared, splitting(split), 2, stats);
-      test::CaseFailures failures("pixels where watkins and the per-pixel loop differ in " + path.filename().string());
-      for (std::size_t p = 0; p < frame.pixelCount(); ++p)
-        failures.expect(frame.ids[p] == sampled.ids[p],
-                        [&] { return test::describePixel(frame, p) + ", per-pixel id " + std::to_string(sampled.ids[p]); });
-      EXPECT_NO_FAILED_CASES(failures);
-      EXPECT_TRUE(sameDepthBits(frame, sampled)) << path;
+      test::expectSameAsSampledOneByOne(frame, sampled, "watkins on " + path.filename().string());
     }
   }
 }
@@ -55,7 +44,7 @@ TEST(Watkins, SameImageAsSamplingEveryPixelOnItsOwnOnRandomScenes) {
       Stats stats;
       const Frame frame = test::visibilityOf(prepared, splitting(split), 1, stats);
       ASSERT_EQ(frame.ids, sampled.ids) << "seed " << seed << " (camera " << random.camera << ")";
-      ASSERT_TRUE(sameDepthBits(frame, sampled)) << "seed " << seed;
+      ASSERT_TRUE(test::sameDepthBits(frame, sampled)) << "seed " << seed;
     }
   }
 }
@@ -68,7 +57,7 @@ TEST(Watkins, SameBitsAndCountersOnAnyThreadCount) {
     Stats many;
     const Frame frame = test::visibilityOf(loaded.prepared, watkins::Knobs{}, threads, many);
     EXPECT_EQ(reference.ids, frame.ids) << threads << " threads";
-    EXPECT_TRUE(sameDepthBits(reference, frame));
+    EXPECT_TRUE(test::sameDepthBits(reference, frame));
     for (const std::string& counter : one.counterNames()) EXPECT_EQ(one.counter(counter), many.counter(counter)) << counter;
   }
 }
