@@ -130,6 +130,35 @@ TEST(Watkins, WithoutSplitsTheSpanTakesItsLeftEndsPolygonAndIsWrongPastTheCrossi
   EXPECT_GT(stats.counter("spans taken from their left end"), 0);
 }
 
+// The hard case of six planks through each other (scenes/hard/crossing_blinds): wider
+// than the view, so on the rows through the middle of the band every change of plank
+// along a row is a crossing of two planks inside a span, which only a split finds.
+TEST(Watkins, TheBlindsNeedASplitAtEveryChangeOfPlankAlongARow) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/hard/crossing_blinds.toml"));
+  const Frame sampled = test::sampledOneByOne(loaded.prepared);
+  const int width = sampled.width, middle = sampled.height / 2;
+  const auto plank = [&](std::size_t pixel) { return (sampled.ids[pixel] - 1) / 2; };  // two triangles a plank
+  std::int64_t changes = 0;
+  for (int y = middle - 10; y <= middle + 10; ++y)
+    for (int x = 0; x + 1 < width; ++x) {
+      const std::size_t pixel = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      ASSERT_NE(sampled.ids[pixel], 0u) << "the planks cover the middle rows from edge to edge";
+      changes += plank(pixel) != plank(pixel + 1);
+    }
+  EXPECT_EQ(changes, 5 * 21);  // six planks, each the nearest somewhere along every row
+  Stats stats;
+  const Frame frame = test::visibilityOf(loaded.prepared, watkins::Knobs{}, 1, stats);
+  EXPECT_EQ(frame.ids, sampled.ids);
+  EXPECT_GE(stats.counter("spans split"), changes);
+  Stats noSplits;
+  const Frame none = test::visibilityOf(loaded.prepared, splitting(Split::none), 1, noSplits);
+  std::int64_t wrong = 0;
+  for (std::size_t p = 0; p < none.pixelCount(); ++p) wrong += none.ids[p] != sampled.ids[p];
+  EXPECT_GT(wrong, sampled.pixelCount() / 20);
+  std::printf("crossing_blinds: %lld plank changes on the middle 21 rows, %lld spans split; without splits %lld wrong pixels\n",
+              static_cast<long long>(changes), static_cast<long long>(stats.counter("spans split")), static_cast<long long>(wrong));
+}
+
 // Watkins keeps no depth buffer: at 4096 x 4096 its heap beyond the frame it returns is
 // the edge table (a bucket per row) and a row's lists, far below even one float32 row
 // per pixel of a full-frame buffer (64 MiB).
