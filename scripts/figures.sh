@@ -43,7 +43,7 @@ cp "$study/steps-warnock/$(grep -m1 "level 7," "$study/steps-warnock/captions.tx
 ./build/hsr compare scenes/blocks.toml --algos warnock,warnock:smallest-window=4,warnock:smallest-window=16 --size 480x360 \
   --out "$study" > /dev/null
 cp "$study/contact_sheet.png" images/figures/warnock/stops-blocks.png
-./build/hsr sweep scenes/counters.toml --algo warnock --knob smallest-window=1,2,4,8,16 --threads 1 --repeat 5 \
+./build/hsr sweep scenes/counters.toml --algo warnock --knob smallest-window=1,2,4,8,16 --threads 1 --repeat 7 \
   --out "$study" > /dev/null
 cp "$study/sweep.png" images/figures/warnock/sweep-counters.png
 # Watkins: a row of the blocks cut into spans (one frame of its steps), and what the

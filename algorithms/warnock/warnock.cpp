@@ -250,31 +250,32 @@ Image subdivisionPicture(const PreparedScene& scene, const CameraTransform& view
   return besideEachOther({surfaces, picture});
 }
 
-}  // namespace
+// A window whose subdivision goes on by itself, with the polygons that met its parent.
+struct HandedOff {
+  Window window;
+  std::vector<std::uint32_t> polygons;
+};
 
-void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
-  const ScreenGeometry geometry =
-      buildScreenTriangles(request.scene, request.view, {.submitted = request.triangles}, request.threads, request.stats);
-  PhaseTimer timer(request.stats, "subdivision");
-  Frame& frame = visibility.frame;
-  const Subdivision subdivision(geometry, knobs, frame);
+// Windows at most this many pixels on a side are handed off by the levels over the
+// whole image and subdivided each by itself, on one thread: the same windows and the
+// same counts, but a level's lists never hold more than one such window's share, where
+// a whole image of windows at one pixel (coplanar faces over all of a 16384-pixel-square
+// image) would take gigabytes.
+constexpr int kHandOffSide = 64;
 
-  // The first window is the whole image, and every polygon may meet it.
-  Level level;
-  level.windows.push_back({0, 0, frame.width, frame.height});
-  level.listOf.push_back(0);
-  level.lists.emplace_back(geometry.triangles.size());
-  std::iota(level.lists[0].begin(), level.lists[0].end(), 0u);
-
-  Counts total;
+// Examines `level` and the levels below it until every window is decided, adding to
+// `total`. With `handedOff`, windows no larger than kHandOffSide are put there instead of
+// being examined; with `request.steps`, each level is recorded.
+void subdivideLevels(const Subdivision& subdivision, Level level, const VisibilityRequest& request, int threads, Counts& total,
+                     std::vector<HandedOff>* handedOff, const Frame& frame) {
   std::vector<std::pair<Window, Rule>> decided;  // kept for the steps' pictures only
   for (int levelNumber = 0; !level.windows.empty(); ++levelNumber) {
     // Each window of the level is examined on its own (any thread; it draws only its
     // own pixels), then the subdivided ones are cut, in the level's order, so the next
     // level is the same for any thread count.
     std::vector<Examined> examined(level.windows.size());
-    std::vector<Counts> counts(static_cast<std::size_t>(resolveThreadCount(request.threads)));
-    parallelFor(level.windows.size(), request.threads, [&](std::size_t w, int worker) {
+    std::vector<Counts> counts(static_cast<std::size_t>(resolveThreadCount(threads)));
+    parallelFor(level.windows.size(), threads, [&](std::size_t w, int worker) {
       examined[w] = subdivision.examine(level.windows[w], level.lists[level.listOf[w]], counts[std::size_t(worker)]);
     });
     Counts atThisLevel;
@@ -287,7 +288,14 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
         if (request.steps) decided.emplace_back(level.windows[w], examined[w].rule);
         continue;
       }
+      const std::size_t firstPart = next.windows.size();
       subdivideInto(level.windows[w], std::uint32_t(next.lists.size()), next);
+      if (handedOff && level.windows[w].width() <= 2 * kHandOffSide && level.windows[w].height() <= 2 * kHandOffSide) {
+        for (std::size_t part = firstPart; part < next.windows.size(); ++part) handedOff->push_back({next.windows[part], examined[w].meeting});
+        next.windows.resize(firstPart);
+        next.listOf.resize(firstPart);
+        continue;
+      }
       next.lists.push_back(std::move(examined[w].meeting));
     }
     if (request.steps) {
@@ -302,6 +310,41 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
     }
     level = std::move(next);
   }
+}
+
+// A level of one window and its polygons.
+Level levelOf(const Window& window, std::vector<std::uint32_t> polygons) {
+  Level level;
+  level.windows.push_back(window);
+  level.listOf.push_back(0);
+  level.lists.push_back(std::move(polygons));
+  return level;
+}
+
+}  // namespace
+
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
+  const ScreenGeometry geometry =
+      buildScreenTriangles(request.scene, request.view, {.submitted = request.triangles}, request.threads, request.stats);
+  PhaseTimer timer(request.stats, "subdivision");
+  Frame& frame = visibility.frame;
+  const Subdivision subdivision(geometry, knobs, frame);
+
+  // The first window is the whole image, and every polygon may meet it. Level by level
+  // over the whole image while windows are large; a recording watches every level so.
+  std::vector<std::uint32_t> everyPolygon(geometry.triangles.size());
+  std::iota(everyPolygon.begin(), everyPolygon.end(), 0u);
+  Counts total;
+  std::vector<HandedOff> handedOff;
+  subdivideLevels(subdivision, levelOf({0, 0, frame.width, frame.height}, std::move(everyPolygon)), request, request.threads, total,
+                  request.steps ? nullptr : &handedOff, frame);
+  // Then each window handed off, by itself, on one thread.
+  std::vector<Counts> counts(static_cast<std::size_t>(resolveThreadCount(request.threads)));
+  parallelFor(handedOff.size(), request.threads, [&](std::size_t h, int worker) {
+    subdivideLevels(subdivision, levelOf(handedOff[h].window, std::move(handedOff[h].polygons)), request, 1, counts[std::size_t(worker)],
+                    nullptr, frame);
+  });
+  for (const Counts& c : counts) total += c;
 
   std::int64_t examinedWindows = 0, tests = 0;
   for (std::size_t k = 0; k < total.windows.size(); ++k) {
