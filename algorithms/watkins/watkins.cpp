@@ -135,9 +135,7 @@ class RowResolver {
     ++counts.spans[std::size_t(Outcome::split)];
     const int split = knobs_.split == Split::crossing && left.polygon != right.polygon ? whereDepthsCross(left, right, a, b) : a + (b - a) / 2;
     if (marks) marks->emplace_back(split, true);
-    const std::vector<std::uint32_t> present = present_;  // the parts see the same polygons
-    resolveSpan(y, a, split, counts, marks);
-    present_ = present;
+    resolveSpan(y, a, split, counts, marks);  // the parts have the same polygons present
     resolveSpan(y, split, b, counts, marks);
   }
 
