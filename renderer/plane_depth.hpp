@@ -29,6 +29,12 @@ struct DepthOrder {
   // half an ulp of a value no larger than the sum of the terms' magnitudes; 4 ε of that
   // sum covers them. The magnitude is a convex function of (px, py), so its largest value
   // over a rectangle of centers is at a corner: the bound at the corners holds inside.
+  // The plane's distance along the view axis at the center of pixel (x, y), as a frame
+  // stores the depth of the triangle a pixel shows.
+  static float distanceAt(const CameraTransform& camera, const ScreenTriangle& tri, int x, int y) {
+    return static_cast<float>(camera.distanceFromScreenAffine(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
+  }
+
   static double roundingBound(const ScreenTriangle& tri, int x, int y) {
     const double magnitude = std::abs(tri.t0) + std::abs(tri.tdx * (conventions::pixelCenter(x) - tri.x0)) +
                              std::abs(tri.tdy * (conventions::pixelCenter(y) - tri.y0));

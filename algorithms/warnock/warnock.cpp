@@ -194,8 +194,7 @@ class Subdivision {
     }
     const ScreenTriangle& tri = triangles_[*triangle];
     frame_.ids[pixel] = tri.triangle + 1;
-    frame_.depth[pixel] = static_cast<float>(
-        camera_.distanceFromScreenAffine(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
+    frame_.depth[pixel] = DepthOrder::distanceAt(camera_, tri, x, y);
   }
 
   // Every pixel of the window shows the polygon (its plane's depth at each center), or

@@ -163,8 +163,7 @@ class RowResolver {
       }
       const ScreenTriangle& tri = triangles_[*polygon];
       frame_.ids[row + std::size_t(x)] = tri.triangle + 1;
-      frame_.depth[row + std::size_t(x)] = static_cast<float>(
-          camera_.distanceFromScreenAffine(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
+      frame_.depth[row + std::size_t(x)] = DepthOrder::distanceAt(camera_, tri, x, y);
     }
   }
 
