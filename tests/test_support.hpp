@@ -20,6 +20,7 @@
 #include "algorithms/registry.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/warnock/warnock.hpp"
+#include "algorithms/weiler_atherton/weiler_atherton.hpp"
 #include "algorithms/watkins/watkins.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
@@ -104,6 +105,16 @@ inline Mesh triangleMesh(const std::vector<dvec3>& corners) {
   return mesh;
 }
 
+// For a pixelCamera(48) scene of 64 x 48: two planes covering the image, z = (x - 5.3) /
+// 100 and its opposite, crossing along the vertical line x = 5.3 (pixel x 37.3, between
+// the centers of columns 36 and 37); the first is nearer right of it, the second left.
+inline std::vector<Mesh> crossingPlanes() {
+  const auto plane = [](double sign) {
+    return triangleMesh({{-300, -300, sign * -3.053}, {300, -300, sign * 2.947}, {0, 300, sign * -0.053}});
+  };
+  return {plane(1), plane(-1)};
+}
+
 // The scene seen the same way after the world map p -> scale p + offset: the camera
 // moves with it, and each object's transform is composed with it (objects must be
 // single, not instanced, for that: the map is not applied to instancing offsets).
@@ -177,11 +188,13 @@ inline const AlgorithmEntry& algorithmOf(const ray_casting::Knobs&) { return fin
 inline const AlgorithmEntry& algorithmOf(const painter::Knobs&) { return findAlgorithm("painter"); }
 inline const AlgorithmEntry& algorithmOf(const warnock::Knobs&) { return findAlgorithm("warnock"); }
 inline const AlgorithmEntry& algorithmOf(const watkins::Knobs&) { return findAlgorithm("watkins"); }
+inline const AlgorithmEntry& algorithmOf(const weiler_atherton::Knobs&) { return findAlgorithm("weiler_atherton"); }
 inline KnobValues valuesOf(const zbuffer::Knobs& knobs) { return zbuffer::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const ray_casting::Knobs& knobs) { return ray_casting::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const painter::Knobs& knobs) { return painter::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const warnock::Knobs& knobs) { return warnock::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const watkins::Knobs& knobs) { return watkins::knobTable().valuesOf(knobs); }
+inline KnobValues valuesOf(const weiler_atherton::Knobs& knobs) { return weiler_atherton::knobTable().valuesOf(knobs); }
 
 // The whole render of a surface algorithm (pipeline/pipeline.hpp): visibility, then the
 // passes the scene's effects call for.

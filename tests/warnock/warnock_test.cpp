@@ -123,10 +123,7 @@ TEST(Warnock, InterpenetratingPolygonsAreDecidedPixelByPixelAlongWhereTheyCross)
   // the vertical line x = 5.3 (pixel x 37.3, between the centers of columns 36 and 37,
   // and off every cut of the subdivision): no window straddling it has a surrounding
   // polygon in front, so the windows along it shrink to single pixels, one per row.
-  const auto plane = [](double sign) {
-    return test::triangleMesh({{-300, -300, sign * -3.053}, {300, -300, sign * 2.947}, {0, 300, sign * -0.053}});
-  };
-  const Counted counted = subdivided({plane(1), plane(-1)});
+  const Counted counted = subdivided(test::crossingPlanes());
   EXPECT_GE(counted.stats.counter("windows examined"), 48);
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 64; ++x) EXPECT_EQ(counted.frame.ids[std::size_t(y * 64 + x)], x < 37 ? 2u : 1u) << x << ", " << y;

@@ -92,15 +92,9 @@ TEST(Watkins, APolygonInFrontOfAnotherIsDecidedAtTheSpansEnds) {
   EXPECT_EQ(counted.stats.counter("spans decided at both ends"), rowsShowingIt);
 }
 
-// Two planes covering the image, z = (x - 5.3) / 100 and its opposite, crossing along
-// the vertical line x = 5.3 (pixel x 37.3): every row is one span holding both, nearest
-// one at the left end and the other at the right.
-std::vector<Mesh> crossingPlanes() {
-  const auto plane = [](double sign) {
-    return test::triangleMesh({{-300, -300, sign * -3.053}, {300, -300, sign * 2.947}, {0, 300, sign * -0.053}});
-  };
-  return {plane(1), plane(-1)};
-}
+// test::crossingPlanes: every row is one span holding both, nearest one at the left end
+// and the other at the right.
+using test::crossingPlanes;
 
 TEST(Watkins, ACrossingIsFoundInOneSplitPerRow) {
   const Counted atCrossing = scanned(crossingPlanes(), Split::crossing);
