@@ -21,6 +21,7 @@
 #include "renderer/line_set.hpp"
 #include "renderer/metrics.hpp"
 #include "renderer/pieces.hpp"
+#include "renderer/polygon_svg.hpp"
 #include "renderer/prepare.hpp"
 #include "renderer/stats.hpp"
 #include "renderer/steps.hpp"
@@ -50,10 +51,13 @@ struct VisibilityRequest {
 // may reuse from one request to the next): frame.ids and frame.depth for every pixel
 // (frame.color is left to the shading passes), frame.partial when the algorithm knows
 // its answer may be wrong somewhere, and, from an algorithm that decides by painting in
-// order (the painter), the order it painted, for the transparency pass to blend in.
+// order (the painter), the order it painted, for the transparency pass to blend in;
+// from an algorithm that decides in object space (Weiler-Atherton), the visible
+// polygons themselves, which hsr render can draw as SVG.
 struct Visibility {
   Frame frame;
   std::optional<PaintedPieces> painted;
+  std::vector<VisiblePolygon> polygons = {};
 };
 
 // A line drawing judged against the exact one: its line error, where it is wrong
@@ -84,6 +88,8 @@ struct AlgorithmEntry {
 
   // Surface algorithms.
   std::function<void(const VisibilityRequest&, const KnobValues&, Visibility&)> visibility;
+  // It answers with visible polygons too (Visibility::polygons): hsr render -o out.svg draws them.
+  bool drawsPolygons = false;
   // It can leave triangles out (request.triangles): culling stages may run before it,
   // and the transparency pass can ask it for the opaque surfaces alone.
   bool takesTriangleSubsets = false;

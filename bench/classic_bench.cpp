@@ -26,6 +26,8 @@ const Configuration kConfigurations[] = {
     {"watkins", {}, "watkins"},
     {"watkins", {{"split", "halves"}}, "watkins split=halves"},
     {"watkins", {{"split", "none"}}, "watkins split=none"},
+    // Timed on the dragons too, past its default budget (the bench calls the pass itself).
+    {"weiler_atherton", {}, "weiler_atherton"},
 };
 const char* const kBenchScenes[] = {"counters", "trees", "dragons"};
 

@@ -190,9 +190,10 @@ int render(const RenderOptions& options) {
   const std::filesystem::path output = options.output;
   const LineStyle style = lineStyleOf(options.lineStyle, lines);
   configuration.culling = cullingPipelineOf(options.cull, algorithm);
-  if (output.extension() == ".svg" && !lines)
-    throw InputError("-o " + options.output + ": SVG is for line drawings, and " + algorithm.name +
-                     " draws surfaces; expected a .png file");
+  const bool polygonSvg = output.extension() == ".svg" && algorithm.drawsPolygons;
+  if (output.extension() == ".svg" && !lines && !polygonSvg)
+    throw InputError("-o " + options.output + ": SVG is for line drawings and visible polygons, and " + algorithm.name +
+                     " draws pixels; expected a .png file");
   if (lines && (!options.depth.empty() || !options.ids.empty()))
     throw InputError(std::string(options.depth.empty() ? "--ids" : "--depth") + ": " + algorithm.name +
                      " draws lines, which have no depth or id image");
@@ -214,6 +215,7 @@ int render(const RenderOptions& options) {
   const Frame& frame = rendered.frame;
   OutputFiles outputs;
   if (lines && output.extension() == ".svg") outputs.addText(output, lineSetSvg(rendered.drawing, style));
+  else if (polygonSvg) outputs.addText(output, visiblePolygonsSvg(rendered.polygons, frame));
   else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
   else outputs.addColorPng(output, frame);
   if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);

@@ -45,10 +45,12 @@ struct PlannedPass {
 std::vector<PlannedPass> plan(const PreparedScene& scene, const Configuration& configuration);
 
 // The result of a render: the image (surfaces shaded, or a line drawing's visible lines
-// rasterized), and for a line algorithm the drawing itself.
+// rasterized), for a line algorithm the drawing itself, and for an algorithm that
+// draws polygons (AlgorithmEntry::drawsPolygons) the visible ones.
 struct Rendered {
   Frame frame;
   LineSet drawing;
+  std::vector<VisiblePolygon> polygons = {};
 };
 
 // Renders the scene at its size. threads: 0 = all cores; the image is the same bits for

@@ -118,6 +118,7 @@ inline const std::vector<Configuration>& everyConfiguration() {
       {"painter", {{"variant", "bsp"}}, std::nullopt, false, true},
       {"warnock", {}, std::nullopt, false, true},
       {"watkins", {}, std::nullopt, false, true},
+      {"weiler_atherton", {}, std::nullopt, false, true},
   };
   return all;
 }

@@ -120,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(
              "ray-triangle tests, over its budget of 1e+09 (raise it with --knob budget=N"},
         Case{"march-over-budget", kCube + " --algo ray_casting --variant march --knob step=1e-5% -o OUT",
              "march ray casting would run 640 x 480 pixels x"},
-        Case{"svg-for-surface-algorithm", kCube + " -o OUT.svg", "SVG is for line drawings, and zbuffer draws surfaces; expected a .png file"},
+        Case{"svg-for-surface-algorithm", kCube + " -o OUT.svg", "SVG is for line drawings and visible polygons, and zbuffer draws pixels; expected a .png file"},
         Case{"line-style-for-surface-algorithm", kCube + " --line-style hidden -o OUT",
              "--line-style hidden: applies only to line algorithms (roberts, appel, floating_horizon)"},
         Case{"line-style-unknown", kCube + " --algo appel --line-style dotted -o OUT", "--line-style dotted: expected visible, hidden or qi"},
@@ -170,7 +170,7 @@ INSTANTIATE_TEST_SUITE_P(
              write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") +
                  " --algo ray_casting -o OUT",
              "ray_casting cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back "
-             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter or warnock or watkins)"},
+             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter or warnock or watkins or weiler_atherton)"},
         Case{"painter-knob-of-another-variant", kCube + " --algo painter --knob key=nearest -o OUT",
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",
@@ -179,6 +179,11 @@ INSTANTIATE_TEST_SUITE_P(
              "warnock smallest-window must be an integer in [1, 4096]"},
         Case{"watkins-unknown-split", kCube + " --algo watkins --knob split=diagonal -o OUT",
              "watkins split must be one of crossing, halves, none"},
+        Case{"weiler-atherton-budget-zero", kCube + " --algo weiler_atherton --knob budget=0 -o OUT",
+             "weiler_atherton budget must be an integer in [1, 1e+09]"},
+        Case{"weiler-atherton-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/dragons.toml --algo weiler_atherton -o OUT",
+             "weiler_atherton cannot render it: weiler_atherton clips 399136 triangles against each other, more than --knob "
+             "budget=250000; raise it"},
         Case{"bsp-over-split-limit", std::string(HSR_SOURCE_DIR) + "/scenes/hard/cyclic_overlap.toml --algo painter --knob split-limit=0 -o OUT",
              "painter bsp: the tree needs more than 0 splits (--knob split-limit=0); raise the limit"},
         Case{"newell-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/trees.toml --algo painter --variant newell -o OUT",

@@ -43,6 +43,7 @@ const ExactAlgorithm kExact[] = {
     {"painter", {{"variant", "bsp"}}, false},
     {"warnock", {{"smallest-window", "1"}}, false},
     {"watkins", {{"split", "crossing"}}, false},
+    {"weiler_atherton", {{"budget", "250000"}}, false},
 };
 
 std::string label(const ExactAlgorithm& algorithm) { return std::string(algorithm.name) + ":" + algorithm.knobs.front().second; }
