@@ -55,6 +55,13 @@ cp "$study/steps-watkins/$(grep -m1 "row 206:" "$study/steps-watkins/captions.tx
 ./build/hsr compare scenes/hard/interpenetrating.toml --algos watkins,watkins:split=halves,watkins:split=none --size 320x240 \
   --out "$study" > /dev/null
 cp "$study/contact_sheet.png" images/figures/watkins/split-interpenetrating.png
+# Weiler-Atherton: the blocks as its SVG draws them (rsvg-convert, from librsvg2-bin), the
+# third clip polygon of its steps, and the steps.
+mkdir -p images/figures/weiler_atherton
+./build/hsr render scenes/blocks.toml --algo weiler_atherton --size 480x360 -o "$study/blocks.svg"
+rsvg-convert "$study/blocks.svg" -o images/figures/weiler_atherton/polygons-blocks.png
+steps weiler_atherton scenes/blocks.toml --algo weiler_atherton --size 480x360
+cp "$study/steps-weiler_atherton/step-0003.png" images/figures/weiler_atherton/clip-blocks.png
 ./build/hsr render scenes/city.toml --cull frustum,occlusion:pyramid=on --size 480x270 --every 100000 -o "$study/occlusion.png" \
   --steps "$study/steps-occlusion"
 frame() { echo "$study/steps-occlusion/step-$(grep -m1 "$1" "$study/steps-occlusion/captions.txt" | cut -c1-4).png"; }

@@ -16,6 +16,7 @@ packages=(
   gnuplot-nox                  # hsr sweep's plots; the floating horizon's peer (bench/gnuplot_peer)
   openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
   graphviz                     # dot: the BSP tree in the painter's steps; scripts/figures.sh draws the architecture
+  librsvg2-bin                 # rsvg-convert: scripts/figures.sh draws Weiler-Atherton's SVG as a PNG
   python3                      # scripts/readme_outputs.py: README's quoted outputs, checked by a test
   fonts-dejavu-core            # labels on hsr compare's contact sheet and on the steps' pictures
   chromium                     # tests: report.html loaded in a real browser, headless
