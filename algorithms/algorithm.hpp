@@ -17,6 +17,7 @@
 
 #include "algorithms/knobs.hpp"
 #include "renderer/camera.hpp"
+#include "renderer/coverage.hpp"
 #include "renderer/frame.hpp"
 #include "renderer/line_set.hpp"
 #include "renderer/metrics.hpp"
@@ -53,11 +54,14 @@ struct VisibilityRequest {
 // its answer may be wrong somewhere, and, from an algorithm that decides by painting in
 // order (the painter), the order it painted, for the transparency pass to blend in;
 // from an algorithm that decides in object space (Weiler-Atherton), the visible
-// polygons themselves, which hsr render can draw as SVG.
+// polygons themselves, which hsr render can draw as SVG; from an antialiasing algorithm
+// (the A-buffer), each pixel's surfaces and their shares of it, which the shading pass
+// blends (renderer/coverage.hpp; frame.ids then names the surface with the largest share).
 struct Visibility {
   Frame frame;
   std::optional<PaintedPieces> painted;
   std::vector<VisiblePolygon> polygons = {};
+  std::optional<PixelCoverage> coverage = {};
 };
 
 // A line drawing judged against the exact one: its line error, where it is wrong
@@ -90,6 +94,9 @@ struct AlgorithmEntry {
   std::function<void(const VisibilityRequest&, const KnobValues&, Visibility&)> visibility;
   // It answers with visible polygons too (Visibility::polygons): hsr render -o out.svg draws them.
   bool drawsPolygons = false;
+  // It blends transparent surfaces itself (Visibility::coverage): it sees every triangle,
+  // and no transparency pass follows it.
+  bool resolvesTransparency = false;
   // It can leave triangles out (request.triangles): culling stages may run before it,
   // and the transparency pass can ask it for the opaque surfaces alone.
   bool takesTriangleSubsets = false;

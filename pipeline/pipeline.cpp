@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "algorithms/registry.hpp"
+#include "pipeline/coverage.hpp"
 #include "pipeline/shadow_maps.hpp"
 #include "pipeline/transparency.hpp"
 #include "renderer/fog.hpp"
@@ -53,8 +54,10 @@ struct Facts {
   bool lines = algorithm.kind == AlgorithmKind::line;
   // The visibility pass answers with an order of its own, which transparency blends in.
   bool paintsInOrder = surface && algorithm.order != nullptr;
+  // The visibility pass blends transparent surfaces itself (the A-buffer).
+  bool blendsItself = surface && algorithm.resolvesTransparency;
   // The visibility pass sees the opaque surfaces only; transparency blends the rest over them.
-  bool opaqueFirst = surface && effects.transparency && !paintsInOrder;
+  bool opaqueFirst = surface && effects.transparency && !paintsInOrder && !blendsItself;
 
   // Why a pass after visibility does not run for an algorithm that is not a surface one.
   std::string notForThisKind() const {
@@ -110,6 +113,8 @@ void runVisibility(Context& context) {
       if (Facts{scene, context.configuration}.opaqueFirst) triangles = &opaque.emplace(trianglesByOpacity(scene, triangles, true));
       if (context.visibility.frame.width != scene.width() || context.visibility.frame.height != scene.height())
         context.visibility.frame = Frame(scene.width(), scene.height());
+      context.visibility.polygons.clear();  // what only some algorithms answer, never left from another's
+      context.visibility.coverage.reset();
       algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats, context.steps},
                            context.configuration.knobs, context.visibility);
       return;
@@ -169,17 +174,25 @@ Decision decideShading(const Facts& facts) {
     return {false, title, "transparency shades every surface as it blends it, in " + facts.algorithm.name + "'s own order"};
   char ambient[48];
   std::snprintf(ambient, sizeof ambient, ", ambient %g", facts.scene.scene().ambient);
-  return {true, title, effects.lit() ? count(facts.scene.scene().lights.size(), "light") + ambient : "no lit effect: each object's own color",
+  const std::string blended = facts.blendsItself ? "; each pixel's surfaces shaded at its center and weighted by their shares" : "";
+  return {true, title,
+          (effects.lit() ? count(facts.scene.scene().lights.size(), "light") + ambient : "no lit effect: each object's own color") + blended,
           shadingWork(facts)};
 }
 
 void runShading(Context& context) {
-  shadeFrame(context.scene, context.visibility.frame, context.pixelShader(), context.threads, context.stats);
+  if (context.visibility.coverage)
+    shadeCoverage(context.scene, *context.visibility.coverage, context.pixelShader(), context.threads, context.visibility.frame,
+                  context.stats);
+  else
+    shadeFrame(context.scene, context.visibility.frame, context.pixelShader(), context.threads, context.stats);
 }
 
 Decision decideTransparency(const Facts& facts) {
   if (!facts.surface) return {false, "transparency", facts.notForThisKind()};
   if (!facts.effects.transparency) return {false, "transparency", "effects does not list transparency: nothing is sorted for blending"};
+  if (facts.blendsItself)
+    return {false, "transparency", facts.algorithm.name + " blends the transparent surfaces itself, in each pixel's list of fragments"};
   std::size_t transparent = 0;
   for (const SceneObject& object : facts.scene.scene().objects) transparent += object.opacity < 1;
   if (!facts.paintsInOrder)

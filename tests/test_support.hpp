@@ -19,6 +19,7 @@
 #include "algorithms/painter/painter.hpp"
 #include "algorithms/registry.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
+#include "algorithms/abuffer/abuffer.hpp"
 #include "algorithms/warnock/warnock.hpp"
 #include "algorithms/weiler_atherton/weiler_atherton.hpp"
 #include "algorithms/watkins/watkins.hpp"
@@ -189,12 +190,14 @@ inline const AlgorithmEntry& algorithmOf(const painter::Knobs&) { return findAlg
 inline const AlgorithmEntry& algorithmOf(const warnock::Knobs&) { return findAlgorithm("warnock"); }
 inline const AlgorithmEntry& algorithmOf(const watkins::Knobs&) { return findAlgorithm("watkins"); }
 inline const AlgorithmEntry& algorithmOf(const weiler_atherton::Knobs&) { return findAlgorithm("weiler_atherton"); }
+inline const AlgorithmEntry& algorithmOf(const abuffer::Knobs&) { return findAlgorithm("abuffer"); }
 inline KnobValues valuesOf(const zbuffer::Knobs& knobs) { return zbuffer::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const ray_casting::Knobs& knobs) { return ray_casting::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const painter::Knobs& knobs) { return painter::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const warnock::Knobs& knobs) { return warnock::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const watkins::Knobs& knobs) { return watkins::knobTable().valuesOf(knobs); }
 inline KnobValues valuesOf(const weiler_atherton::Knobs& knobs) { return weiler_atherton::knobTable().valuesOf(knobs); }
+inline KnobValues valuesOf(const abuffer::Knobs& knobs) { return abuffer::knobTable().valuesOf(knobs); }
 
 // The whole render of a surface algorithm (pipeline/pipeline.hpp): visibility, then the
 // passes the scene's effects call for.

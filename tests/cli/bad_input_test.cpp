@@ -170,7 +170,7 @@ INSTANTIATE_TEST_SUITE_P(
              write("glass.toml", "effects = [\"transparency\"]\n" + kCamera + "[[objects]]\nshape = \"box\"\nopacity = 0.5\n") +
                  " --algo ray_casting -o OUT",
              "ray_casting cannot render it: the scene declares transparency, which needs the surfaces behind a pixel blended back "
-             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter or warnock or watkins or weiler_atherton)"},
+             "to front; ray casting keeps only the nearest (use --algo zbuffer or painter or warnock or watkins or weiler_atherton or abuffer)"},
         Case{"painter-knob-of-another-variant", kCube + " --algo painter --knob key=nearest -o OUT",
              "--knob key=nearest: painter key applies only to variant sort, not to variant bsp"},
         Case{"painter-split-cap-negative", kCube + " --algo painter --variant newell --knob split-cap=-1 -o OUT",
@@ -179,6 +179,8 @@ INSTANTIATE_TEST_SUITE_P(
              "warnock smallest-window must be an integer in [1, 4096]"},
         Case{"watkins-unknown-split", kCube + " --algo watkins --knob split=diagonal -o OUT",
              "watkins split must be one of crossing, halves, none"},
+        Case{"abuffer-unknown-mask", kCube + " --algo abuffer --knob mask=3x3 -o OUT", "abuffer mask must be one of 4x4, 8x8, 2x2"},
+        Case{"abuffer-unknown-depth", kCube + " --algo abuffer --knob depth=pixel -o OUT", "abuffer depth must be one of subsample, center"},
         Case{"weiler-atherton-budget-zero", kCube + " --algo weiler_atherton --knob budget=0 -o OUT",
              "weiler_atherton budget must be an integer in [1, 1e+09]"},
         Case{"weiler-atherton-over-budget", std::string(HSR_SOURCE_DIR) + "/scenes/dragons.toml --algo weiler_atherton -o OUT",

@@ -131,9 +131,9 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
         documented.insert((*match)[1]);
   for (const std::string& column : header) EXPECT_TRUE(documented.count(column)) << column << " is not in README's table of columns";
   // Per scene: the reference, then every algorithm that accepts it at its defaults: the
-  // six surface algorithms on both, the line algorithms (roberts, appel) on the closed
+  // seven surface algorithms on both, the line algorithms (roberts, appel) on the closed
   // cube but not on coplanar's open quads.
-  ASSERT_EQ(rows.size(), 16u);
+  ASSERT_EQ(rows.size(), 18u);
   for (const char* line : {"roberts", "appel"})
     EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [&](const Row& row) { return row.at("algorithm") == line; }), 1) << line;
   for (const Row& row : rows) {
@@ -158,11 +158,13 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_NE(rows[5].at("counters").find("spans="), std::string::npos);
   EXPECT_EQ(rows[6].at("algorithm"), "weiler_atherton");
   EXPECT_NE(rows[6].at("counters").find("clip polygons="), std::string::npos);
-  EXPECT_EQ(rows[7].at("algorithm"), "roberts");
-  EXPECT_EQ(rows[8].at("algorithm"), "appel");
-  for (const std::size_t exact : {7u, 8u}) EXPECT_LT(number(rows[exact], "line_error"), 1e-12);  // one cube: only rounding
-  for (const std::size_t exact : {2u, 11u}) EXPECT_EQ(number(rows[exact], "pixel_error"), 0);  // bvh is exact
-  EXPECT_GT(number(rows[10], "ambiguous_pixels"), 0);  // the coplanar tie
+  EXPECT_EQ(rows[7].at("algorithm"), "abuffer");
+  EXPECT_NE(rows[7].at("counters").find("pixels with partial coverage="), std::string::npos);
+  EXPECT_EQ(rows[8].at("algorithm"), "roberts");
+  EXPECT_EQ(rows[9].at("algorithm"), "appel");
+  for (const std::size_t exact : {8u, 9u}) EXPECT_LT(number(rows[exact], "line_error"), 1e-12);  // one cube: only rounding
+  for (const std::size_t exact : {2u, 12u}) EXPECT_EQ(number(rows[exact], "pixel_error"), 0);  // bvh is exact
+  EXPECT_GT(number(rows[11], "ambiguous_pixels"), 0);  // the coplanar tie
 
   const test::JsonValue json = test::parseJson(readText(folder / "results.json"));
   ASSERT_EQ(json.array().size(), rows.size());
@@ -179,9 +181,9 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_GT(json.array()[1]["counters"]["fragments tested"].number(), 0);
 
   const Image sheet = readImage(folder / "contact_sheet.png");
-  // Ten columns: the reference, zbuffer, ray_casting, painter, warnock, watkins, weiler_atherton, the
+  // Eleven columns: the reference, zbuffer, ray_casting, painter, warnock, watkins, weiler_atherton, abuffer, the
   // exact line drawing (what both line algorithms are judged by: one tile), roberts, appel.
-  EXPECT_EQ(sheet.width, 10 + 10 * (256 + 10));
+  EXPECT_EQ(sheet.width, 10 + 11 * (256 + 10));
   EXPECT_GT(sheet.height, 4 * 192);             // two scenes, each an image row and a heat-map row
 }
 
@@ -197,7 +199,7 @@ TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles
   const Image sheet = readImage(folder / "contact_sheet.png");
   constexpr int kMargin = 10, kThumbnail = 256, kHeading = 40;
   const int columns = (sheet.width - kMargin) / (kThumbnail + kMargin);
-  ASSERT_EQ(columns, 10) << "the reference, six surface algorithms, the exact lines, two line algorithms";
+  ASSERT_EQ(columns, 11) << "the reference, seven surface algorithms, the exact lines, two line algorithms";
   std::int64_t transparent = 0, inGaps = 0;
   for (int y = 0; y < sheet.height; ++y)
     for (int x = 0; x < sheet.width; ++x) {
@@ -208,7 +210,7 @@ TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles
     }
   EXPECT_EQ(transparent, 0);
   EXPECT_EQ(inGaps, 0) << "pixels of text or image spilled into the gaps between tiles";
-  // The eighth tile is the exact line drawing: white paper and black lines, where the
+  // The ninth tile is the exact line drawing: white paper and black lines, where the
   // reference's tile is a shaded surface on the scene's background.
   const auto whiteIn = [&](int column) {
     std::int64_t white = 0;
@@ -217,7 +219,7 @@ TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles
       for (int x = x0; x < x0 + kThumbnail; ++x) white += sheet.pixels[4 * (std::size_t(y) * std::size_t(sheet.width) + std::size_t(x))] == 255;
     return white;
   };
-  EXPECT_GT(whiteIn(7), kThumbnail * kThumbnail / 2);
+  EXPECT_GT(whiteIn(8), kThumbnail * kThumbnail / 2);
   EXPECT_LT(whiteIn(0), kThumbnail * kThumbnail / 10);
 }
 

@@ -14,7 +14,10 @@
 //     reference is the method's, tabled in algorithms/ray_casting/README.md);
 //   painter bsp and newell: every pixel that differs from the exact reference is
 //     explained by snapping or coplanarity (tests/test_support.hpp);
-//   painter sort: the same bits on 1 and 3 threads (its error is the lesson).
+//   painter sort: the same bits on 1 and 3 threads (its error is the lesson);
+//   abuffer: the same bits on 1 and 3 threads, and every pixel whose id differs from the
+//     exact reference's is one more than one thing shows (its ids name the surface with
+//     the largest share, the reference's the one at the pixel's center) or a coplanar tie.
 // ray_casting naive has no goldens of its own: it must reproduce bvh's.
 // A configuration the registry refuses on a scene (over a budget, or a transparent
 // scene for an algorithm that cannot blend) is skipped there, with the reason.
@@ -83,6 +86,24 @@ std::string everyWrongPixelExplained(const GoldenCase&, const PreparedScene& sce
   Stats stats;
   const long unexplained = test::classifyWrongPixels(scene, frame, traceReference(scene, 2, stats)).unexplained;
   return unexplained == 0 ? std::string() : std::to_string(unexplained) + " wrong pixels are neither snapping nor coplanarity";
+}
+
+std::string idsDifferOnlyWhereMoreThanOneThingShows(const GoldenCase& golden, const PreparedScene& scene, const Frame& frame) {
+  if (std::string threads = sameBitsOnThreeThreads(golden, scene, frame); !threads.empty()) return threads;
+  Stats stats;
+  const ReferenceImage reference = traceReference(scene, 2, stats);
+  const pipeline::Configuration configuration = golden.configuration();
+  Visibility visibility{Frame(scene.width(), scene.height()), std::nullopt};
+  configuration.algorithm->visibility({scene, scene.camera(), nullptr, 2, stats}, configuration.knobs, visibility);
+  const PixelCoverage& coverage = *visibility.coverage;
+  std::int64_t unexplained = 0;
+  for (std::size_t p = 0; p < frame.pixelCount(); ++p) {
+    if (frame.ids[p] == reference.frame.ids[p] || reference.ambiguous[p]) continue;  // ambiguous: a coplanar tie
+    float shares = 0;
+    for (std::uint32_t s = coverage.first[p]; s < coverage.first[p + 1]; ++s) shares += coverage.surfaces[s].share;
+    unexplained += coverage.first[p + 1] - coverage.first[p] == 1 && shares >= 1;
+  }
+  return unexplained == 0 ? std::string() : std::to_string(unexplained) + " pixels showing one surface differ from the reference";
 }
 
 // A line algorithm's drawing agrees with the exact line reference: what it hides and what
@@ -164,6 +185,7 @@ const std::vector<GoldenCase>& goldenCases() {
         {"painter_bsp", "painter", "painter", {}, everyWrongPixelExplained},
         {"painter_newell", "painter-newell", "painter", {{"variant", "newell"}}, everyWrongPixelExplained},
         {"painter_sort", "painter-sort", "painter", {{"variant", "sort"}}, sameBitsOnThreeThreads},
+        {"abuffer", "abuffer", "abuffer", {}, idsDifferOnlyWhereMoreThanOneThingShows},
         {"roberts", "roberts", "roberts", {}, lineErrorWithinATenthOfAPercent},
         {"appel", "appel", "appel", {}, lineErrorWithinATenthOfAPercent},
         {"floating_horizon", "floating_horizon", "floating_horizon", {}, curveErrorWithinItsDocumentedBound},

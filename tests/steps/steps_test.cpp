@@ -131,6 +131,7 @@ INSTANTIATE_TEST_SUITE_P(
                     Configured{"scenes/counters.toml", "watkins", {}, ""},
                     Configured{"scenes/hard/interpenetrating.toml", "watkins", {{"split", "halves"}}, ""},
                     Configured{"scenes/hard/cyclic_overlap.toml", "weiler_atherton", {}, ""},
+                    Configured{"scenes/counters.toml", "abuffer", {}, ""},
                     Configured{"scenes/counters.toml", "ray_casting", {}, ""},
                     Configured{"scenes/cube.toml", "ray_casting", {{"variant", "naive"}}, ""},
                     Configured{"scenes/cube.toml", "ray_casting", {{"variant", "march"}}, ""},

@@ -1,0 +1,240 @@
+// The A-buffer: fragments with coverage masks, listed per pixel in any order, each pixel
+// resolved front to back, subsample by subsample.
+#include "algorithms/abuffer/abuffer.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "renderer/conventions.hpp"
+#include "renderer/parallel.hpp"
+#include "renderer/plane_depth.hpp"
+#include "renderer/screen_triangles.hpp"
+
+namespace hsr::abuffer {
+namespace {
+
+// One polygon in one pixel: which subsamples it covers (bit sy * k + sx), and the next
+// fragment of the pixel's list.
+struct Fragment {
+  std::uint64_t mask;
+  std::uint32_t polygon;  // screen triangle, in the subsamples' geometry
+  std::uint32_t next;
+};
+constexpr std::uint32_t kEndOfList = std::numeric_limits<std::uint32_t>::max();
+
+// The per-pixel lists: a head per pixel and a pool of fragments (Carpenter's linked lists).
+struct FragmentLists {
+  std::vector<std::uint32_t> head;
+  std::vector<Fragment> pool;
+};
+
+// Step 1: scan conversion. Each polygon, in submission order, is rasterized at the
+// subsamples' resolution: a covered subsample sets its bit in the polygon's fragment in
+// the pixel that holds it, the fragment made when the polygon first reaches the pixel.
+FragmentLists buildLists(const ScreenGeometry& fine, int k, int width, int height, std::int64_t& subsamplesCovered) {
+  FragmentLists lists{std::vector<std::uint32_t>(std::size_t(width) * std::size_t(height), kEndOfList), {}};
+  // The fragment each pixel holds for the polygon being rasterized, found by a stamp
+  // rather than by walking the pixel's list.
+  std::vector<std::uint32_t> stampedBy(lists.head.size(), kEndOfList), fragmentOf(lists.head.size());
+  for (std::uint32_t polygon = 0; polygon < fine.triangles.size(); ++polygon) {
+    const ScreenTriangle& tri = fine.triangles[polygon];
+    for (int y = tri.minY; y <= tri.maxY; ++y) {
+      int first, last;
+      if (!coveredRun(tri, y, tri.minX, tri.maxX + 1, first, last)) continue;
+      subsamplesCovered += last - first + 1;
+      const std::size_t row = std::size_t(y / k) * std::size_t(width);
+      const std::uint64_t rowBits = std::uint64_t(y % k) * std::uint64_t(k);
+      for (int x = first; x <= last; ++x) {
+        const std::size_t pixel = row + std::size_t(x / k);
+        if (stampedBy[pixel] != polygon) {
+          stampedBy[pixel] = polygon;
+          fragmentOf[pixel] = static_cast<std::uint32_t>(lists.pool.size());
+          lists.pool.push_back({0, polygon, lists.head[pixel]});
+          lists.head[pixel] = fragmentOf[pixel];
+        }
+        lists.pool[fragmentOf[pixel]].mask |= std::uint64_t{1} << (rowBits + std::uint64_t(x % k));
+      }
+    }
+  }
+  return lists;
+}
+
+// A fragment being resolved: its polygon's depth at the pixel's center as an order key
+// (smaller is nearer) and its opacity.
+struct Resolving {
+  double key;
+  std::uint32_t polygon;
+  std::uint64_t mask;
+  float opacity;
+};
+
+struct Counts {
+  std::int64_t mostFragments = 0, partial = 0;
+  Counts& operator+=(const Counts& other) {
+    mostFragments = std::max(mostFragments, other.mostFragments), partial += other.partial;
+    return *this;
+  }
+};
+
+}  // namespace
+
+void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
+  const int k = static_cast<int>(knobs.mask);
+  Frame& frame = visibility.frame;
+  const int width = frame.width, height = frame.height;
+  // The subsamples are the pixel centers of an image k times finer: the shared geometry
+  // stage and rasterizer, at that resolution, give exact coverage of each.
+  const CameraTransform fine(request.view.camera(), width * k, height * k);
+  const ScreenGeometry geometry =
+      buildScreenTriangles(request.scene, fine, {.submitted = request.triangles}, request.threads, request.stats);
+  PhaseTimer timer(request.stats, "fragments");
+  std::int64_t subsamplesCovered = 0;
+  const FragmentLists lists = buildLists(geometry, k, width, height, subsamplesCovered);
+  if (request.steps) {
+    std::vector<double> perPixel(lists.head.size(), 0);
+    for (std::size_t p = 0; p < lists.head.size(); ++p)
+      for (std::uint32_t f = lists.head[p]; f != kEndOfList; f = lists.pool[f].next) ++perPixel[p];
+    request.steps->record("the fragment lists: " + std::to_string(lists.pool.size()) + " fragments, each a polygon's coverage mask in a pixel",
+                          heatMapPicture(perPixel, width, height, "fragments"));
+  }
+
+  // Step 2: each pixel resolved, front to back at each subsample: a fragment that covers
+  // it shows its opacity times what nearer fragments let through there, and leaves the
+  // rest. Front to back is each fragment's depth at the pixel's center (Carpenter's one
+  // depth per fragment), or with depth=subsample its plane's depth at the subsample (what
+  // a supersampled z-buffer compares); a tie goes to the earlier polygon.
+  const bool transparency = request.scene.scene().effects.transparency;
+  const int samples = k * k;
+  const DepthOrder order(fine);
+  PixelCoverage coverage;
+  coverage.first.assign(frame.pixelCount() + 1, 0);
+  std::vector<std::vector<CoveredSurface>> rowSurfaces(static_cast<std::size_t>(height));
+  std::vector<Counts> rowCounts(static_cast<std::size_t>(height));
+  parallelFor(static_cast<std::size_t>(height), request.threads, [&](std::size_t y, int) {
+    std::vector<Resolving> fragments;
+    std::vector<float> shares;
+    std::vector<std::pair<double, std::uint32_t>> atSubsample;  // (key, fragment) of those covering it
+    const double centerY = (double(y) + 0.5) * k;
+    for (int x = 0; x < width; ++x) {
+      const std::size_t pixel = y * std::size_t(width) + std::size_t(x);
+      const double centerX = (double(x) + 0.5) * k;
+      fragments.clear();
+      for (std::uint32_t f = lists.head[pixel]; f != kEndOfList; f = lists.pool[f].next) {
+        const Fragment& fragment = lists.pool[f];
+        const ScreenTriangle& tri = geometry.triangles[fragment.polygon];
+        const float opacity = transparency ? static_cast<float>(request.scene.instanceOf(tri.triangle).opacity) : 1.0f;
+        fragments.push_back({order.sign * tri.depthAt(centerX, centerY), fragment.polygon, fragment.mask, opacity});
+      }
+      const auto nearer = [](double keyA, std::uint32_t a, double keyB, std::uint32_t b) { return keyA < keyB || (keyA == keyB && a < b); };
+      std::sort(fragments.begin(), fragments.end(),
+                [&](const Resolving& a, const Resolving& b) { return nearer(a.key, a.polygon, b.key, b.polygon); });
+      shares.assign(fragments.size(), 0.0f);
+      const bool allOpaque = std::all_of(fragments.begin(), fragments.end(), [](const Resolving& f) { return f.opacity >= 1; });
+      if (fragments.size() == 1) {
+        // Inside a surface, the common case: one fragment takes its opacity at each subsample it covers.
+        shares[0] = fragments[0].opacity * static_cast<float>(std::popcount(fragments[0].mask));
+      } else if (allOpaque && knobs.depth == Depth::center) {
+        // Opaque, in one order for the whole pixel: each fragment takes the covered
+        // subsamples no nearer one has taken, a mask operation.
+        std::uint64_t untaken = ~std::uint64_t{0};
+        for (std::size_t i = 0; i < fragments.size(); ++i) {
+          shares[i] = static_cast<float>(std::popcount(fragments[i].mask & untaken));
+          untaken &= ~fragments[i].mask;
+        }
+      } else {
+        // At each subsample, the fragments covering it front to back, until one is opaque.
+        for (int sample = 0; sample < samples; ++sample) {
+          atSubsample.clear();
+          const double sampleX = x * k + sample % k + 0.5, sampleY = double(y) * k + sample / k + 0.5;
+          for (std::uint32_t i = 0; i < fragments.size(); ++i)
+            if (fragments[i].mask >> sample & 1)
+              atSubsample.emplace_back(knobs.depth == Depth::center
+                                           ? fragments[i].key
+                                           : order.sign * geometry.triangles[fragments[i].polygon].depthAt(sampleX, sampleY),
+                                       i);
+          const auto inFront = [&](const auto& a, const auto& b) {
+            return nearer(a.first, fragments[a.second].polygon, b.first, fragments[b.second].polygon);
+          };
+          if (atSubsample.empty()) continue;
+          if (allOpaque) {  // only the nearest shows
+            shares[std::min_element(atSubsample.begin(), atSubsample.end(), inFront)->second] += 1;
+            continue;
+          }
+          if (knobs.depth == Depth::subsample) std::sort(atSubsample.begin(), atSubsample.end(), inFront);
+          float left = 1;
+          for (const auto& [key, i] : atSubsample) {
+            shares[i] += fragments[i].opacity * left;
+            left *= 1 - fragments[i].opacity;
+            if (left <= 0) break;
+          }
+        }
+      }
+      const std::size_t firstSurface = rowSurfaces[y].size();
+      std::uint32_t largest = conventions::kBackgroundId;
+      float largestShare = 0, total = 0;
+      double largestKey = 0;
+      for (std::size_t i = 0; i < fragments.size(); ++i) {
+        if (shares[i] <= 0) continue;
+        const float share = shares[i] / static_cast<float>(samples);
+        total += share;
+        const std::uint32_t triangle = geometry.triangles[fragments[i].polygon].triangle;
+        rowSurfaces[y].push_back({triangle, share});
+        if (share > largestShare) largest = triangle + 1, largestShare = share, largestKey = fragments[i].key;
+      }
+      // The id and depth images name the surface with the largest share, or the
+      // background when it has more than any.
+      const bool background = 1 - total > largestShare;
+      frame.ids[pixel] = background ? conventions::kBackgroundId : largest;
+      frame.depth[pixel] = background ? std::numeric_limits<float>::infinity()
+                                      : static_cast<float>(fine.distanceFromScreenAffine(order.sign * largestKey));
+      const std::size_t surfaces = rowSurfaces[y].size() - firstSurface;
+      rowCounts[y].mostFragments = std::max(rowCounts[y].mostFragments, static_cast<std::int64_t>(fragments.size()));
+      rowCounts[y].partial += surfaces > 1 || (surfaces == 1 && total < 1);
+      coverage.first[pixel + 1] = static_cast<std::uint32_t>(surfaces);
+    }
+  });
+  // The rows' lists joined, in pixel order.
+  Counts total;
+  for (std::size_t p = 0; p < frame.pixelCount(); ++p) coverage.first[p + 1] += coverage.first[p];
+  for (std::size_t y = 0; y < rowSurfaces.size(); ++y) {
+    coverage.surfaces.insert(coverage.surfaces.end(), rowSurfaces[y].begin(), rowSurfaces[y].end());
+    total += rowCounts[y];
+  }
+  if (request.steps) {
+    // How far each pixel is from showing one thing: 1 less the largest share (the
+    // background's among them): 0 inside a surface, up to 1/2 on a clean edge.
+    std::vector<double> mixed(frame.pixelCount());
+    for (std::size_t p = 0; p < frame.pixelCount(); ++p) {
+      double shares = 0, largest = 0;
+      for (std::uint32_t s = coverage.first[p]; s < coverage.first[p + 1]; ++s)
+        shares += coverage.surfaces[s].share, largest = std::max(largest, double(coverage.surfaces[s].share));
+      mixed[p] = 1 - std::max(largest, 1 - shares);
+    }
+    request.steps->record("resolved: " + std::to_string(total.partial) + " pixels shared by more than one surface or partly background",
+                          heatMapPicture(mixed, width, height, "1 - largest share"));
+  }
+  visibility.coverage = std::move(coverage);
+
+  request.stats.add("fragments", static_cast<std::int64_t>(lists.pool.size()));
+  request.stats.add("subsamples covered", subsamplesCovered);
+  request.stats.add("most fragments in a pixel", total.mostFragments);
+  request.stats.add("pixels with partial coverage", total.partial);
+  request.stats.add("fragment bytes", static_cast<std::int64_t>(lists.pool.size() * sizeof(Fragment)));
+}
+
+AlgorithmEntry entry() {
+  AlgorithmEntry entry;
+  entry.name = "abuffer";
+  entry.summary = "antialiased visibility (Carpenter 1984): per-pixel fragment lists with subsample coverage masks";
+  setKnobs(entry, knobTable());
+  entry.keyCounters = {"fragments", "pixels with partial coverage", "most fragments in a pixel"};
+  entry.studyConfigurations = {{}, {{"mask", "8x8"}}, {{"mask", "2x2"}}};
+  entry.takesTriangleSubsets = true;
+  entry.resolvesTransparency = true;
+  setVisibility(entry, visibility);
+  return entry;
+}
+
+}  // namespace hsr::abuffer

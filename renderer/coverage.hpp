@@ -1,0 +1,49 @@
+// Pixels shared among the surfaces they show: an antialiasing algorithm's answer (the
+// A-buffer's), and how well such shares match the exact ones (the reference traced at
+// many samples per pixel), for it or for a supersampled z-buffer.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace hsr {
+
+// An antialiasing algorithm's answer (Visibility::coverage): each pixel's surfaces and
+// their shares of its colour (coverage, times opacity and what nearer surfaces let
+// through); the background takes the rest.
+struct CoveredSurface {
+  std::uint32_t triangle;  // global triangle index
+  float share;
+};
+struct PixelCoverage {
+  std::vector<std::uint32_t> first;  // per pixel, into surfaces; one more entry than pixels
+  std::vector<CoveredSurface> surfaces;
+};
+
+// Per pixel, what it shows and how much of it: (global triangle index + 1, 0 for the
+// background; share of the pixel), the shares of a pixel adding up to 1.
+struct PixelShares {
+  std::vector<std::uint32_t> first;  // per pixel, into shares; one more entry than pixels
+  std::vector<std::pair<std::uint32_t, double>> shares;
+};
+
+// An antialiasing algorithm's shares, the background's added where it takes some.
+PixelShares sharesOf(const PixelCoverage& coverage);
+// The shares the samples of a k-times finer id image give (width x height the coarse size).
+PixelShares sharesOfSamples(std::span<const std::uint32_t> fineIds, int width, int height, int k);
+
+// The coverage error of a pixel: half the sum over everything either shows of the
+// difference of their shares (the total variation distance: 0 when they agree, 1 when
+// they show nothing in common).
+double coverageDistance(const PixelShares& measured, const PixelShares& exact, std::size_t pixel);
+
+struct CoverageError {
+  double mean = 0;              // over every pixel
+  double meanOverMixed = 0;     // over the pixels the exact shares show more than one thing in
+  std::int64_t mixedPixels = 0;
+};
+CoverageError coverageError(const PixelShares& measured, const PixelShares& exact);
+
+}  // namespace hsr
