@@ -62,6 +62,48 @@ mkdir -p images/figures/weiler_atherton
 rsvg-convert "$study/blocks.svg" -o images/figures/weiler_atherton/polygons-blocks.png
 steps weiler_atherton scenes/blocks.toml --algo weiler_atherton --size 480x360
 cp "$study/steps-weiler_atherton/step-0003.png" images/figures/weiler_atherton/clip-blocks.png
+# The A-buffer: the blocks' edges up close (the z-buffer, the A-buffer at 4 x 4 and at
+# 8 x 8, each enlarged 4 times without smoothing), its steps, and its coverage error
+# against time beside the supersampled z-buffer's (bench/antialiasing_bench, plotted).
+mkdir -p images/figures/abuffer
+./build/hsr render scenes/blocks.toml --size 480x360 -o "$study/edges-zbuffer.png"
+./build/hsr render scenes/blocks.toml --size 480x360 --algo abuffer -o "$study/edges-4x4.png"
+./build/hsr render scenes/blocks.toml --size 480x360 --algo abuffer --knob mask=8x8 -o "$study/edges-8x8.png"
+oiiotool "$study/edges-zbuffer.png" --cut 80x60+180+150 --resize:filter=box 320x240 \
+  "$study/edges-4x4.png" --cut 80x60+180+150 --resize:filter=box 320x240 \
+  "$study/edges-8x8.png" --cut 80x60+180+150 --resize:filter=box 320x240 \
+  --mosaic:pad=8 3x1 -o images/figures/abuffer/edges-blocks.png
+steps abuffer scenes/counters.toml --algo abuffer --size 480x270
+./build/bench/antialiasing_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+  --benchmark_format=csv > "$study/antialiasing.csv"
+python3 - "$study" <<'PYTHON'
+import csv, sys
+study = sys.argv[1]
+rows = [r for r in csv.DictReader(l for l in open(f"{study}/antialiasing.csv") if l.count(",") > 5) if r["name"].endswith("_median")]
+for family in ("zbuffer", "abuffer"):
+    with open(f"{study}/{family}.dat", "w") as out:
+        for scene in ("counters", "trees", "dragons"):
+            for r in rows:
+                label = r["label"]
+                if label.startswith(scene + " " + family) and "center" not in label:
+                    out.write(f'{r["real_time"]} {r["error_mixed"]} "{label.split(" ", 1)[1]}"\n')
+            out.write("\n\n")
+PYTHON
+gnuplot <<GNUPLOT
+set terminal pngcairo size 900,520 font "DejaVu Sans,11"
+set output "images/figures/abuffer/error-time.png"
+set logscale xy
+set xlabel "whole render, ms (320 x 180, one thread)"
+set ylabel "coverage error on mixed pixels"
+set key top right
+set title "The A-buffer and the supersampled z-buffer: the same samples, the same error (counters, trees, dragons)"
+plot "$study/zbuffer.dat" index 0 using 1:2 with linespoints lc rgb "#1f5fbf" pt 7 title "zbuffer 1, 2x2, 4x4, 8x8: counters", \
+     "" index 1 using 1:2 with linespoints lc rgb "#1f5fbf" pt 5 title "trees", \
+     "" index 2 using 1:2 with linespoints lc rgb "#1f5fbf" pt 9 title "dragons", \
+     "$study/abuffer.dat" index 0 using 1:2 with linespoints lc rgb "#d04010" pt 7 title "abuffer 2x2, 4x4, 8x8: counters", \
+     "" index 1 using 1:2 with linespoints lc rgb "#d04010" pt 5 title "trees", \
+     "" index 2 using 1:2 with linespoints lc rgb "#d04010" pt 9 title "dragons"
+GNUPLOT
 ./build/hsr render scenes/city.toml --cull frustum,occlusion:pyramid=on --size 480x270 --every 100000 -o "$study/occlusion.png" \
   --steps "$study/steps-occlusion"
 frame() { echo "$study/steps-occlusion/step-$(grep -m1 "$1" "$study/steps-occlusion/captions.txt" | cut -c1-4).png"; }
