@@ -178,6 +178,37 @@ TEST(ABuffer, IdsDifferFromTheReferenceOnlyWhereMoreThanOneThingShows) {
   EXPECT_GT(answer.stats.counter("pixels with partial coverage"), differing);
 }
 
+// The hard case scenes/hard/subpixel_strips.toml: boards 0.3 pixels wide, 1.37 apart.
+// One sample per pixel catches a strip only where a pixel center falls inside it: whole
+// pixels and gaps, about the right amount in all (780 pixels of 800.5) but at the wrong
+// places (a coverage error of 0.37 on the pixels they reach). The A-buffer gives each
+// pixel the strips' share of it: 0.078 at 4 x 4, 0.012 at 8 x 8, and their area to within
+// a pixel.
+TEST(ABufferHardCase, StripsNarrowerThanAPixelGetTheirShare) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/hard/subpixel_strips.toml"));
+  const PixelShares exact = exactShares(loaded);
+  const auto stripsArea = [&](const PixelShares& shares) {
+    double area = 0;
+    const std::uint32_t wallFirst = static_cast<std::uint32_t>(30 * 12);  // triangles of the 30 strips come first, 12 each
+    for (const auto& [id, share] : shares.shares) area += id != conventions::kBackgroundId && id - 1 < wallFirst ? share : 0;
+    return area;
+  };
+  const double exactArea = stripsArea(exact);
+  const PixelShares oneSample =
+      sharesOfSamples(test::sampledOneByOne(loaded.prepared).ids, loaded.prepared.width(), loaded.prepared.height(), 1);
+  const CoverageError aliased = coverageError(oneSample, exact);
+  for (const abuffer::Mask mask : {abuffer::Mask::fourByFour, abuffer::Mask::eightByEight}) {
+    const PixelShares shares = sharesOf(*resolved(loaded.prepared, mask).visibility.coverage);
+    const CoverageError error = coverageError(shares, exact);
+    std::printf("subpixel strips, mask %dx%d: error %.3f on %lld mixed pixels (one sample: %.3f); strips' area %.1f of %.1f pixels (one sample: %.1f)\n",
+                int(mask), int(mask), error.meanOverMixed, static_cast<long long>(error.mixedPixels), aliased.meanOverMixed,
+                stripsArea(shares), exactArea, stripsArea(oneSample));
+    EXPECT_LT(error.meanOverMixed, (mask == abuffer::Mask::fourByFour ? 0.3 : 0.1) * aliased.meanOverMixed) << int(mask);
+    EXPECT_NEAR(stripsArea(shares), exactArea, 0.01 * exactArea) << int(mask);
+  }
+  EXPECT_GT(aliased.meanOverMixed, 0.3) << "one sample per pixel puts the strips in the wrong places";
+}
+
 TEST(ABuffer, SameBitsAndCountersOnAnyThreadCount) {
   const test::LoadedScene loaded(test::sourcePath("scenes/trees.toml"), 200);
   const Answer one = resolved(loaded.prepared, abuffer::Mask::fourByFour, 1);
