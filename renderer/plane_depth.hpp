@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "renderer/camera.hpp"
@@ -36,10 +37,17 @@ struct DepthOrder {
   }
 
   static double roundingBound(const ScreenTriangle& tri, int x, int y) {
-    const double magnitude = std::abs(tri.t0) + std::abs(tri.tdx * (conventions::pixelCenter(x) - tri.x0)) +
-                             std::abs(tri.tdy * (conventions::pixelCenter(y) - tri.y0));
+    return roundingBoundAt(tri, conventions::pixelCenter(x), conventions::pixelCenter(y));
+  }
+  // The same at any point (px, py) in pixel units.
+  static double roundingBoundAt(const ScreenTriangle& tri, double px, double py) {
+    const double magnitude = std::abs(tri.t0) + std::abs(tri.tdx * (px - tri.x0)) + std::abs(tri.tdy * (py - tri.y0));
     return 4 * std::numeric_limits<double>::epsilon() * magnitude;
   }
+
+  // Whether polygon a (its key there, and its index in submission order) is in front of
+  // polygon b at a point: nearer, or as near and submitted first, as the z-buffer decides.
+  static bool inFront(double keyA, std::uint32_t a, double keyB, std::uint32_t b) { return keyA < keyB || (keyA == keyB && a < b); }
 };
 
 }  // namespace hsr

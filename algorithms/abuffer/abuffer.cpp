@@ -127,9 +127,8 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
         const float opacity = transparency ? static_cast<float>(request.scene.instanceOf(tri.triangle).opacity) : 1.0f;
         fragments.push_back({order.sign * tri.depthAt(centerX, centerY), fragment.polygon, fragment.mask, opacity});
       }
-      const auto nearer = [](double keyA, std::uint32_t a, double keyB, std::uint32_t b) { return keyA < keyB || (keyA == keyB && a < b); };
       std::sort(fragments.begin(), fragments.end(),
-                [&](const Resolving& a, const Resolving& b) { return nearer(a.key, a.polygon, b.key, b.polygon); });
+                [](const Resolving& a, const Resolving& b) { return DepthOrder::inFront(a.key, a.polygon, b.key, b.polygon); });
       shares.assign(fragments.size(), 0.0f);
       const bool allOpaque = std::all_of(fragments.begin(), fragments.end(), [](const Resolving& f) { return f.opacity >= 1; });
       if (fragments.size() == 1) {
@@ -155,7 +154,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
                                            : order.sign * geometry.triangles[fragments[i].polygon].depthAt(sampleX, sampleY),
                                        i);
           const auto inFront = [&](const auto& a, const auto& b) {
-            return nearer(a.first, fragments[a.second].polygon, b.first, fragments[b.second].polygon);
+            return DepthOrder::inFront(a.first, fragments[a.second].polygon, b.first, fragments[b.second].polygon);
           };
           if (atSubsample.empty()) continue;
           if (allOpaque) {  // only the nearest shows

@@ -295,13 +295,12 @@ class Clipper {
   double keyAt(const ScreenTriangle& tri, const dvec2& p) const { return order_.sign * tri.depthAt(p.x, p.y); }
 
   // A bound on the error of keyAt at a rounded corner and of DepthOrder::key at any
-  // pixel center in the outline: each is five roundings of terms no larger than the
-  // magnitudes summed here (the corner's own rounding moves x and y by a few units in
-  // their last place, hence the terms in x and y themselves), doubled.
+  // pixel center in the outline: each is within DepthOrder's rounding bound there, and
+  // the corner's own rounding moves x and y by a few units in their last place, hence the
+  // terms in x and y themselves.
   static double keyBound(const ScreenTriangle& tri, const dvec2& p) {
-    const double magnitude = std::abs(tri.t0) + std::abs(tri.tdx * (p.x - tri.x0)) + std::abs(tri.tdy * (p.y - tri.y0)) +
-                             std::abs(tri.tdx * p.x) + std::abs(tri.tdy * p.y);
-    return 8 * std::numeric_limits<double>::epsilon() * magnitude;
+    return 2 * DepthOrder::roundingBoundAt(tri, p.x, p.y) +
+           8 * std::numeric_limits<double>::epsilon() * (std::abs(tri.tdx * p.x) + std::abs(tri.tdy * p.y));
   }
 
   // Step 3's depth test: planes are linear, so a piece is behind the clip polygon
@@ -324,8 +323,7 @@ class Clipper {
   // Whether the piece's polygon is nearer than `other` at the center of pixel (x, y):
   // the comparison every image-space algorithm makes, a tie going to the earlier polygon.
   bool nearerAt(std::uint32_t polygon, std::uint32_t other, int x, int y) const {
-    const double own = order_.key(triangles_[polygon], x, y), theirs = order_.key(triangles_[other], x, y);
-    return own < theirs || (own == theirs && polygon < other);
+    return DepthOrder::inFront(order_.key(triangles_[polygon], x, y), polygon, order_.key(triangles_[other], x, y), other);
   }
 
   // Step 5: a visible piece is scan-converted: on each row, the centers strictly inside
