@@ -6,6 +6,10 @@
 
 namespace hsr {
 
+bool showsOneSurfaceWhole(const PixelCoverage& coverage, std::size_t pixel) {
+  return coverage.first[pixel + 1] - coverage.first[pixel] == 1 && coverage.surfaces[coverage.first[pixel]].share >= 1;
+}
+
 PixelShares sharesOf(const PixelCoverage& coverage) {
   PixelShares shares;
   shares.first.push_back(0);

@@ -22,6 +22,9 @@ struct PixelCoverage {
   std::vector<CoveredSurface> surfaces;
 };
 
+// Whether the pixel shows one surface and nothing else: one surface, taking all of it.
+bool showsOneSurfaceWhole(const PixelCoverage& coverage, std::size_t pixel);
+
 // Per pixel, what it shows and how much of it: (global triangle index + 1, 0 for the
 // background; share of the pixel), the shares of a pixel adding up to 1.
 struct PixelShares {

@@ -170,9 +170,7 @@ TEST(ABuffer, IdsDifferFromTheReferenceOnlyWhereMoreThanOneThingShows) {
   for (std::size_t p = 0; p < answer.visibility.frame.pixelCount(); ++p) {
     if (answer.visibility.frame.ids[p] == reference.frame.ids[p]) continue;
     ++differing;
-    float shares = 0;
-    for (std::uint32_t s = coverage.first[p]; s < coverage.first[p + 1]; ++s) shares += coverage.surfaces[s].share;
-    EXPECT_TRUE(coverage.first[p + 1] - coverage.first[p] > 1 || shares < 1) << "pixel " << p;
+    EXPECT_FALSE(showsOneSurfaceWhole(coverage, p)) << "pixel " << p;
   }
   EXPECT_GT(differing, 0);
   EXPECT_GT(answer.stats.counter("pixels with partial coverage"), differing);

@@ -99,9 +99,7 @@ std::string idsDifferOnlyWhereMoreThanOneThingShows(const GoldenCase& golden, co
   std::int64_t unexplained = 0;
   for (std::size_t p = 0; p < frame.pixelCount(); ++p) {
     if (frame.ids[p] == reference.frame.ids[p] || reference.ambiguous[p]) continue;  // ambiguous: a coplanar tie
-    float shares = 0;
-    for (std::uint32_t s = coverage.first[p]; s < coverage.first[p + 1]; ++s) shares += coverage.surfaces[s].share;
-    unexplained += coverage.first[p + 1] - coverage.first[p] == 1 && shares >= 1;
+    unexplained += showsOneSurfaceWhole(coverage, p);
   }
   return unexplained == 0 ? std::string() : std::to_string(unexplained) + " pixels showing one surface differ from the reference";
 }
