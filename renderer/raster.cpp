@@ -7,14 +7,17 @@
 namespace hsr {
 namespace {
 
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
-std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
+// a / kSubpixelScale rounded down: an arithmetic shift, since the scale is a power of
+// two (C++20 defines >> of a negative value so); a division with its sign correction
+// was a sixth of the set-up's time.
+std::int64_t subpixelsToPixelsDown(std::int64_t a) { return a >> conventions::kSubpixelBits; }
+std::int64_t subpixelsToPixelsUp(std::int64_t a) { return -subpixelsToPixelsDown(-a); }
 
 // Pixel indices whose centers (i + 0.5) lie in [low, high] (sub-pixel units), clamped to [0, size).
 std::pair<int, int> centersWithin(std::int64_t low, std::int64_t high, int size) {
   using conventions::kSubpixelScale;
-  const std::int64_t first = ceilDiv(low - kSubpixelScale / 2, kSubpixelScale);
-  const std::int64_t last = floorDiv(high - kSubpixelScale / 2, kSubpixelScale);
+  const std::int64_t first = subpixelsToPixelsUp(low - kSubpixelScale / 2);
+  const std::int64_t last = subpixelsToPixelsDown(high - kSubpixelScale / 2);
   return {static_cast<int>(std::clamp<std::int64_t>(first, 0, size)),
           static_cast<int>(std::clamp<std::int64_t>(last, -1, size - 1))};
 }
