@@ -32,12 +32,6 @@ using Truth = decltype(std::declval<Number>() < std::declval<Number>());
 HSR_INLINE double magnitudeOf(double x) { return std::abs(x); }
 HSR_INLINE Double4 magnitudeOf(const Double4& x) { return Double4(Mask4(x) & 0x7FFF'FFFF'FFFF'FFFF); }  // the sign bit cleared
 
-template <typename Number>
-HSR_INLINE Number broadcast(double value) {
-  if constexpr (std::is_same_v<Number, Double4>) return Double4{value, value, value, value};
-  else return Number(value);
-}
-
 // Section 4's per-ray set-up: kz is the dominant axis of the direction, and the shear
 // (sx, sy, sz) maps the ray onto the +z axis from the origin. Swapping kx and ky when the
 // ray runs down kz keeps the winding.

@@ -12,10 +12,13 @@ namespace hsr {
 // A vertex in clip space, kept with its distance along the view axis:
 // x, y as a projection matrix would give them, w the homogeneous divisor
 // (= d under perspective, 1 under orthographic), d = -z_view. All four are linear
-// in the 3D position, so clipping interpolates them linearly.
-struct ClipVertex {
-  double x, y, d, w;
+// in the 3D position, so clipping interpolates them linearly. Real is double for one
+// vertex, or Double4 for four, a vertex per lane (the geometry stage's fast path).
+template <typename Real>
+struct ClipCoordinates {
+  Real x, y, d, w;
 };
+using ClipVertex = ClipCoordinates<double>;
 
 // The half-space normal . p + offset >= 0; with a unit normal, distance() is in world units.
 struct Plane {
@@ -49,7 +52,17 @@ class CameraTransform {
     const double d = -v.z;
     return {scaleX_ * v.x, scaleY_ * v.y, d, perspective() ? d : 1.0};
   }
-  ClipVertex clipFromWorld(const dvec3& p) const { return clipFromView(viewFromWorld(p)); }
+  ClipVertex clipFromWorld(const dvec3& p) const { return clipFromWorld(p.x, p.y, p.z); }
+  // clipFromWorld of a point given by its coordinates, as doubles or as four points in
+  // lanes: viewFromWorld and clipFromView written out, the same operations in the same
+  // order (glm's dot adds x, y, then z), so every lane holds the bits of the one above.
+  template <typename Real>
+  HSR_INLINE ClipCoordinates<Real> clipFromWorld(Real x, Real y, Real z) const {
+    const Real relativeX = x - camera_.eye.x, relativeY = y - camera_.eye.y, relativeZ = z - camera_.eye.z;
+    const auto along = [&](const dvec3& axis) { return relativeX * axis.x + relativeY * axis.y + relativeZ * axis.z; };
+    const Real d = along(forward_);  // -z_view: the view axis points down -z
+    return {scaleX_ * along(right_), scaleY_ * along(up_), d, perspective() ? d : broadcast<Real>(1.0)};
+  }
   // clipFromWorld as one matrix: (x, y, d, w) = clipFromWorldMatrix() * (p, 1).
   dmat4 clipFromWorldMatrix() const;
   // The six planes bounding what the camera sees (the image's four sides, the near and
@@ -57,7 +70,11 @@ class CameraTransform {
   // (Gribb and Hartmann 2001); indexed by FrustumSide.
   std::array<Plane, 6> frustumPlanes() const;
   // Pixel coordinates (x right, y down, conventions.hpp) of a clip vertex with w > 0.
-  dvec2 pixelFromClip(const ClipVertex& v) const { return {(v.x / v.w * 0.5 + 0.5) * width_, (0.5 - v.y / v.w * 0.5) * height_}; }
+  dvec2 pixelFromClip(const ClipVertex& v) const { return {pixelXFromClip(v), pixelYFromClip(v)}; }
+  template <typename Real>
+  HSR_INLINE Real pixelXFromClip(const ClipCoordinates<Real>& v) const { return (v.x / v.w * 0.5 + 0.5) * double(width_); }
+  template <typename Real>
+  HSR_INLINE Real pixelYFromClip(const ClipCoordinates<Real>& v) const { return (0.5 - v.y / v.w * 0.5) * double(height_); }
   // The world-space ray through a point in pixel coordinates: from the eye under
   // perspective, parallel to the view axis from the near-plane rectangle under orthographic.
   Ray rayThroughPixel(double px, double py) const;
@@ -77,7 +94,8 @@ class CameraTransform {
 
   // "t" is the quantity that is affine in screen space: 1/d under perspective, d under
   // orthographic. Depth formats store a + b t; see depth.hpp.
-  double screenAffineDepth(double d) const { return perspective() ? 1.0 / d : d; }
+  template <typename Real>
+  HSR_INLINE Real screenAffineDepth(Real d) const { return perspective() ? 1.0 / d : d; }
   double distanceFromScreenAffine(double t) const { return perspective() ? 1.0 / t : t; }
 
   // The world-space view basis: d = (p - eye) . forward is the distance along the view axis.

@@ -11,30 +11,6 @@ ClipVolume::ClipVolume(const CameraTransform& camera, bool clipFarPlane)
       guardX(conventions::kGuardBandPixels / (0.5 * camera.width())),
       guardY(conventions::kGuardBandPixels / (0.5 * camera.height())) {}
 
-double ClipVolume::distance(const ClipVertex& v, ClipPlane plane) const {
-  switch (plane) {
-    case kNearPlane: return v.d - near;
-    case kFarPlane: return far - v.d;
-    case kGuardLeft: return guardX * v.w + v.x;
-    case kGuardRight: return guardX * v.w - v.x;
-    case kGuardBottom: return guardY * v.w + v.y;
-    case kGuardTop: return guardY * v.w - v.y;
-    case kViewLeft: return v.w + v.x;
-    case kViewRight: return v.w - v.x;
-    case kViewBottom: return v.w + v.y;
-    case kViewTop: return v.w - v.y;
-  }
-  return 0;
-}
-
-std::uint32_t ClipVolume::outside(const ClipVertex& v) const {
-  // One call per plane with a constant argument: each inlines to its plane equation,
-  // and the result is straight-line code (this runs once per vertex per frame).
-  const auto bit = [&](ClipPlane plane) { return distance(v, plane) < 0 ? std::uint32_t(plane) : 0u; };
-  return bit(kNearPlane) | (clipFar ? bit(kFarPlane) : 0u) | bit(kGuardLeft) | bit(kGuardRight) | bit(kGuardBottom) |
-         bit(kGuardTop) | bit(kViewLeft) | bit(kViewRight) | bit(kViewBottom) | bit(kViewTop);
-}
-
 ClipPolygon clipTriangle(const std::array<ClipVertex, 3>& triangle, const ClipVolume& volume, std::uint32_t planes) {
   ClipPolygon polygon;
   polygon.count = 3;

@@ -33,8 +33,42 @@ struct ClipVolume {
   double guardX, guardY;  // guard band half-width and half-height in NDC units
 
   ClipVolume(const CameraTransform& camera, bool clipFar);
-  double distance(const ClipVertex& v, ClipPlane plane) const;
-  std::uint32_t outside(const ClipVertex& v) const;  // the planes v is strictly outside of
+
+  // How far inside the plane a vertex lies (negative: outside), for one vertex or four in
+  // lanes (Real as in ClipCoordinates).
+  template <typename Real>
+  HSR_INLINE Real distance(const ClipCoordinates<Real>& v, ClipPlane plane) const {
+    switch (plane) {
+      case kNearPlane: return v.d - near;
+      case kFarPlane: return far - v.d;
+      case kGuardLeft: return guardX * v.w + v.x;
+      case kGuardRight: return guardX * v.w - v.x;
+      case kGuardBottom: return guardY * v.w + v.y;
+      case kGuardTop: return guardY * v.w - v.y;
+      case kViewLeft: return v.w + v.x;
+      case kViewRight: return v.w - v.x;
+      case kViewBottom: return v.w + v.y;
+      case kViewTop: return v.w - v.y;
+    }
+    return broadcast<Real>(0);
+  }
+
+  // The planes v is strictly outside of, as bits: a std::uint32_t for one vertex, a
+  // Mask4 holding each lane's bits for four. One call per plane with a constant
+  // argument: each inlines to its plane equation, and the result is straight-line code
+  // (this runs once per vertex per frame).
+  template <typename Real>
+  HSR_INLINE auto outside(const ClipCoordinates<Real>& v) const {
+    const auto bit = [&](ClipPlane plane) { return bitWhereNegative(distance(v, plane), plane); };
+    auto bits = bit(kNearPlane) | bit(kGuardLeft) | bit(kGuardRight) | bit(kGuardBottom) | bit(kGuardTop) | bit(kViewLeft) |
+                bit(kViewRight) | bit(kViewBottom) | bit(kViewTop);
+    if (clipFar) bits |= bit(kFarPlane);
+    return bits;
+  }
+
+ private:
+  HSR_INLINE static std::uint32_t bitWhereNegative(double distance, ClipPlane plane) { return distance < 0 ? std::uint32_t(plane) : 0u; }
+  HSR_INLINE static Mask4 bitWhereNegative(Double4 distance, ClipPlane plane) { return (distance < 0.0) & std::int64_t(plane); }
 };
 
 // A convex polygon; each clipping plane adds at most one vertex to a triangle.

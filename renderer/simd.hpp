@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #define HSR_AVX2 __attribute__((target("avx2")))
 // A function of the baseline build inlined wherever it is called, so that in an HSR_AVX2
@@ -60,6 +61,13 @@ HSR_AVX2 inline Mask4 laneMask4(int bits) {
 HSR_AVX2 inline Double4 widened(const float* four) { return Double4(_mm256_cvtps_pd(_mm_loadu_ps(four))); }
 
 HSR_AVX2 inline Double4 lanesOf(double value) { return Double4{value, value, value, value}; }
+// One value as a Number: itself for double, in every lane for Double4 (code shared by
+// one item and four lanes).
+template <typename Number>
+HSR_INLINE Number broadcast(double value) {
+  if constexpr (std::is_same_v<Number, Double4>) return Double4{value, value, value, value};
+  else return Number(value);
+}
 HSR_AVX2 inline Double8 eightLanesOf(double value) { return Double8{value, value, value, value, value, value, value, value}; }
 
 // The larger and the smaller of two values, lane by lane, as `a > b ? a : b` and

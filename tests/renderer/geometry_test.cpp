@@ -1,0 +1,68 @@
+// The geometry stage's vertex step: screenVertices, which runs four vertices to a vector
+// where the CPU has AVX2, must give screenVertex's bits for every vertex, wherever the
+// camera and the vertex are.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <random>
+#include <vector>
+
+#include "floating_point_traps.hpp"
+#include "renderer/screen_triangles.hpp"
+
+namespace hsr {
+namespace {
+
+// A vertex's fields as bits: the pixel and depth only where screenVertex sets them (in
+// front of the near plane).
+std::vector<std::uint64_t> bitsOf(const ScreenVertex& vertex) {
+  if (vertex.outside & kNearPlane) return {vertex.outside};
+  return {vertex.outside, std::bit_cast<std::uint64_t>(vertex.pixel.x), std::bit_cast<std::uint64_t>(vertex.pixel.y),
+          std::bit_cast<std::uint64_t>(vertex.depth)};
+}
+
+TEST(Geometry, VerticesFourAtATimeAreTheTextbookVertexBitForBit) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "no AVX2 here: screenVertices is screenVertex itself";
+  // A division by zero or an invalid operation in a lane behind the eye would stop here.
+  const test::TrappedFloatingPoint traps;
+  std::mt19937 random(2027);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-2, 24);  // cameras and points up to 2^24 from the origin
+  int compared = 0, behind = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Camera camera;
+    camera.projection = trial % 3 == 0 ? Projection::orthographic : Projection::perspective;
+    const double far = std::ldexp(1.0, exponent(random));
+    camera.eye = dvec3(unit(random), unit(random), unit(random)) * far;
+    camera.target = camera.eye + dvec3(unit(random), unit(random), unit(random) - 1.5);
+    camera.fovYDegrees = 20 + 100 * (unit(random) + 1) / 2;
+    camera.orthoHeight = std::ldexp(1.0, exponent(random));
+    camera.near = std::ldexp(1.0, exponent(random) - 10);
+    camera.far = camera.near * 1e4;
+    const CameraTransform transform(camera, 64 + trial, 48 + 2 * trial);
+    const ClipVolume volume(transform, trial % 2 == 0);
+    // Points around the eye at every scale, the eye itself (w = d = 0 under perspective)
+    // and points on the near plane; 4k + 3 of them, so the scalar tail runs too.
+    std::vector<dvec3> points;
+    for (int i = 0; i < 63; ++i) {
+      const double scale = std::ldexp(1.0, exponent(random));
+      points.push_back(camera.eye + dvec3(unit(random), unit(random), unit(random)) * scale);
+    }
+    points[5] = camera.eye;
+    points[17] = camera.eye + transform.forward() * camera.near;
+    std::vector<ScreenVertex> fast(points.size());
+    screenVertices(transform, volume, points, fast.data());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ScreenVertex textbook = screenVertex(transform, volume, points[i]);
+      ASSERT_EQ(bitsOf(fast[i]), bitsOf(textbook)) << "trial " << trial << " point " << i;
+      ++compared;
+      behind += (textbook.outside & kNearPlane) != 0;
+    }
+  }
+  // Both kinds of vertex were compared, many times.
+  EXPECT_GT(behind, 1000);
+  EXPECT_GT(compared - behind, 1000);
+}
+
+}  // namespace
+}  // namespace hsr
