@@ -40,23 +40,19 @@ bool setupScreenTriangle(const dvec2 pixelIn[3], const double tIn[3], int width,
     xIn[k] = snapToSubpixel(pixelIn[k].x);
     yIn[k] = snapToSubpixel(pixelIn[k].y);
   }
-  std::int64_t area = orient2d(xIn[0], yIn[0], xIn[1], yIn[1], xIn[2], yIn[2]);
+  const std::int64_t area = orient2d(xIn[0], yIn[0], xIn[1], yIn[1], xIn[2], yIn[2]);
   if (area == 0) return false;
   // orient2d is positive for points that run clockwise as seen on screen (y points
   // down), so a counter-clockwise, front-facing triangle has negative area here.
   out.frontFacing = area < 0;
-  // Orient every triangle the same way, so "inside" is "all edge functions >= 0".
-  const int order[3] = {0, area > 0 ? 1 : 2, area > 0 ? 2 : 1};
-  std::int64_t x[3], y[3];
-  dvec2 pixel[3];
-  double t[3];
-  for (int k = 0; k < 3; ++k) {
-    x[k] = xIn[order[k]];
-    y[k] = yIn[order[k]];
-    pixel[k] = pixelIn[order[k]];
-    t[k] = tIn[order[k]];
-  }
-  area = area > 0 ? area : -area;
+  // Orient every triangle the same way, so "inside" is "all edge functions >= 0": a
+  // counter-clockwise one swaps its last two corners (selected, not branched on: the
+  // two orientations come in no predictable order).
+  const bool swapped = area < 0;
+  const std::int64_t x[3] = {xIn[0], swapped ? xIn[2] : xIn[1], swapped ? xIn[1] : xIn[2]};
+  const std::int64_t y[3] = {yIn[0], swapped ? yIn[2] : yIn[1], swapped ? yIn[1] : yIn[2]};
+  const dvec2 pixel[3] = {pixelIn[0], swapped ? pixelIn[2] : pixelIn[1], swapped ? pixelIn[1] : pixelIn[2]};
+  const double t[3] = {tIn[0], swapped ? tIn[2] : tIn[1], swapped ? tIn[1] : tIn[2]};
 
   std::tie(out.minX, out.maxX) = centersWithin(std::min({x[0], x[1], x[2]}), std::max({x[0], x[1], x[2]}), width);
   std::tie(out.minY, out.maxY) = centersWithin(std::min({y[0], y[1], y[2]}), std::max({y[0], y[1], y[2]}), height);

@@ -108,6 +108,8 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
   // parallel. A vertex in front of the near plane is also projected here, once, however
   // many triangles share it (on a closed mesh, about six).
   const auto vertices = std::make_unique_for_overwrite<ScreenVertex[]>(positions.size());
+  // Their outcodes again, packed: what rejecting a triangle reads (below).
+  const auto outsideOf = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
   const int workers = resolveThreadCount(threads);
   {
     PhaseTimer vertexTimer(stats, "geometry: vertices");
@@ -115,6 +117,7 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
     parallelFor(pieces.size(), workers, [&](std::size_t piece, int) {
       const auto [first, end] = pieces[piece];
       screenVertices(camera, volume, std::span(positions).subspan(first, end - first), &vertices[first]);
+      for (std::uint32_t v = first; v < end; ++v) outsideOf[v] = vertices[v].outside;
     });
     std::int64_t transformed = 0;
     for (const auto& [first, end] : pieces) transformed += end - first;
@@ -140,6 +143,14 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
     for (std::size_t k = begin; k < end; ++k) {
       const std::size_t i = submitted ? submitted->triangles[k] : k;
       const Triangle& t = triangles[i];
+      // Most triangles of a large scene lie wholly outside the view (three quarters of
+      // the dragons'): triangleStage's first test, made here on the packed outcodes, 4
+      // bytes a vertex where a ScreenVertex is 32, so that rejecting a triangle reads a
+      // cache line instead of three (on dragons, by perf: the triangle loop 2.35 -> 1.87 ms).
+      if (outsideOf[t[0]] & outsideOf[t[1]] & outsideOf[t[2]]) {
+        ++counts[part].outside;
+        continue;
+      }
       const dvec3* const world[3] = {&positions[t[0]], &positions[t[1]], &positions[t[2]]};
       const TriangleFate fate = triangleStage(vertices[t[0]], vertices[t[1]], vertices[t[2]], world, camera, volume,
                                               [&](const dvec2 pixel[3], const double depth[3]) {
