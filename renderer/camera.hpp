@@ -48,20 +48,22 @@ class CameraTransform {
     const dvec3 relative = p - camera_.eye;
     return {glm::dot(relative, right_), glm::dot(relative, up_), -glm::dot(relative, forward_)};
   }
-  ClipVertex clipFromView(const dvec3& v) const {
-    const double d = -v.z;
-    return {scaleX_ * v.x, scaleY_ * v.y, d, perspective() ? d : 1.0};
-  }
+  ClipVertex clipFromView(const dvec3& v) const { return clipFromView(v.x, v.y, v.z); }
   ClipVertex clipFromWorld(const dvec3& p) const { return clipFromWorld(p.x, p.y, p.z); }
-  // clipFromWorld of a point given by its coordinates, as doubles or as four points in
-  // lanes: viewFromWorld and clipFromView written out, the same operations in the same
-  // order (glm's dot adds x, y, then z), so every lane holds the bits of the one above.
+  // The same of a point given by its coordinates, as doubles or as four points in lanes
+  // (Real as in ClipCoordinates): the same operations in the same order (viewFromWorld
+  // written out: glm's dot adds x, y, then z), so every lane holds the bits of the one
+  // above.
+  template <typename Real>
+  HSR_INLINE ClipCoordinates<Real> clipFromView(Real x, Real y, Real z) const {
+    const Real d = -z;
+    return {scaleX_ * x, scaleY_ * y, d, perspective() ? d : broadcast<Real>(1.0)};
+  }
   template <typename Real>
   HSR_INLINE ClipCoordinates<Real> clipFromWorld(Real x, Real y, Real z) const {
     const Real relativeX = x - camera_.eye.x, relativeY = y - camera_.eye.y, relativeZ = z - camera_.eye.z;
     const auto along = [&](const dvec3& axis) { return relativeX * axis.x + relativeY * axis.y + relativeZ * axis.z; };
-    const Real d = along(forward_);  // -z_view: the view axis points down -z
-    return {scaleX_ * along(right_), scaleY_ * along(up_), d, perspective() ? d : broadcast<Real>(1.0)};
+    return clipFromView(along(right_), along(up_), -along(forward_));
   }
   // clipFromWorld as one matrix: (x, y, d, w) = clipFromWorldMatrix() * (p, 1).
   dmat4 clipFromWorldMatrix() const;
