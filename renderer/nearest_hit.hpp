@@ -78,12 +78,12 @@ class RayQuery {
 
 // One triangle against the ray, between the near and far planes: the hit's parameter t
 // within +-bound, decided in double precision where the error bounds allow and exactly
-// where they do not (`exact`, set whenever the exact test ran, hit or not). A sure hit
-// whose t - bound lies beyond `beyond` is dropped before any exact work (the nearest
-// hit's search passes its horizon).
+// where they do not (`exact`, set whenever the exact test ran, hit or not). Or, from
+// boundedHitInDouble, `undecided`: the bounds left it open, and a hit, if there is one,
+// lies at t within +-bound.
 struct BoundedHit {
   double t = 0, bound = 0;
-  bool hit = false, exact = false;
+  bool hit = false, exact = false, undecided = false;
 };
 
 // The exact test, where the bounds left the decision open.
@@ -95,26 +95,43 @@ inline BoundedHit exactBoundedHit(RayQuery& query, const PreparedScene::LeafTria
   return {rounded, 2 * kUnitRoundoff * std::abs(rounded), true, true};
 }
 
-inline BoundedHit boundedHit(RayQuery& query, const PreparedScene::LeafTriangle& tri, double beyond, SurfaceReference::Counters& counters) {
+// The test in double precision alone. A hit whose t - bound lies beyond `beyond` is
+// dropped (the nearest hit's search passes its horizon), whether or not the bounds
+// decided it; an open decision comes back undecided, for the exact test.
+inline BoundedHit boundedHitInDouble(const RayQuery& query, const PreparedScene::LeafTriangle& tri, double beyond,
+                                     SurfaceReference::Counters& counters) {
   ++counters.triangleTests;
   const WoopTerms<double> terms = woopTerms(query.shear(), tri.a, tri.b, tri.c);
   const WoopBounds<double> bounds = woopBounds(query.shear(), tri.a, tri.b, tri.c, terms);
   const double t = bounds.t;
   Certainty hit = certainty(insideWithBounds(terms, bounds));
-  if (hit == Certainty::no) return {};
+  if (hit == Certainty::no || t - bounds.tBound > beyond) return {};
   if (hit == Certainty::yes) {
-    if (t - bounds.tBound > beyond) return {};
     hit = query.inRange(t, bounds.tBound);
     if (hit == Certainty::no) return {};
     if (hit == Certainty::yes) return {t, bounds.tBound, true, false};
   }
   // A center on an edge, a grazing ray, or a hit on the near or far plane.
-  return exactBoundedHit(query, tri, counters);
+  return {t, bounds.tBound, false, false, true};
+}
+
+// The same, decided: exactly where the bounds left it open.
+inline BoundedHit boundedHit(RayQuery& query, const PreparedScene::LeafTriangle& tri, double beyond, SurfaceReference::Counters& counters) {
+  const BoundedHit hit = boundedHitInDouble(query, tri, beyond, counters);
+  return hit.undecided ? exactBoundedHit(query, tri, counters) : hit;
 }
 
 // Candidates for the nearest hit: every hit whose interval [t - bound, t + bound] can
 // still reach below the horizon, the smallest upper end t + bound seen so far. Usually
 // one or two, held in place; more (coplanar faces overlapping) spill to the heap.
+//
+// A triangle the double-precision test left undecided waits, and is decided exactly
+// only at the end, if its interval still reaches below the horizon then. Decided when
+// met, whether it needed exact work would depend on the order the ray met its
+// candidates (met before the wall in front of it, a ceiling's edge is decided exactly;
+// met after, it is dropped), and the textbook traversal and the packets meet them in
+// different orders. At the end, the horizon is the same whatever the order: so are
+// the rays that need exact arithmetic.
 class NearestHitSearch {
  public:
   // A node is skipped once its entry lies beyond the horizon, widened by the rounding of
@@ -124,8 +141,13 @@ class NearestHitSearch {
   double horizon() const { return horizon_; }
   bool usedExact() const { return usedExact_; }
 
-  // A triangle's bounded hit (or miss), slot its index in PreparedScene::leafTriangles.
+  // A triangle's bounded hit (or miss, or undecided), slot its index in
+  // PreparedScene::leafTriangles.
   HSR_INLINE void offer(const BoundedHit& hit, std::uint32_t slot) {
+    if (hit.undecided) {
+      if (hit.t - hit.bound <= horizon_) undecided_.push_back({hit.t, hit.bound, slot});
+      return;
+    }
     usedExact_ = usedExact_ || hit.exact;
     // A hit starting beyond the horizon can never be the nearest (the horizon only falls).
     if (!hit.hit || hit.t - hit.bound > horizon_) return;
@@ -148,6 +170,7 @@ class NearestHitSearch {
   template <typename Distance, typename Query>
   ReferenceHit nearest(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Distance&& distance,
                        Query&& query) {
+    decideUndecided(triangles, counters, query);
     ReferenceHit result;
     result.usedExact = usedExact_;
     eraseBeyondHorizon();
@@ -189,6 +212,21 @@ class NearestHitSearch {
     double t, bound;
     std::uint32_t slot;
   };
+  // The undecided triangles whose interval reaches below the horizon, decided exactly,
+  // nearest interval first (ties by slot: the same order for any traversal), each
+  // lowering the horizon for the next.
+  template <typename Query>
+  void decideUndecided(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Query&& query) {
+    std::erase_if(undecided_, [&](const Candidate& c) { return c.t - c.bound > horizon_; });
+    if (undecided_.empty()) return;
+    std::sort(undecided_.begin(), undecided_.end(),
+              [](const Candidate& a, const Candidate& b) { return std::pair(a.t - a.bound, a.slot) < std::pair(b.t - b.bound, b.slot); });
+    auto&& exactQuery = query();
+    for (const Candidate& candidate : undecided_)
+      if (candidate.t - candidate.bound <= horizon_) offer(exactBoundedHit(exactQuery, triangles[candidate.slot], counters), candidate.slot);
+    undecided_.clear();
+  }
+
   void eraseBeyondHorizon() {
     const auto beyond = [&](const Candidate& c) { return c.t - c.bound > horizon_; };
     if (spilling_) std::erase_if(spilled_, beyond);
@@ -202,6 +240,7 @@ class NearestHitSearch {
   int count_ = 0;
   bool spilling_ = false;           // once more than kInPlace were held at once, they all live in spilled_
   std::vector<Candidate> spilled_;
+  std::vector<Candidate> undecided_;  // left open by the bounds, decided at the end
 };
 
 }  // namespace hsr::reference_search

@@ -78,7 +78,7 @@ ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& r
     ++counters.nodesVisited;
     if (node.leaf()) {
       for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
-        search.offer(boundedHit(query, triangles_[slot], search.horizon(), counters), slot);
+        search.offer(boundedHitInDouble(query, triangles_[slot], search.horizon(), counters), slot);
       continue;
     }
     const double limit = search.horizon() * widen;

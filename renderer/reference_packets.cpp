@@ -67,9 +67,9 @@ HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y
       for (std::uint32_t slot = first; slot < first + leafCount; ++slot) {
         const PackedTriangle& tri = triangles_[slot];
         counters.triangleTests += std::popcount(unsigned(active));
-        // boundedHit, lane by lane: surely missed, a sure hit within the horizon and
-        // between the near and far planes, or left to the exact test. Most rays miss
-        // most triangles, which the box's bounds already show.
+        // boundedHitInDouble, lane by lane: surely missed or beyond the horizon, a sure
+        // hit between the near and far planes, or left undecided for the exact test.
+        // Most rays miss most triangles, which the box's bounds already show.
         const WoopTerms<Double4> terms = woopTerms(shear[half], tri.a, tri.b, tri.c);
         if ((active & ~laneBits(insideWithBounds(terms, boxBounds).no)) == 0) continue;
         const WoopBounds<Double4> bounds = woopBounds(shear[half], tri.a, tri.b, tri.c, terms);
@@ -77,16 +77,11 @@ HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y
         const Decided<Double4> inRange = view[half].inRange(bounds.t, bounds.tBound);
         const Mask4 beyond = bounds.t - bounds.tBound > horizon[half];
         const int sure = active & laneBits(inside.yes & ~beyond & inRange.yes);
-        const int missed = laneBits(inside.no | (inside.yes & (beyond | inRange.no)));
-        const int exact = active & ~missed & ~sure;
-        for (int bits = sure | exact; bits != 0; bits &= bits - 1) {
+        const int missed = laneBits(inside.no | beyond | (inside.yes & inRange.no));
+        const int undecided = active & ~missed & ~sure;
+        for (int bits = sure | undecided; bits != 0; bits &= bits - 1) {
           const int lane = std::countr_zero(unsigned(bits)), r = 4 * half + lane;
-          if (sure >> lane & 1) {
-            search[r].offer({bounds.t[lane], bounds.tBound[lane], true, false}, slot);
-          } else {
-            RayQuery exactQuery = query(r);
-            search[r].offer(exactBoundedHit(exactQuery, tri, counters), slot);
-          }
+          search[r].offer({bounds.t[lane], bounds.tBound[lane], (sure >> lane & 1) != 0, false, (undecided >> lane & 1) != 0}, slot);
           horizon[half][lane] = search[r].horizon();
         }
       }
