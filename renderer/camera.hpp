@@ -62,8 +62,8 @@ class CameraTransform {
   template <typename Real>
   HSR_INLINE ClipCoordinates<Real> clipFromWorld(Real x, Real y, Real z) const {
     const Real relativeX = x - camera_.eye.x, relativeY = y - camera_.eye.y, relativeZ = z - camera_.eye.z;
-    const auto along = [&](const dvec3& axis) { return relativeX * axis.x + relativeY * axis.y + relativeZ * axis.z; };
-    return clipFromView(along(right_), along(up_), -along(forward_));
+    return clipFromView(along(right_, relativeX, relativeY, relativeZ), along(up_, relativeX, relativeY, relativeZ),
+                        -along(forward_, relativeX, relativeY, relativeZ));
   }
   // clipFromWorld as one matrix: (x, y, d, w) = clipFromWorldMatrix() * (p, 1).
   dmat4 clipFromWorldMatrix() const;
@@ -110,6 +110,13 @@ class CameraTransform {
   int height() const { return height_; }
 
  private:
+  // (x, y, z) . axis, adding x, y, then z as glm::dot does. (A function, not a lambda:
+  // see ClipVolume::bitOutside.)
+  template <typename Real>
+  HSR_INLINE static Real along(const dvec3& axis, Real x, Real y, Real z) {
+    return x * axis.x + y * axis.y + z * axis.z;
+  }
+
   Camera camera_;
   int width_, height_;
   dvec3 right_, up_, forward_;  // world-space view basis

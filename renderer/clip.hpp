@@ -59,14 +59,21 @@ struct ClipVolume {
   // (this runs once per vertex per frame).
   template <typename Real>
   HSR_INLINE auto outside(const ClipCoordinates<Real>& v) const {
-    const auto bit = [&](ClipPlane plane) { return bitWhereNegative(distance(v, plane), plane); };
-    auto bits = bit(kNearPlane) | bit(kGuardLeft) | bit(kGuardRight) | bit(kGuardBottom) | bit(kGuardTop) | bit(kViewLeft) |
-                bit(kViewRight) | bit(kViewBottom) | bit(kViewTop);
-    if (clipFar) bits |= bit(kFarPlane);
+    auto bits = bitOutside(v, kNearPlane) | bitOutside(v, kGuardLeft) | bitOutside(v, kGuardRight) | bitOutside(v, kGuardBottom) |
+                bitOutside(v, kGuardTop) | bitOutside(v, kViewLeft) | bitOutside(v, kViewRight) | bitOutside(v, kViewBottom) |
+                bitOutside(v, kViewTop);
+    if (clipFar) bits |= bitOutside(v, kFarPlane);
     return bits;
   }
 
  private:
+  // The plane's bit where v lies strictly outside it. (A function, not a lambda: a
+  // lambda is not always inlined, and one compiled for the baseline, returning four
+  // lanes to an AVX2 caller, would disagree with it on where they are passed.)
+  template <typename Real>
+  HSR_INLINE auto bitOutside(const ClipCoordinates<Real>& v, ClipPlane plane) const {
+    return bitWhereNegative(distance(v, plane), plane);
+  }
   HSR_INLINE static std::uint32_t bitWhereNegative(double distance, ClipPlane plane) { return distance < 0 ? std::uint32_t(plane) : 0u; }
   HSR_INLINE static Mask4 bitWhereNegative(Double4 distance, ClipPlane plane) { return (distance < 0.0) & std::int64_t(plane); }
 };
