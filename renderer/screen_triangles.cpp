@@ -59,33 +59,37 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> vertexPieces(const Prepared
   return pieces;
 }
 
-// Four vertices at once, a vertex per lane: screenVertex's steps on Double4.
-HSR_AVX2 void screenVerticesFourAtATime(const CameraTransform& camera, const ClipVolume& volume, std::span<const dvec3> world,
-                                        ScreenVertex* out) {
-  for (std::size_t first = 0; first < world.size(); first += 4) {
-    const dvec3* const p = &world[first];
-    const ClipCoordinates<Double4> clip = camera.clipFromWorld(Double4{p[0].x, p[1].x, p[2].x, p[3].x}, Double4{p[0].y, p[1].y, p[2].y, p[3].y},
-                                                               Double4{p[0].z, p[1].z, p[2].z, p[3].z});
-    const Mask4 outside = volume.outside(clip);
-    // screenVertex projects only a vertex in front of the near plane; a lane behind it
-    // divides by 1 instead of its w and d, which may be 0 (a vertex in the eye's plane:
-    // the debug build traps a division by zero).
-    const Mask4 behind = (outside & std::int64_t(kNearPlane)) != 0;
-    ClipCoordinates<Double4> projected = clip;
-    projected.w = behind ? lanesOf(1.0) : clip.w;
-    projected.d = behind ? lanesOf(1.0) : clip.d;
-    const Double4 pixelX = camera.pixelXFromClip(projected), pixelY = camera.pixelYFromClip(projected),
-                  depth = camera.screenAffineDepth(projected.d);
-    for (int lane = 0; lane < 4; ++lane)
-      out[first + std::size_t(lane)] = {static_cast<std::uint32_t>(outside[lane]), {pixelX[lane], pixelY[lane]}, depth[lane]};
-  }
+// Four vertices at once, a vertex per lane: screenVertex's steps on Double4. Always
+// inlined into screenVerticesWithAvx2 below, where its vectors become AVX2 registers.
+// It takes and returns no vector itself, so no call passes one between code built for
+// the baseline and code built for AVX2 (they pass vectors differently: clang refuses
+// such a call, and an uninlined one would read garbage).
+HSR_INLINE void screenFourVertices(const CameraTransform& camera, const ClipVolume& volume, const dvec3* p, ScreenVertex* out) {
+  const ClipCoordinates<Double4> clip = camera.clipFromWorld(Double4{p[0].x, p[1].x, p[2].x, p[3].x}, Double4{p[0].y, p[1].y, p[2].y, p[3].y},
+                                                             Double4{p[0].z, p[1].z, p[2].z, p[3].z});
+  const Mask4 outside = volume.outside(clip);
+  // screenVertex projects only a vertex in front of the near plane; a lane behind it
+  // divides by 1 instead of its w and d, which may be 0 (a vertex in the eye's plane:
+  // the debug build traps a division by zero).
+  const Mask4 behind = (outside & std::int64_t(kNearPlane)) != 0;
+  ClipCoordinates<Double4> projected = clip;
+  projected.w = behind ? broadcast<Double4>(1.0) : clip.w;
+  projected.d = behind ? broadcast<Double4>(1.0) : clip.d;
+  const Double4 pixelX = camera.pixelXFromClip(projected), pixelY = camera.pixelYFromClip(projected),
+                depth = camera.screenAffineDepth(projected.d);
+  for (int lane = 0; lane < 4; ++lane) out[lane] = {static_cast<std::uint32_t>(outside[lane]), {pixelX[lane], pixelY[lane]}, depth[lane]};
+}
+
+HSR_AVX2 void screenVerticesWithAvx2(const CameraTransform& camera, const ClipVolume& volume, std::span<const dvec3> world,
+                                     ScreenVertex* out) {
+  for (std::size_t first = 0; first < world.size(); first += 4) screenFourVertices(camera, volume, &world[first], &out[first]);
 }
 
 }  // namespace
 
 void screenVertices(const CameraTransform& camera, const ClipVolume& volume, std::span<const dvec3> world, ScreenVertex* out) {
   const std::size_t vectorized = cpuHasAvx2() ? world.size() / 4 * 4 : 0;
-  screenVerticesFourAtATime(camera, volume, world.first(vectorized), out);
+  screenVerticesWithAvx2(camera, volume, world.first(vectorized), out);
   for (std::size_t v = vectorized; v < world.size(); ++v) out[v] = screenVertex(camera, volume, world[v]);
 }
 
