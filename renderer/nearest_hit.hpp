@@ -217,18 +217,21 @@ class NearestHitSearch {
   // lowering the horizon for the next.
   template <typename Query>
   void decideUndecided(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Query&& query) {
-    std::erase_if(undecided_, [&](const Candidate& c) { return c.t - c.bound > horizon_; });
+    std::erase_if(undecided_, [&](const Candidate& c) { return beyondHorizon(c); });
     if (undecided_.empty()) return;
     std::sort(undecided_.begin(), undecided_.end(),
               [](const Candidate& a, const Candidate& b) { return std::pair(a.t - a.bound, a.slot) < std::pair(b.t - b.bound, b.slot); });
     auto&& exactQuery = query();
     for (const Candidate& candidate : undecided_)
-      if (candidate.t - candidate.bound <= horizon_) offer(exactBoundedHit(exactQuery, triangles[candidate.slot], counters), candidate.slot);
+      if (!beyondHorizon(candidate)) offer(exactBoundedHit(exactQuery, triangles[candidate.slot], counters), candidate.slot);
     undecided_.clear();
   }
 
+  // Whether a candidate's interval starts beyond the horizon: it can never be the nearest.
+  bool beyondHorizon(const Candidate& c) const { return c.t - c.bound > horizon_; }
+
   void eraseBeyondHorizon() {
-    const auto beyond = [&](const Candidate& c) { return c.t - c.bound > horizon_; };
+    const auto beyond = [&](const Candidate& c) { return beyondHorizon(c); };
     if (spilling_) std::erase_if(spilled_, beyond);
     else if (count_ > 1) count_ = int(std::remove_if(inPlace_.begin(), inPlace_.begin() + count_, beyond) - inPlace_.begin());
   }
