@@ -51,12 +51,18 @@ struct ShearedRay {
 
   // Rays whose directions share the axes (axesOf): one, or four in lanes.
   ShearedRay(const std::array<int, 3>& axes, const std::array<Number, 3>& rayOrigin, const std::array<Number, 3>& direction)
-      : kx(axes[0]), ky(axes[1]), kz(axes[2]), origin(rayOrigin) {
-    const Number& dz = direction[kz];
-    sx = direction[kx] / dz;
-    sy = direction[ky] / dz;
-    sz = 1.0 / dz;
-  }
+      : ShearedRay(axes, rayOrigin, direction, 1.0 / direction[axes[2]]) {}
+  // The same, given sz = 1 / direction[kz]: a packet's slab tests have the directions'
+  // inverses already, which saves a division.
+  ShearedRay(const std::array<int, 3>& axes, const std::array<Number, 3>& rayOrigin, const std::array<Number, 3>& direction,
+             const Number& inverseDz)
+      : kx(axes[0]),
+        ky(axes[1]),
+        kz(axes[2]),
+        origin(rayOrigin),
+        sx(direction[kx] / direction[kz]),
+        sy(direction[ky] / direction[kz]),
+        sz(inverseDz) {}
   explicit ShearedRay(const Ray& ray)
       : ShearedRay(axesOf(ray.direction), {Number(ray.origin[0]), Number(ray.origin[1]), Number(ray.origin[2])},
                    {Number(ray.direction[0]), Number(ray.direction[1]), Number(ray.direction[2])}) {}

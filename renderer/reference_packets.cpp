@@ -47,8 +47,10 @@ HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y
   // search, and its RayQuery for exact work, made when first needed.
   const std::array<int, 3> axes = ShearedRay<double>::axesOf(ray(0).direction);
   const auto lanes = [&](const Double4 (&values)[3]) HSR_AVX2 { return std::array<Double4, 3>{values[0], values[1], values[2]}; };
-  const ShearedRay<Double4> shear[kHalves] = {ShearedRay<Double4>(axes, lanes(rays[0].origin), lanes(rays[0].direction)),
-                                              ShearedRay<Double4>(axes, lanes(rays[1].origin), lanes(rays[1].direction))};
+  // No direction has a zero component here (travelTogether), so inverseOf is 1 / d.
+  const ShearedRay<Double4> shear[kHalves] = {
+      ShearedRay<Double4>(axes, lanes(rays[0].origin), lanes(rays[0].direction), inverses[0][axes[2]]),
+      ShearedRay<Double4>(axes, lanes(rays[1].origin), lanes(rays[1].direction), inverses[1][axes[2]])};
   const woop::ViewDistance<Double4> view[kHalves] = {woop::ViewDistance<Double4>(camera, lanes(rays[0].origin), lanes(rays[0].direction)),
                                                      woop::ViewDistance<Double4>(camera, lanes(rays[1].origin), lanes(rays[1].direction))};
   std::array<NearestHitSearch, RayPacket::kRays> search;
@@ -64,9 +66,9 @@ HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y
       if (active == 0) continue;
       const WoopBounds<Double4> boxBounds = woop::edgeBoundsOverBox(shear[half], dvec3(box.low(0), box.low(1), box.low(2)),
                                                                     dvec3(box.high(0), box.high(1), box.high(2)));
+      counters.triangleTests += std::popcount(unsigned(active)) * leafCount;
       for (std::uint32_t slot = first; slot < first + leafCount; ++slot) {
         const PackedTriangle& tri = triangles_[slot];
-        counters.triangleTests += std::popcount(unsigned(active));
         // boundedHitInDouble, lane by lane: surely missed or beyond the horizon, a sure
         // hit between the near and far planes, or left undecided for the exact test.
         // Most rays miss most triangles, which the box's bounds already show.
@@ -82,8 +84,12 @@ HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y
         for (int bits = sure | undecided; bits != 0; bits &= bits - 1) {
           const int lane = std::countr_zero(unsigned(bits)), r = 4 * half + lane;
           search[r].offer({bounds.t[lane], bounds.tBound[lane], (sure >> lane & 1) != 0, false, (undecided >> lane & 1) != 0}, slot);
-          horizon[half][lane] = search[r].horizon();
         }
+        // The searches' horizons, as offer() lowers them: a sure hit takes its upper end
+        // t + bound where that is lower (a hit beyond the horizon was missed above, and
+        // an undecided one lowers nothing until it is decided). In lanes, not lane by
+        // lane: the next triangle reads the horizons as a vector.
+        horizon[half] = laneMask4(sure) ? smaller(horizon[half], bounds.t + bounds.tBound) : horizon[half];
       }
       reach[half] = horizon[half] * NearestHitSearch::kEntryWidening;
     }
