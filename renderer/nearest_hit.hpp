@@ -217,6 +217,7 @@ class NearestHitSearch {
   // lowering the horizon for the next.
   template <typename Query>
   void decideUndecided(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Query&& query) {
+    if (undecided_.empty()) return;
     std::erase_if(undecided_, [&](const Candidate& c) { return beyondHorizon(c); });
     if (undecided_.empty()) return;
     std::sort(undecided_.begin(), undecided_.end(),
@@ -230,7 +231,7 @@ class NearestHitSearch {
   // Whether a candidate's interval starts beyond the horizon: it can never be the nearest.
   bool beyondHorizon(const Candidate& c) const { return c.t - c.bound > horizon_; }
 
-  void eraseBeyondHorizon() {
+  HSR_INLINE void eraseBeyondHorizon() {
     const auto beyond = [&](const Candidate& c) { return beyondHorizon(c); };
     if (spilling_) std::erase_if(spilled_, beyond);
     else if (count_ > 1) count_ = int(std::remove_if(inPlace_.begin(), inPlace_.begin() + count_, beyond) - inPlace_.begin());

@@ -1,20 +1,22 @@
 #include "renderer/ray_packet.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace hsr {
 
 namespace {
 
-// The least and greatest of eight lanes.
+// The least and greatest of eight lanes: the two halves lane by lane, then the four
+// lanes folded onto themselves twice (a lane's value never leaves the vector registers).
 HSR_AVX2 double leastOf(const Double4 (&halves)[RayPacket::kHalves]) {
-  const Double4 least = smaller(halves[0], halves[1]);
-  return std::min(std::min(least[0], least[1]), std::min(least[2], least[3]));
+  Double4 least = smaller(halves[0], halves[1]);
+  least = smaller(least, __builtin_shufflevector(least, least, 2, 3, 0, 1));
+  return smaller(least, __builtin_shufflevector(least, least, 1, 0, 3, 2))[0];
 }
 HSR_AVX2 double greatestOf(const Double4 (&halves)[RayPacket::kHalves]) {
-  const Double4 greatest = larger(halves[0], halves[1]);
-  return std::max(std::max(greatest[0], greatest[1]), std::max(greatest[2], greatest[3]));
+  Double4 greatest = larger(halves[0], halves[1]);
+  greatest = larger(greatest, __builtin_shufflevector(greatest, greatest, 2, 3, 0, 1));
+  return larger(greatest, __builtin_shufflevector(greatest, greatest, 1, 0, 3, 2))[0];
 }
 
 // A bit per ray where the halves' masks hold.
