@@ -45,6 +45,29 @@ HSR_INLINE void keepNearer(float* row, int first, int last, float rowStart, floa
 }
 HSR_AVX2 void keepNearerWithAvx2(float* row, int first, int last, float rowStart, float kx) { keepNearer(row, first, last, rowStart, kx); }
 
+// The largest key of `rows` rows of `columns` texels (a multiple of the vector's lanes),
+// rows `stride` apart, a vector of Lanes at a time: the compiler leaves this reduction
+// scalar by itself (it would have to reorder the comparisons). Four lanes for the
+// baseline; eight, a tile's whole row, inlined into an AVX2 function.
+template <typename Lanes>
+HSR_INLINE float largestOfWholeRows(const float* first, std::size_t stride, int rows, int columns) {
+  constexpr int kLanes = int(sizeof(Lanes) / sizeof(float));
+  Lanes lanes = Lanes{} - kEmpty;  // -infinity in every lane
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < columns; x += kLanes) {
+      Lanes some;
+      __builtin_memcpy(&some, first + std::size_t(y) * stride + std::size_t(x), sizeof some);
+      lanes = some > lanes ? some : lanes;
+    }
+  float largest = lanes[0];
+  for (int lane = 1; lane < kLanes; ++lane) largest = std::max(largest, lanes[lane]);
+  return largest;
+}
+using Float8 = float __attribute__((vector_size(32)));
+HSR_AVX2 float largestOfWholeRowsWithAvx2(const float* first, std::size_t stride, int rows, int columns) {
+  return largestOfWholeRows<Float8>(first, stride, rows, columns);
+}
+
 }  // namespace
 
 void conservativeRow(float* row, int first, int last, const RowKey* keys, int count) {
@@ -146,16 +169,10 @@ float TileMaxima::maximum(int tileX, int tileY) {
     const int x0 = tileX * kTile, x1 = std::min(map_.width, x0 + kTile), y1 = std::min(map_.height, (tileY + 1) * kTile);
     float largest = -kEmpty;
     if (x1 - x0 == kTile) {
-      // A whole tile's rows, four texels to a vector (the compiler leaves this
-      // reduction scalar by itself: it would have to reorder the comparisons).
-      Float4 lanes = {-kEmpty, -kEmpty, -kEmpty, -kEmpty};
-      for (int y = tileY * kTile; y < y1; ++y)
-        for (int x = x0; x < x1; x += 4) {
-          Float4 four;
-          __builtin_memcpy(&four, &map_.keys[std::size_t(y) * std::size_t(map_.width) + std::size_t(x)], sizeof four);
-          lanes = four > lanes ? four : lanes;
-        }
-      largest = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+      const float* const first = &map_.keys[std::size_t(tileY * kTile) * std::size_t(map_.width) + std::size_t(x0)];
+      const int rows = y1 - tileY * kTile;
+      largest = cpuHasAvx2() ? largestOfWholeRowsWithAvx2(first, std::size_t(map_.width), rows, kTile)
+                             : largestOfWholeRows<Float4>(first, std::size_t(map_.width), rows, kTile);
     } else {
       for (int y = tileY * kTile; y < y1; ++y)
         for (int x = x0; x < x1; ++x) largest = std::max(largest, map_.at(x, y));
@@ -171,7 +188,12 @@ bool TileMaxima::hidden(const BoxFootprint& box, std::int64_t& texelsRead) {
   for (int ty = box.y0 / kTile; ty <= (box.y1 - 1) / kTile; ++ty)
     for (int tx = box.x0 / kTile; tx <= (box.x1 - 1) / kTile; ++tx) {
       ++texelsRead;
-      if (maximum(tx, ty) < box.nearest) continue;  // the whole tile is nearer
+      // The whole tile is nearer. Its maximum from before the latest draws is tried
+      // first: keys only fall while the map is drawn (a texel keeps the nearer key), so
+      // an old maximum still bounds the tile, and where it is enough, the 64 texels need
+      // no second look.
+      const float bound = maxima_[std::size_t(ty) * std::size_t(columns_) + std::size_t(tx)];
+      if (bound < box.nearest || maximum(tx, ty) < box.nearest) continue;
       // The tile holds something at least as far: look at the box's own texels in it.
       const BoxFootprint part{false, std::max(box.x0, tx * kTile), std::min(box.x1, (tx + 1) * kTile),
                               std::max(box.y0, ty * kTile), std::min(box.y1, (ty + 1) * kTile), box.nearest};

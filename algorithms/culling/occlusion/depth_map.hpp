@@ -89,9 +89,10 @@ std::array<dvec3, 8> cornersOf(const Aabb& box);
 bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead);
 
 // The largest key of each 8x8 tile of a map that is still being drawn, recomputed only
-// where it was drawn since: the test of an occluder before it is drawn (most are hidden
-// by nearer ones, and a near one covers many texels) reads a tile where it can instead
-// of its 64 texels. Decides exactly as hiddenOnMap does.
+// where it was drawn since, and only when its old value, still a bound, is not enough:
+// the test of an occluder before it is drawn (most are hidden by nearer ones, and a
+// near one covers many texels) reads a tile where it can instead of its 64 texels.
+// Decides exactly as hiddenOnMap does.
 class TileMaxima {
  public:
   explicit TileMaxima(const DepthMap& map);
