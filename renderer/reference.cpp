@@ -210,8 +210,7 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
       const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
       const ReferenceHit& hit = hits[std::size_t(x)];
       image.frame.ids[pixel] = hit.id;
-      image.frame.depth[pixel] = hit.id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity()
-                                                                       : static_cast<float>(hit.distance);
+      image.frame.depth[pixel] = static_cast<float>(hit.distance);
       image.ambiguous[pixel] = hit.ambiguous;
       rowExact += hit.usedExact;
       rowAmbiguous += hit.ambiguous;

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "renderer/camera.hpp"
@@ -31,7 +32,8 @@ namespace hsr {
 
 struct ReferenceHit {
   std::uint32_t id = 0;     // global triangle index + 1; 0 = nothing between near and far
-  double distance = 0;      // along the view axis, as Frame::depth measures it
+  // Along the view axis, as Frame::depth measures it: +infinity where nothing was met.
+  double distance = std::numeric_limits<double>::infinity();
   bool ambiguous = false;   // two or more triangles are exactly the nearest
   bool usedExact = false;   // some decision for this ray needed exact arithmetic
 };

@@ -95,11 +95,14 @@ HSR_AVX2 bool SurfaceReference::tracePacket(const CameraTransform& camera, int y
     }
   };
   counters.nodesVisited += visitLeaves(*wideBvh_, packet, (1 << count) - 1, reach, leaf);
-  for (int r = 0; r < count; ++r) {
-    const woop::ViewDistance<Double4>& lanesView = view[r / 4];
-    const double originDistance = lanesView.originDistance[r % 4], slope = lanesView.slope[r % 4];
-    hits[r] = search[r].nearest(triangles_, counters, [&](double t) { return originDistance + t * slope; }, [&] { return query(r); });
+  // Each ray's view distance along it, taken out of the lanes once.
+  double originDistance[RayPacket::kRays], slope[RayPacket::kRays];
+  for (int half = 0; half < kHalves; ++half) {
+    __builtin_memcpy(originDistance + 4 * half, &view[half].originDistance, sizeof(Double4));
+    __builtin_memcpy(slope + 4 * half, &view[half].slope, sizeof(Double4));
   }
+  for (int r = 0; r < count; ++r)
+    hits[r] = search[r].nearest(triangles_, counters, [&](double t) { return originDistance[r] + t * slope[r]; }, [&] { return query(r); });
   return true;
 }
 
