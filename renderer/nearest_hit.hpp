@@ -8,11 +8,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include <gmpxx.h>
-#include <limits>
 
 #include "renderer/bounded_woop.hpp"
 #include "renderer/error.hpp"
@@ -145,7 +146,7 @@ class NearestHitSearch {
   // PreparedScene::leafTriangles.
   HSR_INLINE void offer(const BoundedHit& hit, std::uint32_t slot) {
     if (hit.undecided) {
-      if (hit.t - hit.bound <= horizon_) undecided_.push_back({hit.t, hit.bound, slot});
+      if (hit.t - hit.bound <= horizon_) rare().undecided.push_back({hit.t, hit.bound, slot});
       return;
     }
     usedExact_ = usedExact_ || hit.exact;
@@ -157,8 +158,8 @@ class NearestHitSearch {
     if (!spilling_ && count_ < kInPlace) {
       inPlace_[std::size_t(count_++)] = candidate;
     } else {
-      if (!spilling_) spilled_.assign(inPlace_.begin(), inPlace_.end()), spilling_ = true;
-      spilled_.push_back(candidate);
+      if (!spilling_) rare().spilled.assign(inPlace_.begin(), inPlace_.end()), spilling_ = true;
+      rare_->spilled.push_back(candidate);
     }
     if (lowered) eraseBeyondHorizon();
   }
@@ -174,8 +175,8 @@ class NearestHitSearch {
     ReferenceHit result;
     result.usedExact = usedExact_;
     eraseBeyondHorizon();
-    const Candidate* first = spilling_ ? spilled_.data() : inPlace_.data();
-    const std::size_t count = spilling_ ? spilled_.size() : std::size_t(count_);
+    const Candidate* first = spilling_ ? rare_->spilled.data() : inPlace_.data();
+    const std::size_t count = spilling_ ? rare_->spilled.size() : std::size_t(count_);
     if (count == 0) return result;
     std::uint32_t winner = triangles[first->slot].id;
     double winnerT = first->t;
@@ -217,15 +218,16 @@ class NearestHitSearch {
   // lowering the horizon for the next.
   template <typename Query>
   void decideUndecided(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Query&& query) {
-    if (undecided_.empty()) return;
-    std::erase_if(undecided_, [&](const Candidate& c) { return beyondHorizon(c); });
-    if (undecided_.empty()) return;
-    std::sort(undecided_.begin(), undecided_.end(),
+    if (!rare_ || rare_->undecided.empty()) return;
+    std::vector<Candidate>& undecided = rare_->undecided;
+    std::erase_if(undecided, [&](const Candidate& c) { return beyondHorizon(c); });
+    if (undecided.empty()) return;
+    std::sort(undecided.begin(), undecided.end(),
               [](const Candidate& a, const Candidate& b) { return std::pair(a.t - a.bound, a.slot) < std::pair(b.t - b.bound, b.slot); });
     auto&& exactQuery = query();
-    for (const Candidate& candidate : undecided_)
+    for (const Candidate& candidate : undecided)
       if (!beyondHorizon(candidate)) offer(exactBoundedHit(exactQuery, triangles[candidate.slot], counters), candidate.slot);
-    undecided_.clear();
+    undecided.clear();
   }
 
   // Whether a candidate's interval starts beyond the horizon: it can never be the nearest.
@@ -233,7 +235,7 @@ class NearestHitSearch {
 
   HSR_INLINE void eraseBeyondHorizon() {
     const auto beyond = [&](const Candidate& c) { return beyondHorizon(c); };
-    if (spilling_) std::erase_if(spilled_, beyond);
+    if (spilling_) std::erase_if(rare_->spilled, beyond);
     else if (count_ > 1) count_ = int(std::remove_if(inPlace_.begin(), inPlace_.begin() + count_, beyond) - inPlace_.begin());
   }
 
@@ -242,9 +244,18 @@ class NearestHitSearch {
   bool usedExact_ = false;
   std::array<Candidate, kInPlace> inPlace_;
   int count_ = 0;
-  bool spilling_ = false;           // once more than kInPlace were held at once, they all live in spilled_
-  std::vector<Candidate> spilled_;
-  std::vector<Candidate> undecided_;  // left open by the bounds, decided at the end
+  bool spilling_ = false;  // once more than kInPlace were held at once, they all live in rare_->spilled
+  // What few rays need, apart, so that a search is cheap to make and drop (a packet makes
+  // eight, and most rays hold one candidate and no undecided triangle).
+  struct Rare {
+    std::vector<Candidate> spilled;
+    std::vector<Candidate> undecided;  // left open by the bounds, decided at the end
+  };
+  Rare& rare() {
+    if (!rare_) rare_ = std::make_unique<Rare>();
+    return *rare_;
+  }
+  std::unique_ptr<Rare> rare_;
 };
 
 }  // namespace hsr::reference_search
