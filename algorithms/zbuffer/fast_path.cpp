@@ -17,9 +17,6 @@ constexpr int kBlock = 8;  // a block is 8 x 8 pixels; a row of a block is one v
 // Triangles whose box in the tile has fewer pixels than this are drawn by the textbook
 // loop (worthDrawing).
 constexpr int kVectorsFromPixels = 24;
-// Blocks smaller than this part of a triangle go straight to the pixels: for a few
-// pixels the depth bound and the block's farthest depth cost more than they save.
-constexpr int kBlockTestFromPixels = 16;
 // The depth bound's margin against the rounding of the per-pixel formula: a few units in
 // the last place of its terms' magnitudes, taken a thousand times over.
 constexpr double kRoundingMargin = 1e-12;
@@ -134,6 +131,16 @@ float nearestStored(const ScreenTriangle& tri, const DepthEncoding& encoding, bo
   return static_cast<float>(std::clamp(reversed ? nearest + margin : nearest - margin, 0.0, 1.0));
 }
 
+// The farthest of a block's rows' lanes, the lanes past the tile's right edge left out.
+HSR_AVX2 float farthestLane(__m256 rows, bool reversed) {
+  __m128 half = reversed ? _mm_min_ps(_mm256_castps256_ps128(rows), _mm256_extractf128_ps(rows, 1))
+                         : _mm_max_ps(_mm256_castps256_ps128(rows), _mm256_extractf128_ps(rows, 1));
+  const __m128 swapped = _mm_movehl_ps(half, half);
+  half = reversed ? _mm_min_ps(half, swapped) : _mm_max_ps(half, swapped);
+  const __m128 second = _mm_shuffle_ps(half, half, 1);
+  return _mm_cvtss_f32(reversed ? _mm_min_ss(half, second) : _mm_max_ss(half, second));
+}
+
 }  // namespace
 
 SimdTile::SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
@@ -146,39 +153,11 @@ SimdTile::SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* 
       reversed_(reversed),
       counts_(counts),
       blocksX_((rect.x1 - rect.x0 + kBlock - 1) / kBlock),
-      blocks_(std::size_t(blocksX_) * std::size_t((rect.y1 - rect.y0 + kBlock - 1) / kBlock),
-              Block{reversed ? 0.0f : 1.0f, false}) {}
+      blockFarthest_(std::size_t(blocksX_) * std::size_t((rect.y1 - rect.y0 + kBlock - 1) / kBlock), reversed ? 0.0f : 1.0f) {}
 
 bool SimdTile::worthDrawing(const ScreenTriangle& tri) const {
   const TileGrid::Rect box = boxIn(tri, rect_);
   return (box.x1 - box.x0) * (box.y1 - box.y0) >= kVectorsFromPixels;
-}
-
-void SimdTile::drawnElsewhere(const ScreenTriangle& tri) {
-  const TileGrid::Rect box = boxIn(tri, rect_);
-  if (box.x0 >= box.x1 || box.y0 >= box.y1) return;
-  for (int row = (box.y0 - rect_.y0) / kBlock; row <= (box.y1 - 1 - rect_.y0) / kBlock; ++row)
-    for (int column = (box.x0 - rect_.x0) / kBlock; column <= (box.x1 - 1 - rect_.x0) / kBlock; ++column)
-      blocks_[std::size_t(row) * std::size_t(blocksX_) + std::size_t(column)].stale = true;
-}
-
-// The farthest depth the block [x0, x1) x [y0, y1) holds, found again if it was written.
-HSR_AVX2 float SimdTile::blockFarthest(std::size_t block, int x0, int y0, int x1, int y1) {
-  Block& b = blocks_[block];
-  if (!b.stale) return b.farthest;
-  // Lanes past the block's right edge are filled with a value that never wins.
-  const __m256 never = _mm256_set1_ps(reversed_ ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity());
-  const __m256i inBlock = laneMask((1 << (x1 - x0)) - 1);
-  __m256 farthest = never;
-  for (int y = y0; y < y1; ++y) {
-    const __m256 row = _mm256_blendv_ps(never, _mm256_maskload_ps(&depth_[std::size_t(y) * width_ + x0], inBlock), _mm256_castsi256_ps(inBlock));
-    farthest = reversed_ ? _mm256_min_ps(farthest, row) : _mm256_max_ps(farthest, row);
-  }
-  alignas(32) float lanes[8];
-  _mm256_store_ps(lanes, farthest);
-  b.farthest = reversed_ ? *std::min_element(lanes, lanes + 8) : *std::max_element(lanes, lanes + 8);
-  b.stale = false;
-  return b.farthest;
 }
 
 HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
@@ -188,6 +167,12 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
   EdgeLanes edges(tri);
   const __m256i id = _mm256_set1_epi32(static_cast<int>(tri.triangle + 1));
   const __m256i background = _mm256_set1_epi32(static_cast<int>(conventions::kBackgroundId));
+  // Lanes past the tile's right edge count as this, which is never the farthest.
+  const __m256 never = _mm256_set1_ps(reversed_ ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity());
+  // The nearest depth the triangle can store anywhere in its box in the tile, found once:
+  // at a block's own corners it would be tighter, but cost four evaluations a block, and
+  // most blocks tested that way are not hidden anyway (zbuffer/README.md, "The fast path").
+  const float nearest = nearestStored(tri, encoding_, reversed_, triX0, triX1 - 1, triY0, triY1 - 1);
   float* const depth = depth_;
   std::uint32_t* const ids = ids_;
   const std::size_t width = std::size_t(width_);
@@ -212,15 +197,10 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
       }
       if (outside) continue;  // no pixel center of the block inside the triangle
       const int columns = ((1 << (x1 - blockX)) - 1) & ~((1 << (x0 - blockX)) - 1);
-      const std::size_t block = std::size_t((blockY - rect_.y0) / kBlock) * std::size_t(blocksX_) + std::size_t((blockX - rect_.x0) / kBlock);
+      float& blockFarthest = blockFarthest_[std::size_t((blockY - rect_.y0) / kBlock) * std::size_t(blocksX_) + std::size_t((blockX - rect_.x0) / kBlock)];
       // The hierarchical test: every depth the block holds is nearer than the nearest
       // this triangle can store there, so no fragment can pass, or tie.
-      bool hidden = false;
-      if ((x1 - x0) * (y1 - y0) >= kBlockTestFromPixels) {
-        const float farthest = blockFarthest(block, blockX, blockY, std::min(blockX + kBlock, rect_.x1), std::min(blockY + kBlock, rect_.y1));
-        const float nearest = nearestStored(tri, encoding_, reversed_, x0, x1 - 1, y0, y1 - 1);
-        hidden = reversed_ ? farthest > nearest : farthest < nearest;
-      }
+      const bool hidden = reversed_ ? blockFarthest > nearest : blockFarthest < nearest;
       if (hidden && inside) {  // the whole clipped block covered: its fragments counted without a walk
         counts.tested += std::int64_t(x1 - x0) * (y1 - y0);
         counts.skippedByBlockDepth += std::int64_t(x1 - x0) * (y1 - y0);
@@ -234,7 +214,10 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         tx[h] = _mm256_add_pd(_mm256_set1_pd(tri.t0), _mm256_mul_pd(_mm256_set1_pd(tri.tdx), _mm256_sub_pd(center, _mm256_set1_pd(tri.x0))));
       }
       if (!inside) edges.start(e);
-      bool wrote = false;
+      // The farthest depth of the rows read and written; when they are all of the block's
+      // rows, it is the block's farthest depth, found without reading the block again.
+      __m256 farthestRead = never;
+      int rowsRead = 0;
       for (int y = y0; y < y1; ++y) {
         const int covered = (inside ? columns : edges.coveredThenDown() & columns);
         if (covered == 0) continue;
@@ -250,7 +233,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         const __m256 current = rows.load(depthRow);
         const __m256i currentIds = rows.load(idRow);
         // Nearer: candidate < current, or candidate > current when reversed.
-        const __m256 nearer = _mm256_and_ps(_mm256_cmp_ps(reversed_ ? current : candidate, reversed_ ? candidate : current, _CMP_LT_OQ),
+        const __m256 passes = _mm256_and_ps(_mm256_cmp_ps(reversed_ ? current : candidate, reversed_ ? candidate : current, _CMP_LT_OQ),
                                             _mm256_castsi256_ps(coveredLanes));
         // A tie: another triangle's fragment stored at exactly this depth (seldom: the
         // ids are looked at only where some lane is equal).
@@ -259,14 +242,20 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
           const __m256i thisOrNone = _mm256_or_si256(_mm256_cmpeq_epi32(currentIds, background), _mm256_cmpeq_epi32(currentIds, id));
           counts.ties += std::popcount(unsigned(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(thisOrNone), equal))));
         }
-        const int passed = _mm256_movemask_ps(nearer);
+        const __m256 kept = _mm256_blendv_ps(current, candidate, passes);
+        const __m256 keptInTile = _mm256_blendv_ps(never, kept, _mm256_castsi256_ps(rows.lanes()));
+        farthestRead = reversed_ ? _mm256_min_ps(farthestRead, keptInTile) : _mm256_max_ps(farthestRead, keptInTile);
+        ++rowsRead;
+        const int passed = _mm256_movemask_ps(passes);
         if (passed == 0) continue;
         counts.written += std::popcount(unsigned(passed));
-        rows.store(depthRow, _mm256_blendv_ps(current, candidate, nearer));
-        rows.store(idRow, _mm256_blendv_epi8(currentIds, id, _mm256_castps_si256(nearer)));
-        wrote = true;
+        rows.store(depthRow, kept);
+        rows.store(idRow, _mm256_blendv_epi8(currentIds, id, _mm256_castps_si256(passes)));
       }
-      if (wrote) blocks_[block].stale = true;
+      // Writes only bring depths nearer, so a block's farthest depth, once found, stays a
+      // bound on what it holds: the test above stays sound though it is found again only
+      // when a triangle reads every row.
+      if (rowsRead == std::min(blockY + kBlock, rect_.y1) - blockY) blockFarthest = farthestLane(farthestRead, reversed_);
     }
   counts_.tested += counts.tested, counts_.written += counts.written, counts_.ties += counts.ties;
   counts_.skippedByBlockDepth += counts.skippedByBlockDepth;

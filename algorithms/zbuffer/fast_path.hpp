@@ -11,11 +11,13 @@
 //     contract them: the scalar build has no FMA, and this file is compiled for AVX2
 //     only);
 //   - the test: "nearer", ties counted as the scalar DepthTest counts them.
-// What it adds: each 8 x 8 block keeps the farthest depth it holds, and a block whose
-// farthest depth is nearer than the nearest the triangle can store there is skipped
-// whole (Greene, Kass and Miller's hierarchical z-buffer, one level). The nearest is a
-// lower bound: the plane's least value at the block's corners, less a margin a
-// thousand times the worst rounding of the per-pixel formula. The skipped fragments
+// What it adds: each 8 x 8 block keeps a bound on the depths it holds, and a block whose
+// bound is nearer than the nearest the triangle can store in its box is skipped whole
+// (Greene, Kass and Miller's hierarchical z-buffer, one level). The bound is the
+// block's farthest depth when a triangle last read all its rows; writes only bring
+// depths nearer, so it stays a bound until then. The nearest is a lower bound too: the
+// plane's least value at the box's corners, less a margin a thousand times the worst
+// rounding of the per-pixel formula. The skipped fragments
 // are still counted as tested (their coverage is counted, not their depth), so the
 // counters stay the textbook loop's; "fragments skipped by block depth" says how many.
 // Only float depth formats with the depth test on have a fast path; elsewhere, and on
@@ -51,20 +53,11 @@ class SimdTile {
   bool worthDrawing(const ScreenTriangle& tri) const;
   // Step 2 for one triangle: every pixel of the tile it covers, depth-tested.
   void draw(const ScreenTriangle& tri);
-  // The textbook loop drew the triangle into this tile's buffers: the blocks under its
-  // box must find their farthest depth again.
-  void drawnElsewhere(const ScreenTriangle& tri);
   // Step 3: the tile's depth decoded to view distance (perspective: 1 / t), +infinity
   // on the background.
   void decode(std::span<float> distance, bool perspective) const;
 
  private:
-  struct Block {
-    float farthest;  // the farthest depth any of its pixels holds (valid when !stale)
-    bool stale;      // written since `farthest` was found
-  };
-  float blockFarthest(std::size_t block, int x0, int y0, int x1, int y1);
-
   TileGrid::Rect rect_;
   int width_;
   float* depth_;
@@ -73,7 +66,9 @@ class SimdTile {
   bool reversed_;
   DepthCounts& counts_;
   int blocksX_;
-  std::vector<Block> blocks_;
+  // Per 8 x 8 block, row by row: a bound on the depths it holds, as far as any of them
+  // (exactly the farthest when last found; writes since can only have brought depths nearer).
+  std::vector<float> blockFarthest_;
 };
 
 }  // namespace hsr::zbuffer

@@ -85,7 +85,6 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
             const std::size_t row = pixel(0, y);
             rasterizeSpan(tri, y, x0, x1, [&](int x) { test.test(tri, x, y, depth[row + std::size_t(x)], frame.ids[row + std::size_t(x)]); });
           }
-          if (fast) fast->drawnElsewhere(tri);
         }
         if (recording) {
           // Overdraw: every pixel the triangle covered was one more fragment tested there.
