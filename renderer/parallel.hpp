@@ -127,10 +127,16 @@ class ThreadPool {
   std::vector<std::jthread> threads_;  // declared last: joined first, while the rest still lives
 };
 
+// How many workers parallelFor(count, threads, ...) runs: its bodies see worker numbers
+// [0, parallelWorkers(count, threads)), so per-worker state can be made in advance.
+inline int parallelWorkers(std::size_t count, int threads) {
+  return std::max(1, std::min<int>(resolveThreadCount(threads), static_cast<int>(count)));
+}
+
 // Calls body(item, worker) for item in [0, count), worker in [0, threads).
 template <typename Body>
 void parallelFor(std::size_t count, int threads, Body&& body) {
-  const int workers = std::max(1, std::min<int>(resolveThreadCount(threads), static_cast<int>(count)));
+  const int workers = parallelWorkers(count, threads);
   if (workers <= 1) {
     for (std::size_t item = 0; item < count; ++item) body(item, 0);
     return;

@@ -26,6 +26,8 @@ struct TileGrid {
   struct Rect {
     int x0, y0, x1, y1;
   };
+  // The pixels of the largest tile (tiles at the image's right and bottom edges are cut).
+  std::size_t largestTileArea() const { return std::size_t(std::min(tileSize, width)) * std::size_t(std::min(tileSize, height)); }
   Rect rect(std::size_t tile) const {
     const int x0 = int(tile % std::size_t(tilesX)) * tileSize, y0 = int(tile / std::size_t(tilesX)) * tileSize;
     return {x0, y0, std::min(x0 + tileSize, width), std::min(y0 + tileSize, height)};

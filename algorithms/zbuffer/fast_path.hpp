@@ -42,8 +42,10 @@ struct DepthCounts {
 
 class SimdTile {
  public:
-  // The tile `rect` of a width-wide image whose depth buffer is `depth` (float32, or
-  // reversed-float32 when `reversed`) and ids `ids`, both already cleared; adds to `counts`.
+  // The tile `rect` of a width-wide image with ids `ids`, its depth (float32, or
+  // reversed-float32 when `reversed`) in a buffer of the tile's own: `depth` is the
+  // tile's first pixel, its rows as long as the tile is wide. Both already cleared; adds
+  // to `counts`.
   SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
            DepthCounts& counts);
 
@@ -60,7 +62,7 @@ class SimdTile {
  private:
   TileGrid::Rect rect_;
   int width_;
-  float* depth_;
+  float* depth_;  // pixel (x, y) at (y - rect_.y0) (rect_.x1 - rect_.x0) + x - rect_.x0
   std::uint32_t* ids_;
   DepthEncoding encoding_;
   bool reversed_;

@@ -77,10 +77,15 @@ void PrintTo(const Configured& c, std::ostream* out) {
 
 class EveryAlgorithmsSteps : public testing::TestWithParam<Configured> {};
 
-// The counters of a render: what the algorithm did, without its times.
+// The counters of a render: what the algorithm did, without its times. Left out: the
+// z-buffer fast path's "fragments skipped by block depth", which counts work saved, not
+// work done. A recording draws the image as one tile, and how much the block test saves
+// depends on how the image is cut: a triangle with few pixels in a tile goes to the
+// textbook loop there (fast_path_test checks the fast path's other counters).
 std::map<std::string, std::int64_t> countersOf(const Stats& stats) {
   std::map<std::string, std::int64_t> counters;
-  for (const std::string& name : stats.counterNames()) counters[name] = stats.counter(name);
+  for (const std::string& name : stats.counterNames())
+    if (name != "fragments skipped by block depth") counters[name] = stats.counter(name);
   return counters;
 }
 

@@ -1,10 +1,12 @@
 // The one-scanline z-buffer's promise, measured rather than taken from its own counter:
 // at the largest image hsr allows (16384 x 16384), the heap it needs beyond the frame it
-// returns is O(width), where a full-frame depth buffer alone would be 1 GiB. The heap is
-// measured by the same meter that gives hsr compare its peak memory column
-// (studies/allocation_meter.cpp).
+// returns is O(width), where a full-frame depth buffer alone would be 1 GiB. And the
+// full frame's two paths: the textbook loop's buffer covers the frame, the fast path's
+// one tile per worker. The heap is measured by the same meter that gives hsr compare
+// its peak memory column (studies/allocation_meter.cpp).
 #include <gtest/gtest.h>
 
+#include "renderer/simd.hpp"
 #include "studies/allocation_meter.hpp"
 #include "test_support.hpp"
 
@@ -17,12 +19,13 @@ struct Measured {
   std::int64_t depthBufferBytes = 0;  // the z-buffer's own counter
 };
 
-Measured measure(const PreparedScene& scene, zbuffer::Variant variant) {
+Measured measure(const PreparedScene& scene, zbuffer::Variant variant, zbuffer::Path path = zbuffer::Path::scalar) {
   const std::int64_t before = studies::heapBytesInUse();
   studies::resetHeapPeak();
   Stats stats;
   zbuffer::Knobs knobs;
   knobs.variant = variant;
+  knobs.path = path;
   const Frame frame = test::render(scene, knobs, 2, stats);
   Measured measured;
   measured.frameBytes = std::int64_t(frame.color.capacity() + frame.depth.capacity() * sizeof(float) +
@@ -41,6 +44,11 @@ TEST(ZBufferMemory, ScanlineNeedsRowsOfDepthEvenAtTheLargestImage) {
   const Measured full = measure(scene, zbuffer::Variant::full);
   EXPECT_GE(full.workingBytes, 2048 * 2048 * 4);
   EXPECT_EQ(full.depthBufferBytes, 2048 * 2048 * 4);
+  if (cpuHasAvx2()) {  // the fast path: a 64 x 64 tile of float32 for each of the two workers
+    const Measured fast = measure(scene, zbuffer::Variant::full, zbuffer::Path::simd);
+    EXPECT_EQ(fast.depthBufferBytes, 2 * 64 * 64 * 4);
+    EXPECT_LT(fast.workingBytes, full.workingBytes - 2048 * 2048 * 4 + 2 * 64 * 64 * 4 + (1 << 20));
+  }
 
   scene.setSize(kMaxImageSide, kMaxImageSide);
   const Measured scanline = measure(scene, zbuffer::Variant::scanline);
