@@ -9,6 +9,7 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "property/random_scene.hpp"
+#include "renderer/screen_triangles.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -63,6 +64,26 @@ TEST(FastPath, SameBitsAndCountersAsTheTextbookLoopOnRandomScenes) {
     prepared.setSize(150, 101);
     for (const DepthFormat format : kFastFormats)
       ASSERT_EQ(differences(prepared, format, 1), "") << "seed " << seed << " " << depthFormatName(format);
+  }
+}
+
+// A frame is reused from render to render (an interactive viewer, the benchmarks), and
+// the fast path draws depth in a buffer of its own: every id and distance of the frame
+// must still come out as from a fresh one, by either path.
+TEST(FastPath, AReusedFrameHoldingOtherValuesComesOutAsAFreshOne) {
+  const test::LoadedScene cube(test::sourcePath("scenes/cube.toml"), 317);  // most blocks empty
+  Stats setUp;
+  const ScreenGeometry geometry = buildScreenTriangles(cube.prepared, {}, 2, setUp);
+  for (const zbuffer::Path path : {zbuffer::Path::scalar, zbuffer::Path::simd}) {
+    Frame fresh(cube.prepared.width(), cube.prepared.height()), reused(fresh.width, fresh.height);
+    Stats stats;
+    zbuffer::renderFullFrame(geometry, DepthFormat::float32, 2, fresh, stats, {.path = path});
+    std::fill(reused.ids.begin(), reused.ids.end(), 0xDEADBEEFu);
+    std::fill(reused.depth.begin(), reused.depth.end(), -1.0f);
+    zbuffer::renderFullFrame(geometry, DepthFormat::float32, 2, reused, stats, {.path = path});
+    EXPECT_EQ(reused.ids, fresh.ids) << (path == zbuffer::Path::simd ? "simd" : "scalar");
+    EXPECT_EQ(reused.depth, fresh.depth) << (path == zbuffer::Path::simd ? "simd" : "scalar");
+    EXPECT_GT(std::count(fresh.ids.begin(), fresh.ids.end(), conventions::kBackgroundId), fresh.ids.size() / 2);
   }
 }
 
