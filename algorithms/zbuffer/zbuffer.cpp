@@ -75,9 +75,9 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     parallelFor(bins.size(), threads, [&](std::size_t tile, int worker) {
       const auto [tileX0, tileY0, tileX1, tileY1] = tiles.rect(tile);
       const auto pixel = [&](int x, int y) { return std::size_t(y) * std::size_t(frame.width) + std::size_t(x); };
-      const DepthBuffer<typename Format::Stored> tileDepth =
-          simd ? DepthBuffer{&depth[std::size_t(worker) * tiles.largestTileArea()], std::size_t(tileX1 - tileX0), tileX0, tileY0}
-               : DepthBuffer{depth.get(), std::size_t(frame.width), 0, 0};
+      using TileDepth = DepthBuffer<typename Format::Stored>;
+      const TileDepth tileDepth = simd ? TileDepth{&depth[std::size_t(worker) * tiles.largestTileArea()], std::size_t(tileX1 - tileX0), tileX0, tileY0}
+                                       : TileDepth{depth.get(), std::size_t(frame.width), 0, 0};
       DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other tiles
       // Step 1: clear the depth buffer to the far end of the format, and the ids to background.
       for (int y = tileY0; y < tileY1; ++y) {
