@@ -173,8 +173,6 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
   // at a block's own corners it would be tighter, but cost four evaluations a block, and
   // most blocks tested that way are not hidden anyway (zbuffer/README.md, "The fast path").
   const float nearest = nearestStored(tri, encoding_, reversed_, triX0, triX1 - 1, triY0, triY1 - 1);
-  float* const depth = depth_;
-  const std::size_t depthStride = std::size_t(rect_.x1 - rect_.x0);
   std::uint32_t* const ids = ids_;
   const std::size_t width = std::size_t(width_);
   DepthCounts counts;  // kept in registers, added to counts_ at the end
@@ -227,7 +225,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
           counts.skippedByBlockDepth += std::popcount(unsigned(covered));
           continue;
         }
-        float* const depthRow = &depth[std::size_t(y - rect_.y0) * depthStride + std::size_t(blockX - rect_.x0)];
+        float* const depthRow = depthAt(blockX, y);
         std::uint32_t* const idRow = &ids[std::size_t(y) * width + std::size_t(blockX)];
         const __m256i coveredLanes = laneMask(covered);
         const __m256 candidate = storedDepth(tx, tri.tdy * (conventions::pixelCenter(y) - tri.y0), encoding_);
@@ -277,7 +275,7 @@ HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) cons
         row.store(&distance[at], infinity);
         continue;
       }
-      const __m256 stored = row.load(&depth_[std::size_t(y - rect_.y0) * std::size_t(rect_.x1 - rect_.x0) + std::size_t(x - rect_.x0)]);
+      const __m256 stored = row.load(depthAt(x, y));
       __m128 half[2];
       for (int h = 0; h < 2; ++h) {
         // As DepthTest::distance: t = (z - a) (1 / b), and the distance 1 / t in perspective.

@@ -60,9 +60,14 @@ class SimdTile {
   void decode(std::span<float> distance, bool perspective) const;
 
  private:
+  // Pixel (x, y)'s depth in the tile's own buffer, whose rows are as long as the tile is wide.
+  float* depthAt(int x, int y) const {
+    return depth_ + std::size_t(y - rect_.y0) * std::size_t(rect_.x1 - rect_.x0) + std::size_t(x - rect_.x0);
+  }
+
   TileGrid::Rect rect_;
   int width_;
-  float* depth_;  // pixel (x, y) at (y - rect_.y0) (rect_.x1 - rect_.x0) + x - rect_.x0
+  float* depth_;  // the tile's first pixel (depthAt)
   std::uint32_t* ids_;
   DepthEncoding encoding_;
   bool reversed_;
