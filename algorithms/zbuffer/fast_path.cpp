@@ -143,7 +143,7 @@ HSR_AVX2 float farthestLane(__m256 rows, bool reversed) {
 
 }  // namespace
 
-SimdTile::SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
+SimdTile::SimdTile(TileGrid::Rect rect, int width, DepthBuffer<float> depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
                    DepthCounts& counts)
     : rect_(rect),
       width_(width),
@@ -225,7 +225,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
           counts.skippedByBlockDepth += std::popcount(unsigned(covered));
           continue;
         }
-        float* const depthRow = depthAt(blockX, y);
+        float* const depthRow = &depth_.at(blockX, y);
         std::uint32_t* const idRow = &ids[std::size_t(y) * width + std::size_t(blockX)];
         const __m256i coveredLanes = laneMask(covered);
         const __m256 candidate = storedDepth(tx, tri.tdy * (conventions::pixelCenter(y) - tri.y0), encoding_);
@@ -275,7 +275,7 @@ HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) cons
         row.store(&distance[at], infinity);
         continue;
       }
-      const __m256 stored = row.load(depthAt(x, y));
+      const __m256 stored = row.load(&depth_.at(x, y));
       __m128 half[2];
       for (int h = 0; h < 2; ++h) {
         // As DepthTest::distance: t = (z - a) (1 / b), and the distance 1 / t in perspective.

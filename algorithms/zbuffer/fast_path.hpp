@@ -24,6 +24,7 @@
 // a CPU without AVX2, the textbook loop runs.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -40,13 +41,21 @@ struct DepthCounts {
   std::int64_t tested = 0, written = 0, ties = 0, skippedByBlockDepth = 0;
 };
 
+// Where a tile's depth values live: pixel (x, y) of the image is at(x, y), in a buffer
+// whose first value is pixel (x0, y0) and whose rows are `stride` values apart.
+template <typename Stored>
+struct DepthBuffer {
+  Stored* values;
+  std::size_t stride;
+  int x0, y0;
+  Stored& at(int x, int y) const { return values[std::size_t(y - y0) * stride + std::size_t(x - x0)]; }
+};
+
 class SimdTile {
  public:
   // The tile `rect` of a width-wide image with ids `ids`, its depth (float32, or
-  // reversed-float32 when `reversed`) in a buffer of the tile's own: `depth` is the
-  // tile's first pixel, its rows as long as the tile is wide. Both already cleared; adds
-  // to `counts`.
-  SimdTile(TileGrid::Rect rect, int width, float* depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
+  // reversed-float32 when `reversed`) in `depth`. Both already cleared; adds to `counts`.
+  SimdTile(TileGrid::Rect rect, int width, DepthBuffer<float> depth, std::uint32_t* ids, DepthEncoding encoding, bool reversed,
            DepthCounts& counts);
 
   // Whether the triangle's pixels in this tile are worth the vectors: a triangle of a
@@ -60,14 +69,9 @@ class SimdTile {
   void decode(std::span<float> distance, bool perspective) const;
 
  private:
-  // Pixel (x, y)'s depth in the tile's own buffer, whose rows are as long as the tile is wide.
-  float* depthAt(int x, int y) const {
-    return depth_ + std::size_t(y - rect_.y0) * std::size_t(rect_.x1 - rect_.x0) + std::size_t(x - rect_.x0);
-  }
-
   TileGrid::Rect rect_;
   int width_;
-  float* depth_;  // the tile's first pixel (depthAt)
+  DepthBuffer<float> depth_;
   std::uint32_t* ids_;
   DepthEncoding encoding_;
   bool reversed_;
