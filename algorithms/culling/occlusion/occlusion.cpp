@@ -2,6 +2,7 @@
 #include "algorithms/culling/occlusion/occlusion.hpp"
 
 #include "algorithms/culling/occlusion/queries.hpp"
+#include "renderer/simd.hpp"
 
 #include <algorithm>
 #include <array>
@@ -95,6 +96,11 @@ std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const Cam
 
 namespace {
 
+// How many occluders ahead their data is asked for (renderer/simd.hpp, prefetch): on
+// the city at 1920 x 1080 (occlusion_bench, least of 4 x 5 runs) 3.93 ms without, 3.40
+// at 4 ahead, 3.37 at 8.
+constexpr std::size_t kPrefetchAhead = 8;
+
 // The positions of `keys` in increasing order of key, equal keys in position order: an
 // LSD radix sort of the keys' bits made monotonic (a float's bits order as its value
 // when the sign bit is flipped on positives and every bit on negatives), a byte per
@@ -130,8 +136,9 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
   boxes.reserve(occluders.size());
   std::vector<float> nearest;
   nearest.reserve(occluders.size());
-  for (const std::uint32_t instance : occluders) {
-    const BoxFootprint& box = boxes.emplace_back(footprint(view, scene.instances()[instance].box));
+  for (std::size_t i = 0; i < occluders.size(); ++i) {
+    if (i + kPrefetchAhead < occluders.size()) prefetch(scene.instances()[occluders[i + kPrefetchAhead]].box);
+    const BoxFootprint& box = boxes.emplace_back(footprint(view, scene.instances()[occluders[i]].box));
     nearest.push_back(box.crossesNear ? -std::numeric_limits<float>::infinity() : box.nearest);
   }
   const std::vector<std::uint32_t> order = nearestFirst(nearest);
@@ -139,7 +146,15 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
   TileMaxima tiles(map);
   std::int64_t rasterized = 0, skipped = 0, texelsRead = 0;
   const std::vector<dvec3>& positions = scene.positions();
-  for (const std::uint32_t position : order) {
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    // Nearest first is no order in memory: ask for what the occluders a few ahead will
+    // read, whether they are then drawn or skipped.
+    if (i + kPrefetchAhead < order.size()) {
+      const std::uint32_t ahead = order[i + kPrefetchAhead];
+      prefetch(boxes[ahead]);
+      prefetch(scene.instances()[occluders[ahead]]);
+    }
+    const std::uint32_t position = order[i];
     const BoxFootprint& box = boxes[position];
     if (tiles.hidden(box, texelsRead)) {
       ++skipped;
