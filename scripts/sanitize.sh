@@ -2,7 +2,10 @@
 # Builds hsr and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (clang,
 # the "sanitize" preset, in build-sanitize/) and runs the unit and hard-case tests under
 # them. Any report fails the test it happens in: undefined behaviour aborts
-# (-fno-sanitize-recover), as do memory errors and leaks. Left out: the golden images and
+# (-fno-sanitize-recover), as do memory errors and leaks. The same run traps
+# floating-point exceptions (tests/floating_point_traps.hpp) with the standard library's
+# assertions on, as the debug preset does; -ffp-exception-behavior=maytrap keeps clang
+# from computing a division it was told to skip (by default it assumes nothing traps). Left out: the golden images and
 # the line algorithms' sweep over every shipped scene (3.5 minutes under the sanitizers,
 # half of this run), which run the same code the hard cases do and run in the suite.
 set -euo pipefail

@@ -1,6 +1,6 @@
 // Floating-point exceptions as failures: an invalid operation (a NaN born), a division
 // by zero or an overflow stops the program at the instruction that caused it, instead of
-// printing a grey pixel three passes later. The debug preset traps them in every test
+// printing a grey pixel three passes later. The debug and sanitize presets trap them in every test
 // (tests/test_main.cpp); a test can trap them for a scope of its own in any build.
 #pragma once
 
@@ -40,7 +40,7 @@ class UntrappedFloatingPoint : public TrappedFloatingPoint {
 };
 
 // Called first by every test program: traps for the whole run when the build asks
-// (-DHSR_TRAP_FLOATING_POINT=ON, the debug preset).
+// (-DHSR_TRAP_FLOATING_POINT=ON, the debug and sanitize presets).
 inline void trapFloatingPointWhenAsked() {
 #ifdef HSR_TRAP_FLOATING_POINT
   std::feclearexcept(FE_ALL_EXCEPT);
