@@ -137,6 +137,8 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
   std::vector<float> nearest;
   nearest.reserve(occluders.size());
   for (std::size_t i = 0; i < occluders.size(); ++i) {
+    // Each box lies inside its instance, and instances are large: the boxes are too far
+    // apart for the hardware to guess the next one in time.
     if (i + kPrefetchAhead < occluders.size()) prefetch(scene.instances()[occluders[i + kPrefetchAhead]].box);
     const BoxFootprint& box = boxes.emplace_back(footprint(view, scene.instances()[occluders[i]].box));
     nearest.push_back(box.crossesNear ? -std::numeric_limits<float>::infinity() : box.nearest);
