@@ -91,5 +91,16 @@ TEST(Parallel, WorkersRunWithTheCallersFloatingPointTraps) {
   }
 }
 
+TEST(FloatingPointTraps, OnInEveryTestExactlyWhereTheBuildAsks) {
+  // CI checks the traps in the sanitizer build only (scripts/test.sh): were the build's
+  // HSR_TRAP_FLOATING_POINT lost on the way to test_main.cpp, every trapping test there
+  // would pass untrapped, and nothing else would say so.
+#ifdef HSR_TRAP_FLOATING_POINT
+  EXPECT_EQ(fegetexcept() & test::kTrappedExceptions, test::kTrappedExceptions);
+#else
+  EXPECT_EQ(fegetexcept(), 0);  // the release build runs as it is timed, untrapped
+#endif
+}
+
 }  // namespace
 }  // namespace hsr
