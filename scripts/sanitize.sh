@@ -5,9 +5,10 @@
 # (-fno-sanitize-recover), as do memory errors and leaks. The same run traps
 # floating-point exceptions (tests/floating_point_traps.hpp) with the standard library's
 # assertions on, as the debug preset does; -ffp-exception-behavior=maytrap keeps clang
-# from computing a division it was told to skip (by default it assumes nothing traps). Left out: the golden images and
-# the line algorithms' sweep over every shipped scene (3.5 minutes under the sanitizers,
-# half of this run), which run the same code the hard cases do and run in the suite.
+# from computing a division the code chose to skip (by default it assumes nothing
+# traps). Left out: the golden images and the line algorithms' sweep over every shipped
+# scene (3.5 minutes under the sanitizers, half of this run), which run the same code
+# the hard cases do and run in the suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh sanitize "$@"

@@ -5,7 +5,7 @@
 # and the standard library's assertions on (scripts/sanitize.sh); then each fuzz target
 # for 10 seconds under both sanitizers (scripts/fuzz.sh). The debug preset
 # (scripts/debug.sh: GCC at -Og, the same traps) is not run here: the sanitizer build
-# checks what it checks, and a third build of everything took CI past 25 minutes.
+# traps the same exceptions, and a third build of everything took CI past 25 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh release -DHSR_WERROR=ON

@@ -1,7 +1,8 @@
 // Floating-point exceptions as failures: an invalid operation (a NaN born), a division
 // by zero or an overflow stops the program at the instruction that caused it, instead of
-// printing a grey pixel three passes later. The debug and sanitize presets trap them in every test
-// (tests/test_main.cpp); a test can trap them for a scope of its own in any build.
+// printing a grey pixel three passes later. The debug and sanitize presets trap them in
+// every test (tests/test_main.cpp); a test can trap them for a scope of its own in any
+// build.
 #pragma once
 
 #include <cfenv>
