@@ -37,6 +37,61 @@ HSR_AVX2 int insideLanes(__m256i e0, __m256i e1, __m256i e2) {
   return ~_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_or_si256(_mm256_or_si256(e0, e1), e2))) & 0xF;
 }
 
+// One triangle's edge functions at the top-left pixel center of the 8 x 8 blocks, the
+// three in the lanes of one vector (the fourth lane 0: never outside, never in the way
+// of inside), stepped a block to the right by adding 8 A, exact in 64-bit integers as
+// in rasterizeSpan. An edge function being linear, its least and greatest over the
+// pixel centers of a block clipped to the triangle's box are at the clipped block's
+// corners: i A and i B for i = 0..7, tabulated once per triangle, give them by adding. A
+// block is outside the triangle where some edge is negative at its greatest, and inside
+// where every edge is non-negative at its least.
+class BlockCorners {
+ public:
+  HSR_AVX2 explicit BlockCorners(const ScreenTriangle& tri) : tri_(tri) {
+    using conventions::kSubpixelScale;
+    const __m256i acrossOne = _mm256_setr_epi64x(tri.edgeA[0] * kSubpixelScale, tri.edgeA[1] * kSubpixelScale, tri.edgeA[2] * kSubpixelScale, 0);
+    const __m256i downOne = _mm256_setr_epi64x(tri.edgeB[0] * kSubpixelScale, tri.edgeB[1] * kSubpixelScale, tri.edgeB[2] * kSubpixelScale, 0);
+    across_[0] = down_[0] = _mm256_setzero_si256();
+    for (int i = 1; i < kBlock; ++i) {
+      across_[i] = _mm256_add_epi64(across_[i - 1], acrossOne);
+      down_[i] = _mm256_add_epi64(down_[i - 1], downOne);
+    }
+    right_ = _mm256_add_epi64(across_[kBlock - 1], acrossOne);
+  }
+
+  // Starts a row of blocks at the block whose top-left pixel is (x, y), of which rows
+  // [y0, y1) lie in the triangle's box.
+  HSR_AVX2 void startRow(int x, int y, int y0, int y1) {
+    using conventions::kSubpixelScale;
+    const std::int64_t px = std::int64_t(x) * kSubpixelScale + kSubpixelScale / 2, py = std::int64_t(y) * kSubpixelScale + kSubpixelScale / 2;
+    const auto edge = [&](int k) { return tri_.edgeA[k] * px + tri_.edgeB[k] * py + tri_.edgeC[k]; };
+    at_ = _mm256_setr_epi64x(edge(0), edge(1), edge(2), 0);
+    splitLeastGreatest(down_[y0 - y], down_[y1 - 1 - y], rowLeast_, rowGreatest_);
+  }
+  HSR_AVX2 void right() { at_ = _mm256_add_epi64(at_, right_); }
+  // Of the current block, columns [x0, x1) from its left, x1 > x0: outside, inside, or
+  // neither.
+  HSR_AVX2 void test(int x0, int x1, bool& outside, bool& inside) const {
+    __m256i least, greatest;
+    splitLeastGreatest(across_[x0], across_[x1 - 1], least, greatest);
+    outside = _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_add_epi64(_mm256_add_epi64(at_, greatest), rowGreatest_))) != 0;
+    inside = _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_add_epi64(_mm256_add_epi64(at_, least), rowLeast_))) == 0;
+  }
+  // The current block's edge functions at its first column, `rowsDown` rows below its
+  // top, where its walk row by row starts.
+  HSR_AVX2 __m256i firstColumn(int rowsDown) const { return _mm256_add_epi64(at_, down_[rowsDown]); }
+
+ private:
+  HSR_AVX2 static void splitLeastGreatest(__m256i a, __m256i b, __m256i& least, __m256i& greatest) {
+    const __m256i aGreater = _mm256_cmpgt_epi64(a, b);
+    least = _mm256_blendv_epi8(a, b, aGreater);
+    greatest = _mm256_blendv_epi8(b, a, aGreater);
+  }
+  const ScreenTriangle& tri_;
+  __m256i across_[kBlock], down_[kBlock];  // i A and i B, lane k edge k
+  __m256i right_, at_ = {}, rowLeast_ = {}, rowGreatest_ = {};
+};
+
 // One triangle's edge functions over the lanes of a block's rows: lane i of row y is
 // E(x + i, y) = E(x, y) + i A, and a row down adds B, exact in 64-bit integers as in
 // rasterizeSpan. Stepped row by row from the block's first.
@@ -51,10 +106,11 @@ class EdgeLanes {
     }
   }
 
-  // Starts a block whose first row's first lane has edge functions e.
-  HSR_AVX2 void start(const std::int64_t e[3]) {
+  // Starts a block whose first row's first lane has edge functions e (lane k: edge k).
+  HSR_AVX2 void start(__m256i e) {
+    const __m256i each[3] = {_mm256_permute4x64_epi64(e, 0x00), _mm256_permute4x64_epi64(e, 0x55), _mm256_permute4x64_epi64(e, 0xAA)};
     for (int k = 0; k < 3; ++k) {
-      low_[k] = _mm256_add_epi64(_mm256_set1_epi64x(e[k]), across_[k]);
+      low_[k] = _mm256_add_epi64(each[k], across_[k]);
       high_[k] = _mm256_add_epi64(low_[k], acrossHalf_[k]);
     }
   }
@@ -161,7 +217,6 @@ bool SimdTile::worthDrawing(const ScreenTriangle& tri) const {
 }
 
 HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
-  using conventions::kSubpixelScale;
   const auto [triX0, triY0, triX1, triY1] = boxIn(tri, rect_);
   if (triX0 >= triX1 || triY0 >= triY1) return;
   EdgeLanes edges(tri);
@@ -178,22 +233,18 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
   DepthCounts counts;  // kept in registers, added to counts_ at the end
   // Step 2, by blocks of the tile's 8 x 8 grid. A block's lanes are its 8 columns; the
   // triangle's box clips them to [x0, x1) and its rows to [y0, y1).
+  BlockCorners corners(tri);
+  const int firstBlockX = rect_.x0 + (triX0 - rect_.x0) / kBlock * kBlock;
   for (int blockY = rect_.y0 + (triY0 - rect_.y0) / kBlock * kBlock; blockY < triY1; blockY += kBlock)
-    for (int blockX = rect_.x0 + (triX0 - rect_.x0) / kBlock * kBlock; blockX < triX1; blockX += kBlock) {
+    for (int blockX = firstBlockX; blockX < triX1; blockX += kBlock) {
       const int x0 = std::max(blockX, triX0), x1 = std::min(blockX + kBlock, triX1);
       const int y0 = std::max(blockY, triY0), y1 = std::min(blockY + kBlock, triY1);
-      // The edge functions at the block's first column on row y0, and their least and
-      // greatest over the clipped block: being linear, at its corners.
-      std::int64_t e[3];
-      bool outside = false, inside = true;
-      const std::int64_t px = std::int64_t(blockX) * kSubpixelScale + kSubpixelScale / 2, py = std::int64_t(y0) * kSubpixelScale + kSubpixelScale / 2;
-      for (int k = 0; k < 3; ++k) {
-        e[k] = tri.edgeA[k] * px + tri.edgeB[k] * py + tri.edgeC[k];
-        const std::int64_t step = tri.edgeA[k] * kSubpixelScale, down = tri.edgeB[k] * kSubpixelScale * (y1 - 1 - y0);
-        const std::int64_t left = e[k] + step * (x0 - blockX), right = e[k] + step * (x1 - 1 - blockX);
-        outside |= std::max(left, right) + std::max<std::int64_t>(down, 0) < 0;
-        inside &= std::min(left, right) + std::min<std::int64_t>(down, 0) >= 0;
-      }
+      if (blockX == firstBlockX)
+        corners.startRow(blockX, blockY, y0, y1);
+      else
+        corners.right();
+      bool outside, inside;
+      corners.test(x0 - blockX, x1 - blockX, outside, inside);
       if (outside) continue;  // no pixel center of the block inside the triangle
       const int columns = ((1 << (x1 - blockX)) - 1) & ~((1 << (x0 - blockX)) - 1);
       float& blockFarthest = blockFarthest_[std::size_t((blockY - rect_.y0) / kBlock) * std::size_t(blocksX_) + std::size_t((blockX - rect_.x0) / kBlock)];
@@ -212,7 +263,7 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
         const __m256d center = _mm256_add_pd(_mm256_set1_pd(conventions::pixelCenter(blockX)), _mm256_setr_pd(4 * h, 4 * h + 1, 4 * h + 2, 4 * h + 3));
         tx[h] = _mm256_add_pd(_mm256_set1_pd(tri.t0), _mm256_mul_pd(_mm256_set1_pd(tri.tdx), _mm256_sub_pd(center, _mm256_set1_pd(tri.x0))));
       }
-      if (!inside) edges.start(e);
+      if (!inside) edges.start(corners.firstColumn(y0 - blockY));
       // The farthest depth of the rows read and written; when they are all of the block's
       // rows, it is the block's farthest depth, found without reading the block again.
       __m256 farthestRead = never;
