@@ -187,12 +187,21 @@ bool ExactShadows::shadowed(std::size_t light, const dvec3& point, std::uint32_t
 }
 
 ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal) {
+  ReferenceImage image;
+  traceReference(scene, threads, stats, traversal, image);
+  return image;
+}
+
+void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image) {
   const SurfaceReference reference(scene, stats, traversal);
   const CameraTransform& camera = scene.camera();
   PhaseTimer timer(stats, "reference");
-  ReferenceImage image;
-  image.frame = Frame(scene.width(), scene.height());
-  image.ambiguous.assign(image.frame.pixelCount(), 0);
+  // Every pixel's id, depth and ambiguity is written below: an image of this size is
+  // reused as it is, as a renderer reuses its framebuffer.
+  if (image.frame.width != scene.width() || image.frame.height != scene.height()) image.frame = Frame(scene.width(), scene.height());
+  image.ambiguous.resize(image.frame.pixelCount());
+  image.ambiguousPixels = image.exactFallbacks = image.blendTiedPixels = 0;
+  image.blendTied.clear();
 
   // One work item per row; each writes only its own pixels and counters.
   const auto rows = static_cast<std::size_t>(scene.height());
@@ -235,7 +244,6 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
   stats.add("ray-triangle tests", total.triangleTests);
   stats.add("exact ray-triangle tests", total.exactTriangleTests);
   stats.add("exact depth comparisons", total.exactComparisons);
-  return image;
 }
 
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats) {

@@ -116,6 +116,9 @@ struct ReferenceImage {
 // comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
 ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats,
                               ReferenceTraversal traversal = ReferenceTraversal::packets);
+// The same into `image`, reusing its buffers when it has the scene's size (a benchmark's
+// frames, as the z-buffer's reuse theirs); its color is left as it was.
+void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image);
 // traceReference, then the shading every algorithm's frame gets (renderer/shading), with
 // exact shadow rays where an algorithm's frame has shadow maps, then fog and outline.
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);

@@ -189,6 +189,25 @@ std::string packetsAgainstTextbook(const PreparedScene& scene, int threads) {
   return found;
 }
 
+// An image traced into again (a benchmark's frames) comes out as a fresh one: every id,
+// distance and ambiguity written, the counts those of the new trace alone.
+TEST(Reference, AReusedImageHoldingAnotherScenesAnswerComesOutAsAFreshOne) {
+  test::LoadedScene counters(test::sourcePath("scenes/counters.toml")), coplanar(test::sourcePath("scenes/hard/coplanar.toml"));
+  counters.prepared.setSize(160, 120);
+  coplanar.prepared.setSize(160, 120);
+  Stats stats;
+  ReferenceImage reused;
+  traceReference(coplanar.prepared, 2, stats, ReferenceTraversal::packets, reused);
+  ASSERT_GT(reused.ambiguousPixels, 0) << "the first scene should leave ambiguous pixels behind";
+  traceReference(counters.prepared, 2, stats, ReferenceTraversal::packets, reused);
+  const ReferenceImage fresh = traceReference(counters.prepared, 2, stats);
+  EXPECT_EQ(reused.frame.ids, fresh.frame.ids);
+  EXPECT_EQ(std::memcmp(reused.frame.depth.data(), fresh.frame.depth.data(), fresh.frame.depth.size() * sizeof(float)), 0);
+  EXPECT_EQ(reused.ambiguous, fresh.ambiguous);
+  EXPECT_EQ(reused.ambiguousPixels, fresh.ambiguousPixels);
+  EXPECT_EQ(reused.exactFallbacks, fresh.exactFallbacks);
+}
+
 TEST(Reference, PacketsGiveTheTextbookTraversalsAnswerOnEveryShippedScene) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the reference traces one ray at a time here";
   for (const auto& file : test::shippedScenes()) {
