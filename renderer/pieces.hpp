@@ -97,6 +97,7 @@ std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& paint
   parallelFor(bins.size(), threads, [&](std::size_t tile, int) {
     const TileGrid::Rect rect = tiles.rect(tile);
     startTile(tile, rect);
+    std::int64_t tileCutTests = 0;  // stored once: neighbouring tiles' counts share cache lines
     for (const std::uint32_t index : bins[tile]) {
       const Piece& piece = order.pieces[index];
       const ScreenTriangle& tri = geometry.triangles[piece.screenTriangle];
@@ -108,7 +109,7 @@ std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& paint
         const double along = glm::dot(own.normal, own.corner - ray.origin) / glm::dot(own.normal, ray.direction);
         const dvec3 point = ray.origin + along * ray.direction;
         for (std::uint32_t k = 0; k < piece.cutCount; ++k) {
-          ++cutTests[tile];
+          ++tileCutTests;
           const Plane& plane = cutPlanes[piece.firstCut + k];
           const bool nonNegative = glm::dot(plane.normal, point - plane.corner) >= 0;  // NaN: negative side
           if (nonNegative != order.cuts[piece.firstCut + k].positive) return false;
@@ -125,6 +126,7 @@ std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& paint
         });
       pieceDone(tile, index);
     }
+    cutTests[tile] = tileCutTests;
   });
   std::int64_t total = 0;
   for (const std::int64_t tests : cutTests) total += tests;

@@ -144,6 +144,10 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
     Part& out = parts[part];
     out.keepCorners = keepCorners;
     out.triangles.reserve(end - begin);  // one triangle in, at most one out unless clipped: no regrowth in the common case
+    // Counted on this thread's stack and stored once: neighbouring chunks' counts share
+    // cache lines, and the other thread is working on the next chunk (counted in place,
+    // the two threads took 3.5 times one thread's time in this loop on dragons).
+    Counts chunkCounts;
     for (std::size_t k = begin; k < end; ++k) {
       const std::size_t i = submitted ? submitted->triangles[k] : k;
       const Triangle& t = triangles[i];
@@ -152,17 +156,18 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTran
       // bytes a vertex where a ScreenVertex is 32, so that rejecting a triangle reads a
       // cache line instead of three (on dragons, by perf: the triangle loop 2.35 -> 1.87 ms).
       if (outsideOf[t[0]] & outsideOf[t[1]] & outsideOf[t[2]]) {
-        ++counts[part].outside;
+        ++chunkCounts.outside;
         continue;
       }
       const dvec3* const world[3] = {&positions[t[0]], &positions[t[1]], &positions[t[2]]};
       const TriangleFate fate = triangleStage(vertices[t[0]], vertices[t[1]], vertices[t[2]], world, camera, volume,
                                               [&](const dvec2 pixel[3], const double depth[3]) {
-                                                emitTriangle(pixel, depth, camera, static_cast<std::uint32_t>(i), out, counts[part]);
+                                                emitTriangle(pixel, depth, camera, static_cast<std::uint32_t>(i), out, chunkCounts);
                                               });
-      counts[part].outside += fate == TriangleFate::outside;
-      counts[part].clipped += fate == TriangleFate::clipped;
+      chunkCounts.outside += fate == TriangleFate::outside;
+      chunkCounts.clipped += fate == TriangleFate::clipped;
     }
+    counts[part] = chunkCounts;
   });
 
   // Concatenate the parts in order. Appended to a reserved list, not copied in parallel
