@@ -189,10 +189,13 @@ int main(int argc, char** argv) try {
     prepared.setSize(kWidth, kHeight);
     MesaRenderer mesa(prepared);
 
-    hsr::Frame frame(kWidth, kHeight);  // reused, as Mesa reuses its framebuffer: both clear it every frame
+    // Reused, as Mesa reuses its framebuffer (both clear it every frame) and the memory it
+    // bins triangles into.
+    hsr::Frame frame(kWidth, kHeight);
+    hsr::ScreenGeometry geometry{prepared.camera(), {}, {}};
     const auto hsrVisibility = [&](hsr::zbuffer::Path path) {
       hsr::Stats stats;
-      const hsr::ScreenGeometry geometry = hsr::buildScreenTriangles(prepared, {}, threads, stats);
+      hsr::buildScreenTriangles(prepared, prepared.camera(), {}, threads, stats, geometry);
       hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats, {.path = path});
     };
     Timing scalar, simd, theirs;

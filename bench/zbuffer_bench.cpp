@@ -28,10 +28,12 @@ void visibility(benchmark::State& state) {
   const auto variant = static_cast<hsr::zbuffer::Variant>(state.range(1));
   const auto format = static_cast<hsr::DepthFormat>(state.range(2));
   const int threads = static_cast<int>(state.range(3));
-  hsr::Frame frame(scene.width(), scene.height());  // reused, as a real-time renderer reuses its framebuffer
+  // Reused, as a real-time renderer reuses its framebuffer and its triangle buffers.
+  hsr::Frame frame(scene.width(), scene.height());
+  hsr::ScreenGeometry geometry{scene.camera(), {}, {}};
   const auto once = [&](hsr::Stats& stats) {
     const bool clipFar = hsr::clipsFarPlane(format, scene.scene().camera.projection);
-    const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, {.clipFar = clipFar}, threads, stats);
+    buildScreenTriangles(scene, scene.camera(), {.clipFar = clipFar}, threads, stats, geometry);
     if (variant == hsr::zbuffer::Variant::full)
       hsr::zbuffer::renderFullFrame(geometry, format, threads, frame, stats);
     else

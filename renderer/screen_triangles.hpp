@@ -115,5 +115,9 @@ ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const GeometryOp
 // into an image of the view's size.
 ScreenGeometry buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, const GeometryOptions& options,
                                     int threads, Stats& stats);
+// The same into `geometry`, whose storage is reused (as a renderer keeps its buffers
+// from frame to frame); what it held before is replaced.
+void buildScreenTriangles(const PreparedScene& scene, const CameraTransform& view, const GeometryOptions& options, int threads,
+                          Stats& stats, ScreenGeometry& geometry);
 
 }  // namespace hsr

@@ -1,6 +1,8 @@
 // The geometry stage's vertex step: screenVertices, which runs four vertices to a vector
 // where the CPU has AVX2, must give screenVertex's bits for every vertex, wherever the
-// camera and the vertex are.
+// camera and the vertex are. And its triangle step's output: the same list for any
+// thread count (one worker appends in order, more concatenate their chunks), and the
+// same built into reused storage as built fresh.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -9,6 +11,7 @@
 
 #include "floating_point_traps.hpp"
 #include "renderer/screen_triangles.hpp"
+#include "test_support.hpp"
 
 namespace hsr {
 namespace {
@@ -62,6 +65,50 @@ TEST(Geometry, VerticesFourAtATimeAreTheTextbookVertexBitForBit) {
   // Both kinds of vertex were compared, many times.
   EXPECT_GT(behind, 1000);
   EXPECT_GT(compared - behind, 1000);
+}
+
+// Every field of every screen triangle and kept corner, as bits (padding left out).
+std::vector<std::uint64_t> bitsOf(const ScreenGeometry& geometry) {
+  std::vector<std::uint64_t> bits;
+  const auto real = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  for (const ScreenTriangle& t : geometry.triangles) {
+    for (int k = 0; k < 3; ++k) bits.insert(bits.end(), {std::uint64_t(t.edgeA[k]), std::uint64_t(t.edgeB[k]), std::uint64_t(t.edgeC[k])});
+    bits.insert(bits.end(), {std::uint64_t(t.minX), std::uint64_t(t.maxX), std::uint64_t(t.minY), std::uint64_t(t.maxY), real(t.x0),
+                             real(t.y0), real(t.t0), real(t.tdx), real(t.tdy), t.triangle, t.frontFacing});
+  }
+  bits.push_back(geometry.corners.size());
+  for (const auto& corners : geometry.corners)
+    for (const dvec3& corner : corners) bits.insert(bits.end(), {real(corner.x), real(corner.y), real(corner.z)});
+  return bits;
+}
+
+TEST(Geometry, OneWorkerAppendingInOrderGivesTheConcatenatedChunksBitForBit) {
+  // The city's 100,008 triangles make 25 chunks, and a near plane cuts its streets.
+  test::LoadedScene city(test::sourcePath("scenes/city.toml"), 320);
+  for (const bool keepCorners : {false, true}) {
+    Stats stats;
+    const ScreenGeometry inOrder = buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, 1, stats);
+    ASSERT_GT(inOrder.triangles.size(), 4096u) << "too few triangles to fill more than one chunk";
+    ASSERT_EQ(inOrder.corners.size(), keepCorners ? inOrder.triangles.size() : 0);
+    for (const int threads : {2, 3})
+      EXPECT_EQ(bitsOf(buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, threads, stats)), bitsOf(inOrder))
+          << threads << " threads, corners " << (keepCorners ? "kept" : "not kept");
+  }
+}
+
+// Geometry built again into a list that held another scene's triangles and corners
+// (a benchmark's frames) comes out as the fresh list, for one worker and for more.
+TEST(Geometry, AReusedListHoldingAnotherScenesTrianglesComesOutAsAFreshOne) {
+  test::LoadedScene city(test::sourcePath("scenes/city.toml"), 320), counters(test::sourcePath("scenes/counters.toml"), 320);
+  for (const int threads : {1, 2}) {
+    Stats stats;
+    ScreenGeometry reused = buildScreenTriangles(city.prepared, {.keepCorners = true}, threads, stats);
+    ASSERT_FALSE(reused.corners.empty());
+    buildScreenTriangles(counters.prepared, counters.prepared.camera(), {}, threads, stats, reused);
+    const ScreenGeometry fresh = buildScreenTriangles(counters.prepared, {}, threads, stats);
+    EXPECT_EQ(bitsOf(reused), bitsOf(fresh)) << threads << " threads";
+    EXPECT_EQ(reused.camera.width(), counters.prepared.width());
+  }
 }
 
 }  // namespace
