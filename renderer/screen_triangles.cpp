@@ -200,10 +200,10 @@ void buildScreenTriangles(const PreparedScene& scene, const CameraTransform& vie
     }
   }
   Counts sum;
-  for (std::size_t part = 0; part < parts.size(); ++part) {
-    sum.outside += counts[part].outside;
-    sum.clipped += counts[part].clipped;
-    sum.empty += counts[part].empty;
+  for (const Counts& chunk : counts) {
+    sum.outside += chunk.outside;
+    sum.clipped += chunk.clipped;
+    sum.empty += chunk.empty;
   }
   stats.add("triangles in", static_cast<std::int64_t>(submittedCount));
   stats.add("triangles outside view", sum.outside);

@@ -11,6 +11,7 @@
 
 #include "floating_point_traps.hpp"
 #include "renderer/screen_triangles.hpp"
+#include "renderer/visible_set.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -82,17 +83,36 @@ std::vector<std::uint64_t> bitsOf(const ScreenGeometry& geometry) {
   return bits;
 }
 
+// The stage's counts of what became of the triangles.
+std::vector<std::int64_t> countsOf(const Stats& stats) {
+  std::vector<std::int64_t> counts;
+  for (const char* name : {"triangles in", "triangles outside view", "triangles clipped", "triangles between pixel centers", "screen triangles"})
+    counts.push_back(stats.counter(name));
+  return counts;
+}
+
 TEST(Geometry, OneWorkerAppendingInOrderGivesTheConcatenatedChunksBitForBit) {
   // The city's 100,008 triangles make 25 chunks, and a near plane cuts its streets.
   test::LoadedScene city(test::sourcePath("scenes/city.toml"), 320);
   for (const bool keepCorners : {false, true}) {
-    Stats stats;
-    const ScreenGeometry inOrder = buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, 1, stats);
+    Stats inOrderStats;
+    const ScreenGeometry inOrder = buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, 1, inOrderStats);
     ASSERT_GT(inOrder.triangles.size(), 4096u) << "too few triangles to fill more than one chunk";
     ASSERT_EQ(inOrder.corners.size(), keepCorners ? inOrder.triangles.size() : 0);
-    for (const int threads : {2, 3})
+    ASSERT_GT(inOrderStats.counter("triangles outside view"), 4096) << "too few rejected triangles to count in more than one chunk";
+    for (const int threads : {2, 3}) {
+      Stats stats;
       EXPECT_EQ(bitsOf(buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, threads, stats)), bitsOf(inOrder))
           << threads << " threads, corners " << (keepCorners ? "kept" : "not kept");
+      EXPECT_EQ(countsOf(stats), countsOf(inOrderStats)) << threads << " threads";
+    }
+  }
+  // And nothing submitted: no chunk at all.
+  const VisibleSet nothing;
+  for (const int threads : {1, 2}) {
+    Stats stats;
+    EXPECT_TRUE(buildScreenTriangles(city.prepared, {.submitted = &nothing}, threads, stats).triangles.empty());
+    EXPECT_EQ(countsOf(stats), std::vector<std::int64_t>(5, 0));
   }
 }
 
