@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -13,13 +14,19 @@ namespace hsr {
 
 struct TileGrid {
   static constexpr int kTileSize = 64;  // pixels per side of a tile
-  int width, height, tileSize, tilesX, tilesY;
+  int width, height, tileSize, tileShift, tilesX, tilesY;
 
   // tileSize: kTileSize, or a tile as large as the image to draw it in one submission-ordered
-  // pass (what a step-by-step recording watches).
+  // pass (what a step-by-step recording watches). Rounded up to a power of two (a tile
+  // is cut at the image's edges anyway), so that a pixel's tile is a shift away, not a
+  // division: binning's four divisions a triangle took 7% of dragons' rasterization.
   TileGrid(int imageWidth, int imageHeight, int tileSize_ = kTileSize)
-      : width(imageWidth), height(imageHeight), tileSize(tileSize_), tilesX((imageWidth + tileSize - 1) / tileSize),
-        tilesY((imageHeight + tileSize - 1) / tileSize) {}
+      : width(imageWidth),
+        height(imageHeight),
+        tileSize(int(std::bit_ceil(unsigned(tileSize_)))),
+        tileShift(std::countr_zero(unsigned(tileSize))),
+        tilesX((imageWidth + tileSize - 1) >> tileShift),
+        tilesY((imageHeight + tileSize - 1) >> tileShift) {}
   std::size_t count() const { return std::size_t(tilesX) * std::size_t(tilesY); }
 
   // A tile's pixels: [x0, x1) x [y0, y1).
@@ -40,8 +47,8 @@ struct TileGrid {
     std::vector<std::vector<std::uint32_t>> bins(count());
     for (std::uint32_t i = 0; i < items; ++i) {
       const ScreenTriangle& tri = triangleOf(i);
-      for (int ty = tri.minY / tileSize; ty <= tri.maxY / tileSize; ++ty)
-        for (int tx = tri.minX / tileSize; tx <= tri.maxX / tileSize; ++tx) bins[std::size_t(ty * tilesX + tx)].push_back(i);
+      for (int ty = tri.minY >> tileShift; ty <= tri.maxY >> tileShift; ++ty)
+        for (int tx = tri.minX >> tileShift; tx <= tri.maxX >> tileShift; ++tx) bins[std::size_t(ty * tilesX + tx)].push_back(i);
     }
     return bins;
   }
