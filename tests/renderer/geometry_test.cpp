@@ -1,8 +1,9 @@
 // The geometry stage's vertex step: screenVertices, which runs four vertices to a vector
 // where the CPU has AVX2, must give screenVertex's bits for every vertex, wherever the
 // camera and the vertex are. And its triangle step's output: the same list for any
-// thread count (one worker appends in order, more concatenate their chunks), and the
-// same built into reused storage as built fresh.
+// thread count and storage (one worker with room kept from an earlier frame appends in
+// order; otherwise chunks are concatenated), and the same built into reused storage as
+// built fresh.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -95,12 +96,17 @@ TEST(Geometry, OneWorkerAppendingInOrderGivesTheConcatenatedChunksBitForBit) {
   // The city's 100,008 triangles make 25 chunks, and a near plane cuts its streets.
   test::LoadedScene city(test::sourcePath("scenes/city.toml"), 320);
   for (const bool keepCorners : {false, true}) {
+    // One worker into storage with room (kept from a frame before): the chunks appended
+    // in order, to the list itself.
     Stats inOrderStats;
-    const ScreenGeometry inOrder = buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, 1, inOrderStats);
+    ScreenGeometry inOrder = buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, 1, inOrderStats);
+    inOrderStats = Stats();
+    buildScreenTriangles(city.prepared, city.prepared.camera(), {.keepCorners = keepCorners}, 1, inOrderStats, inOrder);
     ASSERT_GT(inOrder.triangles.size(), 4096u) << "too few triangles to fill more than one chunk";
     ASSERT_EQ(inOrder.corners.size(), keepCorners ? inOrder.triangles.size() : 0);
     ASSERT_GT(inOrderStats.counter("triangles outside view"), 4096) << "too few rejected triangles to count in more than one chunk";
-    for (const int threads : {2, 3}) {
+    // Into fresh storage, by one worker and by more: chunk by chunk, concatenated.
+    for (const int threads : {1, 2, 3}) {
       Stats stats;
       EXPECT_EQ(bitsOf(buildScreenTriangles(city.prepared, {.keepCorners = keepCorners}, threads, stats)), bitsOf(inOrder))
           << threads << " threads, corners " << (keepCorners ? "kept" : "not kept");
