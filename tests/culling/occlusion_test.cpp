@@ -115,6 +115,46 @@ void expectConservativeMap(const std::string& scene, int mapWidth, int mapHeight
   EXPECT_GT(written, mapWidth * mapHeight / 10) << scene << ": the occluders drew something";
 }
 
+// The center rule writes, at every texel whose center the reference sees an occluder
+// at, that occluder's key to within the float arithmetic of a row (relative 1e-5), and
+// nothing where the reference sees the background. The reference is traced at the
+// map's own resolution, so its pixel centers are the texel centers; a center the
+// reference finds ambiguous (exactly on an edge) may go either way, and a texel behind
+// the near plane's cut through a box is where the map, clipped there, and the
+// reference, which is not, part.
+void expectCenterMap(const std::string& scene, int mapWidth, int mapHeight) {
+  test::LoadedScene loaded(hard(scene));
+  loaded.prepared.setSize(mapWidth, mapHeight);
+  Stats stats;
+  const ReferenceImage truth = traceReference(loaded.prepared, 2, stats);
+  const CameraTransform& camera = loaded.prepared.camera();
+  Knobs settings;
+  settings.rule = Rule::center, settings.mapWidth = mapWidth, settings.mapHeight = mapHeight;
+  const MapView view(camera, mapWidth, mapHeight);
+  const VisibleSet all = VisibleSet::everything(loaded.prepared);
+  const DepthMap map = occluderDepthMap(loaded.prepared, view, settings, chooseOccluders(loaded.prepared, camera, settings, all), stats);
+  std::int64_t compared = 0;
+  for (int y = 0; y < mapHeight; ++y)
+    for (int x = 0; x < mapWidth; ++x) {
+      const std::size_t pixel = std::size_t(y) * std::size_t(mapWidth) + std::size_t(x);
+      if (truth.ambiguous[pixel]) continue;
+      ++compared;
+      if (truth.frame.ids[pixel] == 0) {
+        ASSERT_TRUE(std::isinf(map.at(x, y))) << scene << ": texel " << x << "," << y << " written over background";
+        continue;
+      }
+      const double expected = view.key(truth.frame.depth[pixel]);
+      ASSERT_NEAR(map.at(x, y), expected, 1e-5 * std::abs(expected)) << scene << ": texel " << x << "," << y;
+    }
+  EXPECT_GT(compared, mapWidth * mapHeight * 9 / 10) << scene << ": most centers are not ambiguous";
+}
+
+TEST(Occlusion, TheCenterRuleWritesTheNearestOccludersKeyAtEveryTexelCenter) {
+  expectCenterMap("occ_orbit", 64, 48);          // boxes drawn as outlines, and a ground of two triangles
+  expectCenterMap("occ_gap", 97, 61);            // odd sizes
+  expectCenterMap("occ_edge_opening", 33, 25);
+}
+
 // The conservative rule's fast path (fast_path.hpp) writes a row as the textbook loop
 // does, bit for bit: random faces' keys (negative, as -1 / d under perspective, and
 // positive, as d under orthographic, of magnitudes from 1e-4 to 1e4), random runs of a
@@ -134,6 +174,27 @@ TEST(Occlusion, ConservativeRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
     std::vector<float> textbook = held, fast = held;
     conservativeRow(textbook.data(), first, last, keys, count);
     conservativeRow(fast.data(), conservativeRowEightAtATime(fast.data(), first, last, keys, count), last, keys, count);
+    ASSERT_EQ(std::memcmp(fast.data(), textbook.data(), fast.size() * sizeof(float)), 0) << "trial " << trial;
+  }
+}
+
+// And so does the center rule's, runs shorter than eight texels among them (written
+// whole under a mask): keys in float, of magnitudes from 1e-4 to 1e4, either sign.
+TEST(Occlusion, CenterRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
+  std::mt19937 random(28);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double magnitude = std::pow(10.0, -4 + 8 * unit(random)), sign = trial % 3 == 0 ? 1.0 : -1.0;
+    CenterRowKey keys[3];
+    const int count = 1 + trial % 3;
+    for (CenterRowKey& key : keys) key = {float(sign * magnitude * (1 + unit(random))), float(magnitude * (unit(random) - 0.5) * 1e-3)};
+    std::vector<float> held(64);
+    for (float& texel : held) texel = unit(random) < 0.2 ? std::numeric_limits<float>::infinity() : float(sign * magnitude * (1 + 2 * unit(random)));
+    const int first = int(unit(random) * 20), last = first + int(unit(random) * 43);
+    std::vector<float> textbook = held, fast = held;
+    centerRow(textbook.data(), first, last, keys, count);
+    centerRowEightAtATime(fast.data(), first, last, keys, count);
     ASSERT_EQ(std::memcmp(fast.data(), textbook.data(), fast.size() * sizeof(float)), 0) << "trial " << trial;
   }
 }

@@ -7,7 +7,6 @@
 
 #include "renderer/conventions.hpp"
 #include "algorithms/culling/occlusion/fast_path.hpp"
-#include "renderer/raster.hpp"
 #include "renderer/simd.hpp"
 
 namespace hsr::culling::occlusion {
@@ -35,15 +34,6 @@ int convexHull(std::array<dvec2, 8> points, int count, dvec2* hull) {
   }
   return size;
 }
-
-// The center rule's run of a row: each texel keeps the nearer of its key and the
-// triangle's, rowStart + kx x in float. The one loop, compiled twice: for the baseline,
-// and inlined into an AVX2 function, where the compiler makes it eight texels to a
-// vector instead of four (6% of the center rule's time at 1920 x 1080).
-HSR_INLINE void keepNearer(float* row, int first, int last, float rowStart, float kx) {
-  for (int x = first; x <= last; ++x) row[x] = std::min(row[x], rowStart + kx * static_cast<float>(x));
-}
-HSR_AVX2 void keepNearerWithAvx2(float* row, int first, int last, float rowStart, float kx) { keepNearer(row, first, last, rowStart, kx); }
 
 // The largest key of `rows` rows of `columns` texels (a multiple of the vector's lanes),
 // rows `stride` apart, a vector of Lanes at a time: the compiler leaves this reduction
@@ -75,6 +65,14 @@ void conservativeRow(float* row, int first, int last, const RowKey* keys, int co
     double farthest = -std::numeric_limits<double>::infinity();
     for (int k = 0; k < count; ++k) farthest = std::max(farthest, keys[k].atZero + keys[k].slope * x);
     row[x] = std::min(row[x], roundedUp(farthest));
+  }
+}
+
+void centerRow(float* row, int first, int last, const CenterRowKey* keys, int count) {
+  for (int x = first; x <= last; ++x) {
+    float farthest = -kEmpty;
+    for (int k = 0; k < count; ++k) farthest = std::max(farthest, keys[k].atZero + keys[k].slope * static_cast<float>(x));
+    row[x] = std::min(row[x], farthest);
   }
 }
 
@@ -235,8 +233,33 @@ void OccluderRasterizer::triangle(const dvec3& a, const dvec3& b, const dvec3& c
 
 void OccluderRasterizer::triangleInClipSpace(const std::array<ClipVertex, 3>& clip) {
   ++trianglesRasterized;
-  if (rule_ == Rule::center) centerTriangle(clip);
-  else conservativeTriangle(clip);
+  ClipPolygon polygon;
+  if ((view_.volume.outside(clip[0]) | view_.volume.outside(clip[1]) | view_.volume.outside(clip[2])) & kNearAndGuard) {
+    polygon = clipTriangle(clip, view_.volume, kNearAndGuard);
+    if (polygon.count < 3) return;
+  } else {
+    polygon.count = 3;
+    std::copy(clip.begin(), clip.end(), polygon.vertices.begin());
+  }
+  dvec2 texel[9];
+  double key[9];
+  for (int i = 0; i < polygon.count; ++i) {
+    texel[i] = view_.texel(polygon.vertices[std::size_t(i)]);
+    key[i] = view_.key(polygon.vertices[std::size_t(i)].d);
+  }
+  // The plane through the polygon's best-conditioned fan triangle (all lie in one plane).
+  int best = 1;
+  double bestArea = 0;
+  for (int i = 1; i + 1 < polygon.count; ++i) {
+    const double area = std::abs(cross(texel[i] - texel[0], texel[i + 1] - texel[0]));
+    if (area > bestArea) best = i, bestArea = area;
+  }
+  if (bestArea == 0) return;
+  const dvec2 e1 = texel[best] - texel[0], e2 = texel[best + 1] - texel[0];
+  const double area = cross(e1, e2), dk1 = key[best] - key[0], dk2 = key[best + 1] - key[0];
+  const double kx = (dk1 * e2.y - dk2 * e1.y) / area, ky = (e1.x * dk2 - e2.x * dk1) / area;
+  const KeyPlane plane{key[0] - kx * texel[0].x - ky * texel[0].y, kx, ky};
+  this->polygon(texel, polygon.count, &plane, 1);
 }
 
 // A face of the box faces the eye when the eye is outside its plane. Decided in double
@@ -269,7 +292,7 @@ void OccluderRasterizer::box(const std::array<dvec3, 8>& corners) {
           face(std::array<int, 4>{base, base | u, base | u | v, base | v});
         }
   };
-  if (rule_ == Rule::center || crossesNear) {
+  if (crossesNear) {
     // The front faces as triangles, clipped where they cross the near plane.
     eachFrontFace([&](const std::array<int, 4>& quad) {
       triangleInClipSpace({clip[std::size_t(quad[0])], clip[std::size_t(quad[1])], clip[std::size_t(quad[2])]});
@@ -277,10 +300,11 @@ void OccluderRasterizer::box(const std::array<dvec3, 8>& corners) {
     });
     return;
   }
-  // Conservative, the box wholly in front of the near plane: its projection is the hull
-  // of its corners, and over it the front surface is the largest of the front faces'
-  // planes (the box is convex: a sight line enters it through the last front plane it
-  // crosses). So one polygon, and no texel lost along the edges between faces.
+  // The box wholly in front of the near plane: its projection is the hull of its
+  // corners, and over it the front surface is the largest of the front faces' planes
+  // (the box is convex: a sight line enters it through the last front plane it
+  // crosses). So one polygon instead of up to six triangles: one scan of each row it
+  // covers, and no texel lost along the edges between faces.
   std::array<dvec2, 8> texels;
   std::array<double, 8> keys;
   for (std::size_t i = 0; i < 8; ++i) texels[i] = view_.texel(clip[i]), keys[i] = view_.key(clip[i].d);
@@ -298,92 +322,30 @@ void OccluderRasterizer::box(const std::array<dvec3, 8>& corners) {
   dvec2 hull[16];
   const int hullSize = convexHull(texels, 8, hull);
   ++trianglesRasterized;
-  if (planeCount > 0 && hullSize >= 3) conservativePolygon(hull, hullSize, planes, planeCount);
+  if (planeCount > 0 && hullSize >= 3) polygon(hull, hullSize, planes, planeCount);
 }
 
-void OccluderRasterizer::centerTriangle(const std::array<ClipVertex, 3>& clip) {
-  ClipPolygon polygon;
-  if ((view_.volume.outside(clip[0]) | view_.volume.outside(clip[1]) | view_.volume.outside(clip[2])) & kNearAndGuard) {
-    polygon = clipTriangle(clip, view_.volume, kNearAndGuard);
-  } else {
-    polygon.count = 3;
-    std::copy(clip.begin(), clip.end(), polygon.vertices.begin());
-  }
-  dvec2 texel[9];
-  double t[9];
-  for (int i = 0; i < polygon.count; ++i) {
-    texel[i] = view_.texel(polygon.vertices[std::size_t(i)]);
-    t[i] = view_.camera.screenAffineDepth(polygon.vertices[std::size_t(i)].d);
-  }
-  // The key is t under orthographic projection and -t under perspective.
-  const double sign = view_.camera.perspective() ? -1.0 : 1.0;
-  for (int i = 1; i + 1 < polygon.count; ++i) {
-    const dvec2 fan[3] = {texel[0], texel[i], texel[i + 1]};
-    const double fanT[3] = {t[0], t[i], t[i + 1]};
-    ScreenTriangle screen;
-    if (!setupScreenTriangle(fan, fanT, map_.width, map_.height, 0, screen)) continue;
-    // Along a row the key steps by a constant: float arithmetic from the row's start
-    // (the center rule is approximate anyway), over the row's covered run in one loop
-    // the compiler can vectorize: this is the method's hot spot.
-    const float kx = static_cast<float>(sign * screen.tdx);
-    std::int64_t written = 0;
-    for (int y = screen.minY; y <= screen.maxY; ++y) {
-      int first, last;
-      if (!coveredRun(screen, y, screen.minX, screen.maxX + 1, first, last)) continue;
-      const float rowStart =
-          static_cast<float>(sign * screen.depthAt(conventions::kPixelCenterOffset, y + conventions::kPixelCenterOffset));
-      float* row = &map_.at(0, y);
-      // The map is far larger than the cache and a run is a few cache lines of it: ask
-      // for the run two rows down now, so it is there when its turn comes.
-      if (y + 2 <= screen.maxY)
-        for (int x = first; x <= last + 16; x += 16) __builtin_prefetch(row + 2 * map_.width + x, 1);
-      if (cpuHasAvx2()) keepNearerWithAvx2(row, first, last, rowStart, kx);
-      else keepNearer(row, first, last, rowStart, kx);
-      written += last - first + 1;
-    }
-    texelsWritten += written;
-  }
-}
-
-void OccluderRasterizer::conservativeTriangle(const std::array<ClipVertex, 3>& clip) {
-  ClipPolygon polygon = clipTriangle(clip, view_.volume, kNearAndGuard);
-  if (polygon.count < 3) return;
-  dvec2 texel[9];
-  double key[9];
-  for (int i = 0; i < polygon.count; ++i) {
-    texel[i] = view_.texel(polygon.vertices[std::size_t(i)]);
-    key[i] = view_.key(polygon.vertices[std::size_t(i)].d);
-  }
-  // The plane through the polygon's best-conditioned fan triangle (all lie in one plane).
-  int best = 1;
-  double bestArea = 0;
-  for (int i = 1; i + 1 < polygon.count; ++i) {
-    const double area = std::abs(cross(texel[i] - texel[0], texel[i + 1] - texel[0]));
-    if (area > bestArea) best = i, bestArea = area;
-  }
-  if (bestArea == 0) return;
-  const dvec2 e1 = texel[best] - texel[0], e2 = texel[best + 1] - texel[0];
-  const double area = cross(e1, e2), dk1 = key[best] - key[0], dk2 = key[best + 1] - key[0];
-  const double kx = (dk1 * e2.y - dk2 * e1.y) / area, ky = (e1.x * dk2 - e2.x * dk1) / area;
-  const KeyPlane plane{key[0] - kx * texel[0].x - ky * texel[0].y, kx, ky};
-  conservativePolygon(texel, polygon.count, &plane, 1);
-}
-
-void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, const KeyPlane* planes, int planeCount) {
+void OccluderRasterizer::polygon(const dvec2* corners, int count, const KeyPlane* planes, int planeCount) {
   // Each edge as E(x, y) = A x + B y + C, positive inside whichever way the polygon runs.
-  double orientation = 0, reach = 1;
+  double orientation = 0, reach = 1, left = corners[0].x, right = corners[0].x;
   for (int i = 0; i < count; ++i) {
     orientation += cross(corners[i], corners[(i + 1) % count]);
     reach = std::max({reach, std::abs(corners[i].x), std::abs(corners[i].y)});
+    left = std::min(left, corners[i].x), right = std::max(right, corners[i].x);
   }
-  if (orientation == 0) return;
+  // Wholly left or right of the map (many occluders are, when none were culled by the
+  // frustum first): no row of it would hold a texel, so none is scanned.
+  if (orientation == 0 || right <= 0 || left >= map_.width) return;
   const double sign = orientation > 0 ? 1.0 : -1.0;
-  // Texel (x, y) spans [x, x + 1] x [y, y + 1]; it is wholly inside when every edge
-  // function clears its margin at the texel's worst corner: A x + min(A, 0) + B y +
-  // min(B, 0) + C >= margin, that is A x >= rest(y) = margin - (B y + min(A, 0) +
-  // min(B, 0) + C). An edge with A > 0 bounds x from below by rest / A, one with A < 0
-  // from above, and one with A = 0 holds for the whole row or for none of it. Each is
-  // kept as rest(y) = fromRow - B y and the factor 1 / A that turns it into a bound.
+  // Texel (x, y) spans [x, x + 1] x [y, y + 1]. The rule looks at one point of it, and
+  // the texel is written when every edge function is at least a margin there:
+  //   center        its center, margin 0: A x + B y + C + (A + B) / 2 >= 0;
+  //   conservative  each edge's worst corner of it, so that the whole texel is inside:
+  //                 A x + min(A, 0) + B y + min(B, 0) + C >= margin.
+  // Either way A x >= rest(y) = margin - (B y + offset + C). An edge with A > 0 bounds x
+  // from below by rest / A, one with A < 0 from above, and one with A = 0 holds for the
+  // whole row or for none of it. Each is kept as rest(y) = fromRow - B y and the factor
+  // 1 / A that turns it into a bound.
   struct Bound {
     double fromRow, b, inverseA;
   };
@@ -394,11 +356,15 @@ void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, co
     const dvec2 &p = corners[i], &q = corners[(i + 1) % count];
     const double a = -sign * (q.y - p.y), b = sign * (q.x - p.x);
     const double c = -(a * p.x + b * p.y);
-    // Far above the rounding of E at any corner in play (and of the bound's own
-    // arithmetic): a texel that only touches the edge, to within rounding, counts as not
-    // covered.
-    const double margin = 1e-12 * ((std::abs(a) + std::abs(b)) * reach + std::abs(c)) + 1e-9 * (std::abs(a) + std::abs(b));
-    const Bound bound{margin - (std::min(a, 0.0) + std::min(b, 0.0) + c), b, a != 0 ? 1 / a : 0};
+    double offset = 0.5 * (a + b), margin = 0;
+    if (rule_ == Rule::conservative) {
+      offset = std::min(a, 0.0) + std::min(b, 0.0);
+      // Far above the rounding of E at any corner in play (and of the bound's own
+      // arithmetic): a texel that only touches the edge, to within rounding, counts as
+      // not covered.
+      margin = 1e-12 * ((std::abs(a) + std::abs(b)) * reach + std::abs(c)) + 1e-9 * (std::abs(a) + std::abs(b));
+    }
+    const Bound bound{margin - (offset + c), b, a != 0 ? 1 / a : 0};
     if (a > 0) lower[lowerCount++] = bound;
     else if (a < 0) upper[upperCount++] = bound;
     else level[levelCount++] = bound;
@@ -426,16 +392,27 @@ void OccluderRasterizer::conservativePolygon(const dvec2* corners, int count, co
     for (int i = 0; i < levelCount; ++i)
       if (level[i].fromRow - level[i].b * y > 0) last = -1;
     if (first > last) continue;  // no texel of this row
-    // An affine key is largest over the texel at the corner its slopes point to: at
-    // x + 1 along the row where kx > 0 (else x), and y + 1 where ky > 0. Along the row,
-    // each plane's key at that corner is affine in x: its value at x = 0, and kx.
-    RowKey keys[6];
-    for (int k = 0; k < planeCount; ++k)
-      keys[k] = {planes[k].k0 + planes[k].kx * (planes[k].kx > 0) + planes[k].ky * (y + (planes[k].ky > 0)), planes[k].kx};
     float* row = &map_.at(0, y);
-    // Eight texels at a time where the CPU has AVX2 (fast_path.hpp: the same bits), the
-    // rest one at a time.
-    conservativeRow(row, cpuHasAvx2() ? conservativeRowEightAtATime(row, first, last, keys, planeCount) : first, last, keys, planeCount);
+    // The map is far larger than the cache and a run is a few cache lines of it: ask for
+    // the run two rows down now, so it is there when its turn comes.
+    if (y + 2 <= lastRow)
+      for (int x = first; x <= last + 16; x += 16) __builtin_prefetch(row + 2 * map_.width + x, 1);
+    // Along the row each plane's key is affine in x: its value at x = 0, and kx. Eight
+    // texels at a time where the CPU has AVX2 (fast_path.hpp: the same bits).
+    if (rule_ == Rule::center) {
+      CenterRowKey keys[6];
+      for (int k = 0; k < planeCount; ++k)
+        keys[k] = {static_cast<float>(planes[k].k0 + planes[k].kx * 0.5 + planes[k].ky * (y + 0.5)), static_cast<float>(planes[k].kx)};
+      if (cpuHasAvx2()) centerRowEightAtATime(row, first, last, keys, planeCount);
+      else centerRow(row, first, last, keys, planeCount);
+    } else {
+      // An affine key is largest over the texel at the corner its slopes point to: at
+      // x + 1 along the row where kx > 0 (else x), and y + 1 where ky > 0.
+      RowKey keys[6];
+      for (int k = 0; k < planeCount; ++k)
+        keys[k] = {planes[k].k0 + planes[k].kx * (planes[k].kx > 0) + planes[k].ky * (y + (planes[k].ky > 0)), planes[k].kx};
+      conservativeRow(row, cpuHasAvx2() ? conservativeRowEightAtATime(row, first, last, keys, planeCount) : first, last, keys, planeCount);
+    }
     texelsWritten += last - first + 1;
   }
 }

@@ -8,13 +8,16 @@
 // depth exactly and "nearer" is always "smaller". Empty texels hold +infinity.
 //
 // The two rasterization rules of the published methods:
-//   center        a texel takes a triangle's depth at its center whenever the shared
-//                 rasterizer (renderer/raster) covers that center. Fast; but the texel
-//                 then claims its whole area for the occluder, so an object seen
-//                 through a gap narrower than a texel can be culled.
+//   center        a texel takes an occluder's depth at its center whenever the occluder
+//                 covers that center. Fast; but the texel then claims its whole area
+//                 for the occluder, so an object seen through a gap narrower than a
+//                 texel can be culled.
 //   conservative  a texel is written only where one occluder covers it entirely, with
 //                 the farthest depth the occluder has over it (rounded away from the
 //                 occludee's side). Never culls a visible object.
+// Both draw a convex polygon at a time (a triangle, or a solid box's whole outline) by
+// the same scan: they differ only in the point of a texel they look at and the depth
+// they write there.
 #pragma once
 
 #include <array>
@@ -138,6 +141,17 @@ struct RowKey {
 // (`keys` give each face's key at the corner of the texel where it is largest).
 void conservativeRow(float* row, int first, int last, const RowKey* keys, int count);
 
+// A face's key along one row in float, for the center rule: key(x) = atZero + slope x,
+// atZero the key at the center of the row's texel 0.
+struct CenterRowKey {
+  float atZero, slope;
+};
+
+// The center rule's texels first .. last of a row, the textbook loop: each keeps the
+// nearer of what it holds and the farthest of the faces' keys at its center, in float
+// (the rule is approximate anyway, and float is what makes it fast).
+void centerRow(float* row, int first, int last, const CenterRowKey* keys, int count);
+
 // Rasterizes occluders into a map, by one rule. Occluders are given in world space.
 class OccluderRasterizer {
  public:
@@ -152,11 +166,10 @@ class OccluderRasterizer {
 
  private:
   void triangleInClipSpace(const std::array<ClipVertex, 3>& clip);
-  void centerTriangle(const std::array<ClipVertex, 3>& clip);
-  void conservativeTriangle(const std::array<ClipVertex, 3>& clip);
-  // The texels wholly inside a convex polygon (map texels, either winding), each written
-  // with the largest of the planes' keys over it.
-  void conservativePolygon(const dvec2* corners, int count, const KeyPlane* planes, int planeCount);
+  // The texels of a convex polygon (map texels, either winding) by the rule: those whose
+  // center it covers, or those wholly inside it; each written with the largest of the
+  // planes' keys there (at its center, or over the whole texel).
+  void polygon(const dvec2* corners, int count, const KeyPlane* planes, int planeCount);
   bool facesEye(const std::array<dvec3, 8>& corners, int axis, int side) const;
 
   const MapView& view_;

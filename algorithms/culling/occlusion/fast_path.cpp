@@ -49,6 +49,20 @@ HSR_AVX2 Float8 roundedUp(Double4 low, Double4 high) {
   return infinite ? nearest : nextUp(above);
 }
 
+// The center rule's eight texels from x, those of them in the run (the lanes of `inRun`)
+// loaded and stored under a mask, so that a run's last few need no loop of their own.
+HSR_AVX2 void eightCenterTexels(float* row, int x, Int8 inRun, const CenterRowKey* keys, int count) {
+  const Float8 texels = static_cast<float>(x) + Float8{0, 1, 2, 3, 4, 5, 6, 7};  // exact: x is far below 2^24
+  Float8 farthest = Float8{} - std::numeric_limits<float>::infinity();
+  for (int k = 0; k < count; ++k) {
+    const Float8 key = keys[k].atZero + keys[k].slope * texels;
+    farthest = farthest < key ? key : farthest;  // std::max(farthest, key)
+  }
+  const Float8 held = Float8(_mm256_maskload_ps(row + x, __m256i(inRun)));
+  const Float8 kept = farthest < held ? farthest : held;  // std::min(held, farthest)
+  _mm256_maskstore_ps(row + x, __m256i(inRun), __m256(kept));
+}
+
 }  // namespace
 
 HSR_AVX2 int conservativeRowEightAtATime(float* row, int first, int last, const RowKey* keys, int count) {
@@ -70,6 +84,12 @@ HSR_AVX2 int conservativeRowEightAtATime(float* row, int first, int last, const 
     __builtin_memcpy(row + x, &kept, sizeof kept);
   }
   return x;
+}
+
+HSR_AVX2 void centerRowEightAtATime(float* row, int first, int last, const CenterRowKey* keys, int count) {
+  int x = first;
+  for (; x + 7 <= last; x += 8) eightCenterTexels(row, x, Int8{} - 1, keys, count);
+  if (x <= last) eightCenterTexels(row, x, x + Int8{0, 1, 2, 3, 4, 5, 6, 7} <= last, keys, count);
 }
 
 }  // namespace hsr::culling::occlusion
