@@ -60,6 +60,7 @@ void occluders(benchmark::State& state, Rule rule, int width, int height) {
   state.SetItemsProcessed(state.iterations() * std::int64_t(c.prepared.triangleCount()));
   state.counters["drawn"] = double(stats.counter("occlusion: occluders rasterized"));
   state.counters["skipped"] = double(stats.counter("occlusion: occluders skipped"));
+  state.counters["outside"] = double(stats.counter("occlusion: occluders outside the map"));
 }
 
 void occludees(benchmark::State& state, bool withPyramid) {

@@ -68,6 +68,18 @@ std::optional<std::array<dvec3, 8>> boxOfSolid(const PreparedScene& scene, const
   return corners;
 }
 
+void drawOccluder(const PreparedScene& scene, const Instance& instance, OccluderRasterizer& rasterizer) {
+  if (const auto solid = boxOfSolid(scene, instance)) {
+    rasterizer.box(*solid);
+    return;
+  }
+  const std::vector<dvec3>& positions = scene.positions();
+  for (std::uint32_t t = instance.firstTriangle; t < instance.firstTriangle + instance.triangleCount; ++t) {
+    const Triangle& triangle = scene.triangles()[t];
+    rasterizer.triangle(positions[triangle[0]], positions[triangle[1]], positions[triangle[2]]);
+  }
+}
+
 double estimatedDepthComplexity(const PreparedScene& scene, const MapView& view, const VisibleSet& in) {
   const double texels = double(view.width) * double(view.height);
   double covered = 0;
@@ -130,31 +142,37 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
                           const std::vector<std::uint32_t>& occluders, Stats& stats) {
   PhaseTimer timer(stats, "occlusion: rasterize occluders");
   DepthMap map(view.width, view.height);
-  // Nearest first, so that an occluder wholly behind what is already drawn can be
-  // skipped: everything it would write is farther than what the map holds.
+  // The occluders' footprints on the map. One that misses the map would draw nothing:
+  // it is left out before the sort.
   std::vector<BoxFootprint> boxes;
   boxes.reserve(occluders.size());
+  std::vector<std::uint32_t> onMap;  // the occluders of `boxes`, as instances
+  onMap.reserve(occluders.size());
   std::vector<float> nearest;
   nearest.reserve(occluders.size());
   for (std::size_t i = 0; i < occluders.size(); ++i) {
     // Each box lies inside its instance, and instances are large: the boxes are too far
     // apart for the hardware to guess the next one in time.
     if (i + kPrefetchAhead < occluders.size()) prefetch(scene.instances()[occluders[i + kPrefetchAhead]].box);
-    const BoxFootprint& box = boxes.emplace_back(footprint(view, scene.instances()[occluders[i]].box));
+    const BoxFootprint box = footprint(view, scene.instances()[occluders[i]].box);
+    if (box.empty() && !box.crossesNear) continue;
+    boxes.push_back(box);
+    onMap.push_back(occluders[i]);
     nearest.push_back(box.crossesNear ? -std::numeric_limits<float>::infinity() : box.nearest);
   }
+  // Nearest first, so that an occluder wholly behind what is already drawn can be
+  // skipped: everything it would write is farther than what the map holds.
   const std::vector<std::uint32_t> order = nearestFirst(nearest);
   OccluderRasterizer rasterizer(view, knobs.rule, map);
   TileMaxima tiles(map);
   std::int64_t rasterized = 0, skipped = 0, texelsRead = 0;
-  const std::vector<dvec3>& positions = scene.positions();
   for (std::size_t i = 0; i < order.size(); ++i) {
     // Nearest first is no order in memory: ask for what the occluders a few ahead will
     // read, whether they are then drawn or skipped.
     if (i + kPrefetchAhead < order.size()) {
       const std::uint32_t ahead = order[i + kPrefetchAhead];
       prefetch(boxes[ahead]);
-      prefetch(scene.instances()[occluders[ahead]]);
+      prefetch(scene.instances()[onMap[ahead]]);
     }
     const std::uint32_t position = order[i];
     const BoxFootprint& box = boxes[position];
@@ -164,18 +182,11 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
     }
     ++rasterized;
     tiles.invalidate(box);  // it draws within its box's footprint
-    const Instance& instance = scene.instances()[occluders[position]];
-    if (const auto solid = boxOfSolid(scene, instance)) {
-      rasterizer.box(*solid);
-      continue;
-    }
-    for (std::uint32_t t = instance.firstTriangle; t < instance.firstTriangle + instance.triangleCount; ++t) {
-      const Triangle& triangle = scene.triangles()[t];
-      rasterizer.triangle(positions[triangle[0]], positions[triangle[1]], positions[triangle[2]]);
-    }
+    drawOccluder(scene, scene.instances()[onMap[position]], rasterizer);
   }
   stats.add("occlusion: occluders rasterized", rasterized);
   stats.add("occlusion: occluders skipped", skipped);
+  stats.add("occlusion: occluders outside the map", std::int64_t(occluders.size() - onMap.size()));
   stats.add("occlusion: occluder triangles", rasterizer.trianglesRasterized);
   stats.add("occlusion: texels written", rasterizer.texelsWritten);
   return map;

@@ -139,6 +139,9 @@ StageEntry stage();
 // placement) when the object is a box solid, whose mesh is exactly that box.
 std::optional<std::array<dvec3, 8>> boxOfSolid(const PreparedScene& scene, const Instance& instance);
 
+// Draws one occluder, its solid box or its triangles, into the rasterizer's map.
+void drawOccluder(const PreparedScene& scene, const Instance& instance, OccluderRasterizer& rasterizer);
+
 // The view's depth complexity as the objects' boxes estimate it: the texels of the map
 // their footprints cover, summed, over the map's texels (a box through the near plane
 // covers the whole view). Cheap, and an overestimate: a box covers more than its object.
@@ -150,8 +153,9 @@ std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const Cam
                                            const VisibleSet& in);
 
 // Rasterizes the occluders into a map, nearest first. Counts "occlusion: occluders
-// rasterized", "occlusion: occluders skipped" (already hidden), "occlusion: occluder
-// triangles", "occlusion: texels written".
+// rasterized", "occlusion: occluders skipped" (already hidden), "occlusion: occluders
+// outside the map" (their boxes' footprints miss it: nothing to draw), "occlusion:
+// occluder triangles" (a solid box drawn whole counts one), "occlusion: texels written".
 DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Knobs& knobs,
                           const std::vector<std::uint32_t>& occluders, Stats& stats);
 
