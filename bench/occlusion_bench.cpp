@@ -3,7 +3,9 @@
 // algorithms/culling/README.md):
 //   occluders/RULE/WxH   every box offered as an occluder, nearest first, drawn into a
 //                        W x H map unless the boxes already drawn hide it; items: the
-//                        city's triangles, so items/s is the triangle throughput
+//                        city's triangles, so items/s is the triangle throughput;
+//                        counters: occluders drawn, skipped and outside the map, texels
+//                        written and texels covered at the end
 //   occludees/TEST       each of the 8,334 boxes tested against the 256 x 128 map of the
 //                        conservative rule: flat (every texel until one proves it
 //                        visible) or with the hierarchical-Z pyramid; items: tests
@@ -16,6 +18,9 @@
 //   queries/STRATEGY     ten frames of a walk down a street of study/city_walk (640 x 360)
 //                        by each query strategy on one simulated GPU; items: frames
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "algorithms/culling/occlusion/occlusion.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
@@ -57,6 +62,11 @@ void occluders(benchmark::State& state, Rule rule, int width, int height) {
     stats = hsr::Stats();
     benchmark::DoNotOptimize(occluderDepthMap(c.prepared, view, settings, c.everyObject, stats).keys.data());
   }
+  // Texels written against texels covered at the end (the overdraw), from one more map.
+  stats = hsr::Stats();
+  const DepthMap map = occluderDepthMap(c.prepared, view, settings, c.everyObject, stats);
+  state.counters["written"] = double(stats.counter("occlusion: texels written"));
+  state.counters["covered"] = double(std::count_if(map.keys.begin(), map.keys.end(), [](float key) { return std::isfinite(key); }));
   state.SetItemsProcessed(state.iterations() * std::int64_t(c.prepared.triangleCount()));
   state.counters["drawn"] = double(stats.counter("occlusion: occluders rasterized"));
   state.counters["skipped"] = double(stats.counter("occlusion: occluders skipped"));
