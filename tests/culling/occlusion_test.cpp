@@ -85,31 +85,48 @@ TEST(Occlusion, TileMaximaDecideExactlyAsTheFlatTest) {
   }
 }
 
+// A hard case's occluder map drawn by a rule with every object an occluder, and the
+// exact reference traced at `samples` x `samples` pixel centers per texel.
+struct MapAndTruth {
+  test::LoadedScene loaded;
+  ReferenceImage truth;
+  CameraTransform camera;
+  MapView view;
+  DepthMap map;
+  MapAndTruth(const std::string& scene, Rule rule, int mapWidth, int mapHeight, int samples)
+      : loaded(hard(scene)),
+        truth(traced(loaded.prepared, samples * mapWidth, samples * mapHeight)),
+        camera(loaded.prepared.camera()),
+        view(camera, mapWidth, mapHeight) {
+    Knobs settings;
+    settings.rule = rule, settings.mapWidth = mapWidth, settings.mapHeight = mapHeight;
+    Stats stats;
+    map = occluderDepthMap(loaded.prepared, view, settings,
+                           chooseOccluders(loaded.prepared, camera, settings, VisibleSet::everything(loaded.prepared)), stats);
+  }
+  static ReferenceImage traced(PreparedScene& prepared, int width, int height) {
+    prepared.setSize(width, height);
+    Stats stats;
+    return traceReference(prepared, 2, stats);
+  }
+};
+
 // Every texel the conservative rule writes is covered, at every one of 4x4 sample points
 // inside it, by something the exact reference sees at that depth or nearer. The
 // reference is traced at four times the map's resolution, so its pixel centers are
 // those sample points.
 void expectConservativeMap(const std::string& scene, int mapWidth, int mapHeight) {
-  test::LoadedScene loaded(hard(scene));
-  loaded.prepared.setSize(4 * mapWidth, 4 * mapHeight);
-  Stats stats;
-  const ReferenceImage truth = traceReference(loaded.prepared, 2, stats);
-  const CameraTransform& camera = loaded.prepared.camera();
-  Knobs settings;
-  settings.mapWidth = mapWidth, settings.mapHeight = mapHeight;
-  const MapView view(camera, mapWidth, mapHeight);
-  const VisibleSet all = VisibleSet::everything(loaded.prepared);
-  const DepthMap map = occluderDepthMap(loaded.prepared, view, settings, chooseOccluders(loaded.prepared, camera, settings, all), stats);
+  const MapAndTruth drawn(scene, Rule::conservative, mapWidth, mapHeight, 4);
   std::int64_t written = 0;
   for (int y = 0; y < mapHeight; ++y)
     for (int x = 0; x < mapWidth; ++x) {
-      if (std::isinf(map.at(x, y))) continue;
+      if (std::isinf(drawn.map.at(x, y))) continue;
       ++written;
       for (int sy = 4 * y; sy < 4 * y + 4; ++sy)
         for (int sx = 4 * x; sx < 4 * x + 4; ++sx) {
-          const std::size_t pixel = std::size_t(sy) * std::size_t(loaded.prepared.width()) + std::size_t(sx);
-          ASSERT_NE(truth.frame.ids[pixel], 0u) << scene << ": texel " << x << "," << y << " written over background";
-          ASSERT_LE(view.key(truth.frame.depth[pixel]), map.at(x, y)) << scene << ": texel " << x << "," << y << " too near";
+          const std::size_t pixel = std::size_t(sy) * std::size_t(4 * mapWidth) + std::size_t(sx);
+          ASSERT_NE(drawn.truth.frame.ids[pixel], 0u) << scene << ": texel " << x << "," << y << " written over background";
+          ASSERT_LE(drawn.view.key(drawn.truth.frame.depth[pixel]), drawn.map.at(x, y)) << scene << ": texel " << x << "," << y << " too near";
         }
     }
   EXPECT_GT(written, mapWidth * mapHeight / 10) << scene << ": the occluders drew something";
@@ -119,32 +136,21 @@ void expectConservativeMap(const std::string& scene, int mapWidth, int mapHeight
 // at, that occluder's key to within the float arithmetic of a row (relative 1e-5), and
 // nothing where the reference sees the background. The reference is traced at the
 // map's own resolution, so its pixel centers are the texel centers; a center the
-// reference finds ambiguous (exactly on an edge) may go either way, and a texel behind
-// the near plane's cut through a box is where the map, clipped there, and the
-// reference, which is not, part.
+// reference finds ambiguous (exactly on an edge) may go either way.
 void expectCenterMap(const std::string& scene, int mapWidth, int mapHeight) {
-  test::LoadedScene loaded(hard(scene));
-  loaded.prepared.setSize(mapWidth, mapHeight);
-  Stats stats;
-  const ReferenceImage truth = traceReference(loaded.prepared, 2, stats);
-  const CameraTransform& camera = loaded.prepared.camera();
-  Knobs settings;
-  settings.rule = Rule::center, settings.mapWidth = mapWidth, settings.mapHeight = mapHeight;
-  const MapView view(camera, mapWidth, mapHeight);
-  const VisibleSet all = VisibleSet::everything(loaded.prepared);
-  const DepthMap map = occluderDepthMap(loaded.prepared, view, settings, chooseOccluders(loaded.prepared, camera, settings, all), stats);
+  const MapAndTruth drawn(scene, Rule::center, mapWidth, mapHeight, 1);
   std::int64_t compared = 0;
   for (int y = 0; y < mapHeight; ++y)
     for (int x = 0; x < mapWidth; ++x) {
       const std::size_t pixel = std::size_t(y) * std::size_t(mapWidth) + std::size_t(x);
-      if (truth.ambiguous[pixel]) continue;
+      if (drawn.truth.ambiguous[pixel]) continue;
       ++compared;
-      if (truth.frame.ids[pixel] == 0) {
-        ASSERT_TRUE(std::isinf(map.at(x, y))) << scene << ": texel " << x << "," << y << " written over background";
+      if (drawn.truth.frame.ids[pixel] == 0) {
+        ASSERT_TRUE(std::isinf(drawn.map.at(x, y))) << scene << ": texel " << x << "," << y << " written over background";
         continue;
       }
-      const double expected = view.key(truth.frame.depth[pixel]);
-      ASSERT_NEAR(map.at(x, y), expected, 1e-5 * std::abs(expected)) << scene << ": texel " << x << "," << y;
+      const double expected = drawn.view.key(drawn.truth.frame.depth[pixel]);
+      ASSERT_NEAR(drawn.map.at(x, y), expected, 1e-5 * std::abs(expected)) << scene << ": texel " << x << "," << y;
     }
   EXPECT_GT(compared, mapWidth * mapHeight * 9 / 10) << scene << ": most centers are not ambiguous";
 }
@@ -155,48 +161,47 @@ TEST(Occlusion, TheCenterRuleWritesTheNearestOccludersKeyAtEveryTexelCenter) {
   expectCenterMap("occ_edge_opening", 33, 25);
 }
 
-// The conservative rule's fast path (fast_path.hpp) writes a row as the textbook loop
-// does, bit for bit: random faces' keys (negative, as -1 / d under perspective, and
-// positive, as d under orthographic, of magnitudes from 1e-4 to 1e4), random runs of a
-// row, over texels holding random keys, empty ones among them.
-TEST(Occlusion, ConservativeRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
-  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
-  std::mt19937 random(27);
+// Each rule's fast path (fast_path.hpp) writes a row as its textbook loop does, bit for
+// bit: random faces' keys (negative, as -1 / d under perspective, and positive, as d
+// under orthographic, of magnitudes from 1e-4 to 1e4), random runs of a row (shorter
+// than eight texels among them), over texels holding random keys, empty ones among
+// them. write(row, first, last, keys, count, fast) writes the run one way or the other.
+template <typename Key, typename Write>
+void expectRowsBitForBit(unsigned seed, Write&& write) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0, 1);
   for (int trial = 0; trial < 2000; ++trial) {
     const double magnitude = std::pow(10.0, -4 + 8 * unit(random)), sign = trial % 3 == 0 ? 1.0 : -1.0;
-    RowKey keys[3];
+    Key keys[3];
     const int count = 1 + trial % 3;
-    for (RowKey& key : keys) key = {sign * magnitude * (1 + unit(random)), magnitude * (unit(random) - 0.5) * 1e-3};
+    for (Key& key : keys) {
+      using Real = decltype(key.atZero);
+      key = {Real(sign * magnitude * (1 + unit(random))), Real(magnitude * (unit(random) - 0.5) * 1e-3)};
+    }
     std::vector<float> held(64);
     for (float& texel : held) texel = unit(random) < 0.2 ? std::numeric_limits<float>::infinity() : float(sign * magnitude * (1 + 2 * unit(random)));
     const int first = int(unit(random) * 20), last = first + int(unit(random) * 43);
     std::vector<float> textbook = held, fast = held;
-    conservativeRow(textbook.data(), first, last, keys, count);
-    conservativeRow(fast.data(), conservativeRowEightAtATime(fast.data(), first, last, keys, count), last, keys, count);
+    write(textbook.data(), first, last, keys, count, false);
+    write(fast.data(), first, last, keys, count, true);
     ASSERT_EQ(std::memcmp(fast.data(), textbook.data(), fast.size() * sizeof(float)), 0) << "trial " << trial;
   }
 }
 
-// And so does the center rule's, runs shorter than eight texels among them (written
-// whole under a mask): keys in float, of magnitudes from 1e-4 to 1e4, either sign.
+TEST(Occlusion, ConservativeRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
+  expectRowsBitForBit<RowKey>(27, [](float* row, int first, int last, const RowKey* keys, int count, bool fast) {
+    // The fast path leaves up to seven texels for the textbook loop to finish.
+    conservativeRow(row, fast ? conservativeRowEightAtATime(row, first, last, keys, count) : first, last, keys, count);
+  });
+}
+
 TEST(Occlusion, CenterRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
-  std::mt19937 random(28);
-  std::uniform_real_distribution<double> unit(0, 1);
-  for (int trial = 0; trial < 2000; ++trial) {
-    const double magnitude = std::pow(10.0, -4 + 8 * unit(random)), sign = trial % 3 == 0 ? 1.0 : -1.0;
-    CenterRowKey keys[3];
-    const int count = 1 + trial % 3;
-    for (CenterRowKey& key : keys) key = {float(sign * magnitude * (1 + unit(random))), float(magnitude * (unit(random) - 0.5) * 1e-3)};
-    std::vector<float> held(64);
-    for (float& texel : held) texel = unit(random) < 0.2 ? std::numeric_limits<float>::infinity() : float(sign * magnitude * (1 + 2 * unit(random)));
-    const int first = int(unit(random) * 20), last = first + int(unit(random) * 43);
-    std::vector<float> textbook = held, fast = held;
-    centerRow(textbook.data(), first, last, keys, count);
-    centerRowEightAtATime(fast.data(), first, last, keys, count);
-    ASSERT_EQ(std::memcmp(fast.data(), textbook.data(), fast.size() * sizeof(float)), 0) << "trial " << trial;
-  }
+  expectRowsBitForBit<CenterRowKey>(28, [](float* row, int first, int last, const CenterRowKey* keys, int count, bool fast) {
+    if (fast) centerRowEightAtATime(row, first, last, keys, count);  // the whole run, its last few texels under a mask
+    else centerRow(row, first, last, keys, count);
+  });
 }
 
 TEST(Occlusion, TheConservativeRuleWritesOnlyWhatTheReferenceConfirms) {
