@@ -233,24 +233,25 @@ void OccluderRasterizer::triangle(const dvec3& a, const dvec3& b, const dvec3& c
 
 void OccluderRasterizer::triangleInClipSpace(const std::array<ClipVertex, 3>& clip) {
   ++trianglesRasterized;
-  ClipPolygon polygon;
+  // Clipped only where it crosses the near plane or the guard band: most do not.
+  ClipPolygon clipped;
   if ((view_.volume.outside(clip[0]) | view_.volume.outside(clip[1]) | view_.volume.outside(clip[2])) & kNearAndGuard) {
-    polygon = clipTriangle(clip, view_.volume, kNearAndGuard);
-    if (polygon.count < 3) return;
+    clipped = clipTriangle(clip, view_.volume, kNearAndGuard);
+    if (clipped.count < 3) return;
   } else {
-    polygon.count = 3;
-    std::copy(clip.begin(), clip.end(), polygon.vertices.begin());
+    clipped.count = 3;
+    std::copy(clip.begin(), clip.end(), clipped.vertices.begin());
   }
   dvec2 texel[9];
   double key[9];
-  for (int i = 0; i < polygon.count; ++i) {
-    texel[i] = view_.texel(polygon.vertices[std::size_t(i)]);
-    key[i] = view_.key(polygon.vertices[std::size_t(i)].d);
+  for (int i = 0; i < clipped.count; ++i) {
+    texel[i] = view_.texel(clipped.vertices[std::size_t(i)]);
+    key[i] = view_.key(clipped.vertices[std::size_t(i)].d);
   }
   // The plane through the polygon's best-conditioned fan triangle (all lie in one plane).
   int best = 1;
   double bestArea = 0;
-  for (int i = 1; i + 1 < polygon.count; ++i) {
+  for (int i = 1; i + 1 < clipped.count; ++i) {
     const double area = std::abs(cross(texel[i] - texel[0], texel[i + 1] - texel[0]));
     if (area > bestArea) best = i, bestArea = area;
   }
@@ -259,7 +260,7 @@ void OccluderRasterizer::triangleInClipSpace(const std::array<ClipVertex, 3>& cl
   const double area = cross(e1, e2), dk1 = key[best] - key[0], dk2 = key[best + 1] - key[0];
   const double kx = (dk1 * e2.y - dk2 * e1.y) / area, ky = (e1.x * dk2 - e2.x * dk1) / area;
   const KeyPlane plane{key[0] - kx * texel[0].x - ky * texel[0].y, kx, ky};
-  this->polygon(texel, polygon.count, &plane, 1);
+  polygon(texel, clipped.count, &plane, 1);
 }
 
 // A face of the box faces the eye when the eye is outside its plane. Decided in double
