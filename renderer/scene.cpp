@@ -505,6 +505,9 @@ Scene parseScene(const std::string& text, const std::filesystem::path& file) {
   Scene scene;
   scene.file = file;
   TableReader reader(root, "", file);
+  const std::vector<std::string> kTopLevel = {"image", "camera", "effects", "shadows", "fog",  "outline",
+                                              "ambient", "lights", "objects", "cells", "portals"};
+  reader.rejectUnknown(kTopLevel);
   static const toml::table kNoTable;
   const toml::table* imageTable = reader.table("image");
   TableReader image(imageTable ? *imageTable : kNoTable, "image", file);
@@ -558,7 +561,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& file) {
       readPortal(portalReader, i, scene);
     }
   }
-  reader.finish({"image", "camera", "effects", "shadows", "fog", "outline", "ambient", "lights", "objects", "cells", "portals"});
+  reader.finish(kTopLevel);
   return scene;
 }
 

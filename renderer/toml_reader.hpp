@@ -136,8 +136,48 @@ class TableReader {
   void finish(const std::vector<std::string>& allowed) const {
     for (const auto& [key, node] : table_) {
       const std::string name(key.str());
-      if (!used_.count(name)) failAt(key.source(), name, "unknown key; expected one of " + join(allowed));
+      if (!used_.count(name)) failUnknown(name, node, key.source(), allowed);
     }
+  }
+
+  // finish()'s check made before anything is read: a mistyped table ([[object]] for
+  // [[objects]]) is reported as itself, at its line, not as the table it was meant to be
+  // found missing.
+  void rejectUnknown(const std::vector<std::string>& allowed) const {
+    for (const auto& [key, node] : table_) {
+      const std::string name(key.str());
+      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) failUnknown(name, node, key.source(), allowed);
+    }
+  }
+
+  [[noreturn]] void failUnknown(const std::string& name, const toml::node& node, const toml::source_region& where,
+                                const std::vector<std::string>& allowed) const {
+    const bool isTable = node.is_table() || (node.is_array() && !node.as_array()->empty() && node.as_array()->get(0)->is_table());
+    const std::string nearest = nearestName(name, allowed);
+    failAt(where, name, std::string(isTable ? "unknown table" : "unknown key") + "; expected one of " + join(allowed) +
+                            (nearest.empty() ? "" : " (did you mean " + nearest + "?)"));
+  }
+
+  // The allowed name within two edits (insertions, deletions, substitutions) of `name`,
+  // the closest first; empty if none is that close.
+  static std::string nearestName(const std::string& name, const std::vector<std::string>& allowed) {
+    std::string nearest;
+    std::size_t best = 3;
+    for (const std::string& candidate : allowed) {
+      std::vector<std::size_t> row(candidate.size() + 1);
+      for (std::size_t j = 0; j <= candidate.size(); ++j) row[j] = j;
+      for (std::size_t i = 1; i <= name.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= candidate.size(); ++j) {
+          const std::size_t above = row[j];
+          row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (name[i - 1] == candidate[j - 1] ? 0 : 1)});
+          diagonal = above;
+        }
+      }
+      if (row.back() < best) best = row.back(), nearest = candidate;
+    }
+    return nearest;
   }
 
   static std::string join(const std::vector<std::string>& words) {

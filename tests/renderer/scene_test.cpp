@@ -99,6 +99,12 @@ TEST(Scene, BadInputNamesFileLineKeyAndExpectation) {
       {"[camera]\ntarget = [0, 0, 0]\nazimuth = 30\nelevation = 20\n" + kBox, "camera.distance: missing; expected a number"},
       {kBox, "camera: missing; expected a [camera] table"},
       {kCamera, "objects: missing; expected at least one [[objects]] table"},
+      // A mistyped table is reported as itself, at its line, before anything is found missing.
+      {kCamera + "[[object]]\nshape = \"box\"\n",
+       ":4:3: object: unknown table; expected one of image, camera, effects, shadows, fog, outline, ambient, lights, objects, "
+       "cells, portals (did you mean objects?)"},
+      {"[camra]\neye = [0, 0, 5]\n" + kBox, ":1:2: camra: unknown table; expected one of image, camera"},
+      {kCamera + kBox + "colour = [1, 0, 0]\n", "(did you mean color?)"},
       {kCamera + kBox + "shape = \"teapot\"\n", "not valid TOML"},
       {kCamera + "[[objects]]\nshape = \"teapot\"\n", "objects[0].shape: expected one of mesh, box, sphere"},
       {kCamera + "[[objects]]\nshape = \"mesh\"\nfile = \"nowhere.obj\"\n",
