@@ -43,13 +43,23 @@ pipeline::Configuration parseConfiguration(const std::string& text, const std::s
 LoadedScene loadPrepared(const std::string& path, const std::string& size) {
   LoadedScene loaded;
   loaded.name = path;
-  loaded.scene = std::make_unique<Scene>(loadScene(path));
+  loaded.scene = std::make_unique<Scene>(loadScene(sceneFile(path)));
   loaded.prepared = std::make_unique<PreparedScene>(*loaded.scene);
   if (!size.empty()) {
     const auto [width, height] = parseSize(size, "--size");
     loaded.prepared->setSize(width, height);
   }
   return loaded;
+}
+
+std::filesystem::path sceneFile(const std::string& given) {
+  const std::filesystem::path path = given;
+  std::error_code error;
+  if (std::filesystem::exists(path, error) || given.empty()) return path;
+  for (const std::filesystem::path& shipped : shippedScenes())
+    if (path == shipped || path == std::filesystem::path(shipped).replace_extension())
+      return std::filesystem::path(HSR_SCENES_DIR) / shipped;
+  throw InputError(given + ": cannot open the scene file (no such file), and no shipped scene has that name (hsr list names them)");
 }
 
 void checkRenders(const pipeline::Configuration& configuration, const std::string& sceneName, const PreparedScene& scene) {

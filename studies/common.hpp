@@ -34,6 +34,11 @@ struct LoadedScene {
 };
 LoadedScene loadPrepared(const std::string& path, const std::string& size);
 
+// A scene file as given: a path, or the name of a shipped scene as `hsr list` prints it,
+// with or without ".toml" ("counters", "hard/coplanar"). A path that exists wins; a name
+// that is neither is an InputError saying both were tried.
+std::filesystem::path sceneFile(const std::string& given);
+
 // Throws InputError when the configuration cannot render the scene (pipeline::refusal).
 void checkRenders(const pipeline::Configuration& configuration, const std::string& sceneName, const PreparedScene& scene);
 
