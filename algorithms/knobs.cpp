@@ -91,7 +91,7 @@ void failUnknown(const std::string& owner, const std::vector<KnobSpec>& knobs, c
 
 void failValue(const std::string& owner, const KnobSpec& knob, const std::string& value, const std::string& where) {
   throw InputError(where + " " + knob.name + "=" + value + ": " + owner + " " + knob.name + " must be " +
-                   (knob.range ? describeRange(*knob.range) : "one of " + joined(knob.choices)));
+                   (knob.range ? describeRange(*knob.range) : knob.file ? std::string("a file name") : "one of " + joined(knob.choices)));
 }
 
 void failVariant(const std::string& owner, const KnobSpec& knob, const std::string& value, const std::string& variant,

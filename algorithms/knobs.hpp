@@ -58,6 +58,8 @@ struct KnobSpec {
   // A choice that may also be given bare, as a value right after the variant
   // (occlusion:queries:chc for occlusion:queries:strategy=chc).
   bool bare = false;
+  // A file name, any text but "none" (the default, meaning no file); no choices, no range.
+  bool file = false;
 
   bool appliesTo(const std::string& variant) const;
 };
@@ -175,6 +177,19 @@ class KnobTable {
       if (!parsed) return false;
       if constexpr (std::is_same_v<Number, KnobNumber>) knobs.*member = *parsed;
       else knobs.*member = static_cast<Number>(parsed->value);
+      return true;
+    };
+    return add(std::move(spec), spell, set);
+  }
+
+  // A file the owner reads (a cache, say): any text; "none", the default, is no file.
+  KnobTable& file(std::string name, std::string Knobs::*member, std::string help) {
+    KnobSpec spec{.name = std::move(name), .help = std::move(help)};
+    spec.file = true;
+    const auto spell = [member](const Knobs& knobs) { return (knobs.*member).empty() ? std::string("none") : knobs.*member; };
+    const auto set = [member](Knobs& knobs, const std::string& text) {
+      if (text.empty()) return false;
+      knobs.*member = text == "none" ? std::string() : text;
       return true;
     };
     return add(std::move(spec), spell, set);

@@ -40,6 +40,7 @@ struct PvsOptions {
   std::string scene;
   std::string build = "conservative";
   std::string samples, resolution;  // "": the stage's defaults
+  std::string out;                  // the cache file to write
   int threads = 0;
 };
 int pvsBuild(const PvsOptions& options);

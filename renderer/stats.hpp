@@ -14,19 +14,27 @@ class Stats {
  public:
   void add(const std::string& counter, std::int64_t amount = 1) { counters_[counter] += amount; }
   void addSeconds(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
+  // A fact in words where a number would not say enough (which cell the eye is in, which
+  // objects a set holds); the last note of a name is kept.
+  void note(const std::string& name, std::string text) { notes_[name] = std::move(text); }
 
   // 0 for a counter nobody touched: "this stage never ran" reads the same as "ran on nothing".
   std::int64_t counter(const std::string& name) const;
+  // Whether a pass counted `name` at all (a counter kept only by one path, say).
+  bool counted(const std::string& name) const { return counters_.count(name) != 0; }
   double seconds(const std::string& phase) const;
 
   std::vector<std::string> counterNames() const;
   std::vector<std::string> phaseNames() const;
 
-  std::string report() const;  // one "name value" line each, counters then phase times
+  const std::string& noteOf(const std::string& name) const;  // empty where nothing was noted
+
+  std::string report() const;  // one "name value" line each: counters, notes, then phase times
 
  private:
   std::map<std::string, std::int64_t> counters_;
   std::map<std::string, double> seconds_;
+  std::map<std::string, std::string> notes_;
 };
 
 // Adds the wall time of its own lifetime to a phase.

@@ -268,46 +268,57 @@ TEST(Pvs, SameSetsOnOneAndTwoThreads) {
   EXPECT_EQ(culling::pvs::build(loaded.prepared, map, {}, 1, stats).objects, culling::pvs::build(loaded.prepared, map, {}, 2, stats).objects);
 }
 
-// A copy of portal_rooms in the test output folder, so that its cache is written there.
+// A copy of portal_rooms in the test output folder, so that it can be changed there.
 std::filesystem::path roomsCopy(const std::string& name) {
   const auto copy = test::outputPath(name);
   std::filesystem::copy_file(kRooms, copy, std::filesystem::copy_options::overwrite_existing);
   return copy;
 }
 
-TEST(Pvs, TheCacheIsReadWhenItFitsAndIgnoredWhenTheLevelChanged) {
+// What reading a cache says, or "(read)".
+std::string cacheError(const std::filesystem::path& cache, const PreparedScene& scene, const culling::pvs::Knobs& knobs) {
+  try {
+    culling::pvs::readCache(cache, scene, knobs);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(read)";
+}
+
+TEST(Pvs, TheCacheIsReadWhenGivenAndRefusedWhenItDoesNotFit) {
   const auto file = roomsCopy("pvs_cache_rooms.toml");
   test::LoadedScene loaded(file);
   const culling::pvs::Knobs knobs = sampledKnobs(2, 8);
-  const auto cache = culling::pvs::cachePath(loaded.prepared, knobs);
-  EXPECT_EQ(cache.filename(), "pvs_cache_rooms.pvs-sampled-2x8");
-  std::filesystem::remove(cache);
+  const auto cache = test::outputPath("pvs_cache_rooms.pvs");
   Stats built;
   const VisibleSet first = cull(loaded.prepared, "pvs:build=sampled:samples=2:resolution=8", built);
   EXPECT_EQ(built.counter("pvs: built now"), 1);
   const CellMap map(loaded.prepared, "test");
   culling::pvs::writeCache(cache, loaded.prepared, knobs, culling::pvs::build(loaded.prepared, map, knobs, 1, built));
   Stats read;
-  EXPECT_EQ(cull(loaded.prepared, "pvs:build=sampled:samples=2:resolution=8", read).triangles, first.triangles);
+  EXPECT_EQ(cull(loaded.prepared, "pvs:build=sampled:samples=2:resolution=8:cache=" + cache.string(), read).triangles, first.triangles);
   EXPECT_EQ(read.counter("pvs: read from the cache"), 1);
   EXPECT_EQ(read.counter("pvs: built now"), 0);
-  // The same file name, another level: a pillar moved.
+  // The file names each cell and its objects for a reader; --stats names the eye's cells and the set.
+  const std::string text = readInputFile(cache, "visible-set cache");
+  EXPECT_NE(text.find("  # " + loaded.scene.cells[0].name + ": "), std::string::npos) << text;
+  EXPECT_FALSE(read.noteOf("pvs: the eye's cells").empty());
+  EXPECT_NE(read.noteOf("pvs: the set").find(loaded.scene.objects[0].name), std::string::npos) << read.noteOf("pvs: the set");
+  // Other settings than the file was built with: refused, naming both.
+  EXPECT_NE(cacheError(cache, loaded.prepared, sampledKnobs(4, 8)).find(":3: 'build sampled samples 2 resolution 8' was built with other settings"),
+            std::string::npos) << cacheError(cache, loaded.prepared, sampledKnobs(4, 8));
+  // The same file, another level: a pillar moved.
   std::ofstream(file, std::ios::app) << "\n[[objects]]\nshape = \"box\"\ntranslate = [1, 0.5, 1]\n";
   test::LoadedScene changed(file);
-  Stats stale;
-  cull(changed.prepared, "pvs:build=sampled:samples=2:resolution=8", stale);
-  EXPECT_EQ(stale.counter("pvs: built now"), 1);
-  // A file that is not a cache is refused, naming its line.
+  EXPECT_NE(cacheError(cache, changed.prepared, knobs).find(":2: built for another level"), std::string::npos)
+      << cacheError(cache, changed.prepared, knobs);
+  // A missing file, and a file that is not a cache, are refused, naming the file and its line.
+  EXPECT_NE(cacheError(test::outputPath("no-such.pvs"), changed.prepared, knobs).find("no-such.pvs: cannot open the visible-set cache"),
+            std::string::npos);
   std::ofstream(cache) << "hsr pvs 1\nfingerprint " << culling::pvs::fingerprint(changed.prepared) << "\nbuild sampled samples 2 resolution 8\nseconds x\n";
   EXPECT_EQ(pipelineError("pvs"), "(no error)");
-  try {
-    culling::pvs::readCache(cache, changed.prepared, knobs);
-    ADD_FAILURE() << "a broken cache was read";
-  } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("pvs_cache_rooms.pvs-sampled-2x8:4: 'seconds x' is not a visible-set cache line; expected seconds S"),
-              std::string::npos)
-        << error.what();
-  }
+  EXPECT_NE(cacheError(cache, changed.prepared, knobs).find("pvs_cache_rooms.pvs:4: 'seconds x' is not a visible-set cache line; expected seconds S"),
+            std::string::npos) << cacheError(cache, changed.prepared, knobs);
 }
 
 TEST(Pvs, AWalkBuildsTheSetsOnce) {

@@ -185,6 +185,16 @@ class ConservativeSearch {
   bool givenUp_ = false;
 };
 
+// "lamp, table, chair": the objects' names, the first `most` of them, then how many more.
+constexpr std::size_t kObjectsNamed = 12;
+std::string objectNames(const PreparedScene& scene, const std::vector<std::uint32_t>& objects, std::size_t most) {
+  std::string names;
+  for (std::size_t i = 0; i < std::min(most, objects.size()); ++i)
+    names += (names.empty() ? "" : ", ") + scene.scene().objects[scene.instances()[objects[i]].object].name;
+  if (objects.size() > most) names += " and " + std::to_string(objects.size() - most) + " more";
+  return names.empty() ? "(none)" : names;
+}
+
 std::string settingsLine(const Knobs& knobs) {
   return knobs.build == Build::conservative
              ? "build conservative max-chains " + std::to_string(knobs.maxChains)
@@ -220,13 +230,6 @@ VisibleSets build(const PreparedScene& scene, const cells::CellMap& map, const K
   return sets;
 }
 
-std::filesystem::path cachePath(const PreparedScene& scene, const Knobs& knobs) {
-  std::filesystem::path path = scene.scene().file;
-  return path.replace_extension(knobs.build == Build::conservative
-                                    ? ".pvs-conservative"
-                                    : ".pvs-sampled-" + std::to_string(knobs.samples) + "x" + std::to_string(knobs.resolution));
-}
-
 std::string fingerprint(const PreparedScene& scene) {
   // FNV-1a over the bits of every number the sets depend on.
   std::uint64_t hash = 1469598103934665603ull;
@@ -252,19 +255,20 @@ void writeCache(const std::filesystem::path& path, const PreparedScene& scene, c
   std::ostringstream text;
   text << "hsr pvs 1\nfingerprint " << fingerprint(scene) << "\n" << settingsLine(knobs) << "\nseconds " << sets.seconds << "\nwork "
        << sets.work << "\ngiven-up " << sets.cellsGivenUp << "\ncells " << sets.objects.size() << "\n";
+  // Each cell's line ends with a comment naming the cell and its objects, for a reader.
   for (std::size_t cell = 0; cell < sets.objects.size(); ++cell) {
     text << "cell " << cell << ":";
     for (const std::uint32_t object : sets.objects[cell]) text << " " << object;
-    text << "\n";
+    text << "  # " << scene.scene().cells[cell].name << ": " << objectNames(scene, sets.objects[cell], sets.objects[cell].size()) << "\n";
   }
   OutputFiles files;
   files.addText(path, text.str());
   files.commit();
 }
 
-std::optional<VisibleSets> readCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs) {
+VisibleSets readCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs) {
   std::ifstream file(path);
-  if (!file) return std::nullopt;
+  if (!file) throw InputError(path.string() + ": cannot open the visible-set cache; expected a file hsr pvs build --out wrote");
   int lineNumber = 0;
   std::string line;
   const auto next = [&](const std::string& expected) {
@@ -280,8 +284,12 @@ std::optional<VisibleSets> readCache(const std::filesystem::path& path, const Pr
   };
   if (next("hsr pvs 1") != "hsr pvs 1") fail("hsr pvs 1");
   if (next("fingerprint HASH").rfind("fingerprint ", 0) != 0) fail("fingerprint HASH");
-  if (line != "fingerprint " + fingerprint(scene)) return std::nullopt;  // built for another level
-  if (next("build ...") != settingsLine(knobs)) return std::nullopt;
+  if (line != "fingerprint " + fingerprint(scene))
+    throw InputError(path.string() + ":2: built for another level (its fingerprint differs from this scene's); expected a cache "
+                     "of this scene (rebuild it with hsr pvs build)");
+  if (next("build ...") != settingsLine(knobs))
+    throw InputError(path.string() + ":3: '" + line + "' was built with other settings; expected '" + settingsLine(knobs) +
+                     "' (give the stage the settings it was built with, or rebuild it with hsr pvs build)");
   VisibleSets sets;
   long long work = 0, givenUp = 0;
   std::size_t cells = 0;
@@ -294,7 +302,9 @@ std::optional<VisibleSets> readCache(const std::filesystem::path& path, const Pr
   sets.objects.resize(cells);
   for (std::size_t cell = 0; cell < cells; ++cell) {
     const std::string expected = "cell " + std::to_string(cell) + ": OBJECT...";
-    std::istringstream items(next(expected));
+    std::string content = next(expected);
+    content = content.substr(0, content.find('#'));  // the names after '#' are for a reader
+    std::istringstream items(content);
     std::string word, label;
     if (!(items >> word >> label) || word != "cell" || label != std::to_string(cell) + ":") fail(expected);
     long long object;
@@ -310,9 +320,17 @@ std::optional<VisibleSets> readCache(const std::filesystem::path& path, const Pr
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const VisibleSets& sets, const CameraTransform& camera,
                 const VisibleSet& in, Stats& stats) {
   std::vector<std::uint8_t> inSet(scene.instances().size(), 0);
-  for (const std::uint32_t cell : map.cellsAt(camera.camera().eye, "--cull pvs"))
+  std::string cellNames;
+  for (const std::uint32_t cell : map.cellsAt(camera.camera().eye, "--cull pvs")) {
+    cellNames += (cellNames.empty() ? "" : ", ") + scene.scene().cells[cell].name;
     for (const std::uint32_t object : sets.objects[cell]) inSet[object] = 1;
-  stats.add("pvs: objects in the set", std::count(inSet.begin(), inSet.end(), std::uint8_t(1)));
+  }
+  std::vector<std::uint32_t> objects;
+  for (std::uint32_t object = 0; object < inSet.size(); ++object)
+    if (inSet[object]) objects.push_back(object);
+  stats.add("pvs: objects in the set", std::int64_t(objects.size()));
+  stats.note("pvs: the eye's cells", cellNames);
+  stats.note("pvs: the set", objectNames(scene, objects, kObjectsNamed));
   return keepObjects(scene, in, [&](std::uint32_t object) { return inSet[object] != 0; });
 }
 
@@ -339,10 +357,10 @@ StageEntry stage() {
     std::optional<Built> local;
     const Built& built = cells::remembered(input, local, [&] {
       cells::CellMap map(input.scene, "--cull pvs");
-      std::optional<VisibleSets> cached = readCache(cachePath(input.scene, knobs), input.scene, knobs);
-      input.stats.add(cached ? "pvs: read from the cache" : "pvs: built now");
-      if (!cached) cached = build(input.scene, map, knobs, input.threads, input.stats);
-      return Built{std::move(map), std::move(*cached)};
+      input.stats.add(knobs.cache.empty() ? "pvs: built now" : "pvs: read from the cache");
+      VisibleSets sets = knobs.cache.empty() ? build(input.scene, map, knobs, input.threads, input.stats)
+                                             : readCache(knobs.cache, input.scene, knobs);
+      return Built{std::move(map), std::move(sets)};
     });
     return cull(input.scene, built.map, built.sets, input.camera, input.in, input.stats);
   };

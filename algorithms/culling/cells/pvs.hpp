@@ -22,10 +22,11 @@
 //                 Never misses an object; keeps more than can be seen (every stabbing
 //                 line that the planes admit, and everything hidden by furniture).
 //
-// The sets are cached beside the scene (`hsr pvs build SCENE` writes
-// SCENE.pvs-conservative or SCENE.pvs-sampled-SxR, one line per cell) with a
-// fingerprint of the level: the stage reads a cache whose fingerprint matches, and
-// otherwise builds the sets itself, once per walk ("pvs: built now").
+// The sets can be built once and kept in a file (`hsr pvs build SCENE --out FILE`, one
+// line per cell, each naming its cell and objects) with a fingerprint of the level and
+// the build's settings: `--cull pvs:cache=FILE` reads it, and refuses a file built for
+// another level or other settings. Without a cache the stage builds the sets itself,
+// once per walk ("pvs: built now").
 #pragma once
 
 #include <cstdint>
@@ -47,6 +48,7 @@ struct Knobs {
   int samples = 64;     // sampled: eye points per cell
   int resolution = 64;  // sampled: pixels a side of each cube-map face
   int maxChains = 1 << 18;  // conservative: chains followed from a cell before giving up
+  std::string cache;        // a file hsr pvs build wrote; empty: build the sets now
 };
 
 inline const KnobTable<Knobs>& knobTable() {
@@ -60,7 +62,8 @@ inline const KnobTable<Knobs>& knobTable() {
           .number("samples", &Knobs::samples, {1, 100000}, {"4", "16", "256"}, "sampled: eye points per cell")
           .number("resolution", &Knobs::resolution, {1, 4096}, {"16", "128"}, "sampled: pixels a side of each cube-map face")
           .number("max-chains", &Knobs::maxChains, {1, 1e9}, {"1000"},
-                  "conservative: portal chains followed from a cell before its search gives up and takes every object connected to it");
+                  "conservative: portal chains followed from a cell before its search gives up and takes every object connected to it")
+          .file("cache", &Knobs::cache, "the sets hsr pvs build --out FILE wrote for this level and these settings (none: build them now)");
   return table;
 }
 
@@ -77,19 +80,17 @@ struct VisibleSets {
 // up", "pvs: objects in all sets" (summed over the cells), and phase "pvs build".
 VisibleSets build(const PreparedScene& scene, const cells::CellMap& map, const Knobs& knobs, int threads, Stats& stats);
 
-// The cache file of these settings, beside the scene file.
-std::filesystem::path cachePath(const PreparedScene& scene, const Knobs& knobs);
 // A hash of what the sets depend on: every object's box, the cells and the portals.
 std::string fingerprint(const PreparedScene& scene);
 // Writes the sets (whole or not at all). Throws InputError when the file cannot be written.
 void writeCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs, const VisibleSets& sets);
-// The cached sets, or nothing when the file is absent or was built for another level or
-// other settings. Throws InputError ("file:line: what, expected ...") for a file that is
-// not a cache.
-std::optional<VisibleSets> readCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs);
+// The cached sets. Throws InputError ("file:line: what, expected ...") for a file that is
+// absent, not a cache, or built for another level or other settings.
+VisibleSets readCache(const std::filesystem::path& path, const PreparedScene& scene, const Knobs& knobs);
 
 // The triangles of `in` of the objects in the eye's cell's set (the union of the sets of
-// the cells the eye is in, on a shared face). Counts "pvs: objects in the set".
+// the cells the eye is in, on a shared face). Counts "pvs: objects in the set", and notes
+// "pvs: the eye's cells" and "pvs: the set" by name.
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const VisibleSets& sets, const CameraTransform& camera,
                 const VisibleSet& in, Stats& stats);
 
