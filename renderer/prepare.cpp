@@ -91,6 +91,14 @@ const Instance& PreparedScene::instanceOf(std::uint32_t triangle) const {
   return *(after - 1);
 }
 
+std::string PreparedScene::triangleName(std::uint32_t triangle) const {
+  const Instance& instance = instanceOf(triangle);
+  const SceneObject& object = scene_->objects[instance.object];
+  std::string name = "triangle " + std::to_string(triangle) + " of \"" + object.name + "\"";
+  if (object.instancing.copyCount() > 1) name += " copy " + std::to_string(instance.copy);
+  return name;
+}
+
 Aabb PreparedScene::bounds() const {
   Aabb box;
   for (const Instance& instance : instances_) box.grow(instance.box);

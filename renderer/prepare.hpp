@@ -81,6 +81,10 @@ class PreparedScene {
 
   // The instance that owns a triangle (binary search over firstTriangle).
   const Instance& instanceOf(std::uint32_t triangle) const;
+  // A triangle as a person would name it in a caption or a message: its global index
+  // (the id image's value - 1) and its object, `triangle 7 of "lamp"`, with the copy
+  // when the object has several (`triangle 7 of "tree" copy 3`).
+  std::string triangleName(std::uint32_t triangle) const;
 
   // Coplanarity up to the placements' rounding (Instance::placementRounding,
   // rounding.hpp): planeUpToPlacement(p) is triangle p's plane, and liesOn says whether

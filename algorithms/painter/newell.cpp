@@ -97,16 +97,20 @@ class Newell {
       const Polygon &p = pool_[candidate], &q = pool_[*hidden];
       const bool canMove = isBehindOrIn(side(q, p.screenTriangle)) || isInFrontOrIn(side(p, q.screenTriangle));
       if (canMove && !q.moved) {
-        recordConflict(candidate, *hidden, "step 3: the candidate P (red) hides part of Q (blue), so Q must be painted first: Q moves to the head of the list "
-                                           "(reorder " + std::to_string(reorders_ + 1) + ")");
+        recordConflict(candidate, *hidden, "step 3: the candidate P = " + polygonName(candidate) + " (red) hides part of Q = " +
+                                               polygonName(*hidden) + " (blue), so Q must be painted first: Q moves to the head of the list "
+                                               "(reorder " + std::to_string(reorders_ + 1) + ")");
         moveToFront(*hidden);
         ++movesSinceLastPaint;
         continue;
       }
       const bool outOfSplits = double(splits_) >= knobs_.splitCap;
       if (!outOfSplits)
-        recordConflict(candidate, *hidden, std::string(q.moved ? "step 4: Q (blue) was moved already: a cycle" : "steps 3-4: P (red) and Q (blue) pierce each other") +
-                                               ", so one is split by the other's plane (split " + std::to_string(splits_ + 1) + ")");
+        recordConflict(candidate, *hidden,
+                       "P = " + polygonName(candidate) + " (red), Q = " + polygonName(*hidden) + " (blue): " +
+                           (q.moved ? "step 4: Q was moved already, so the polygons overlap in a cycle"
+                                    : "step 3: neither order is proven (P is not wholly in front of Q's plane, nor Q wholly behind P's)") +
+                           ", so one is split by the other's plane (split " + std::to_string(splits_ + 1) + ")");
       if (outOfSplits || !splitSomething(candidate, *hidden)) {
         // Out of splits, or no plane left to split by: paint out of order and say so,
         // rather than loop. The second happens in about 1 random scene in 300 (the
@@ -141,9 +145,18 @@ class Newell {
   }
 
  private:
+  // Named by the textbook's letters, so that --stats (which sorts by name) lists them in
+  // the order they are tried.
   static constexpr const char* kTestNames[5] = {
-      "newell decided by depth extents", "newell decided by bounding boxes", "newell decided by P behind Q's plane",
-      "newell decided by Q in front of P's plane", "newell decided by projections"};
+      "newell test a: depth extents", "newell test b: bounding boxes", "newell test c: P behind Q's plane",
+      "newell test d: Q in front of P's plane", "newell test e: projections"};
+
+  // A polygon as a caption names it: its triangle and object, and for a piece cut by
+  // splits, its number in the pool.
+  std::string polygonName(std::uint32_t polygon) const {
+    const std::string triangle = scene_.triangleName(geometry_.triangles[pool_[polygon].screenTriangle].triangle);
+    return pool_[polygon].cuts.empty() ? triangle : "piece " + std::to_string(polygon) + " of " + triangle;
+  }
 
   // Screen space with a depth that grows away from the eye: t is 1/d under perspective
   // (so -t grows with d) and d under orthographic.

@@ -83,7 +83,7 @@ void recordPiece(const PreparedScene& scene, const PaintedPieces& painted, std::
   tint(picture, piecePixels, kHighlight);
   drawWireframe(picture, scene, painted.geometry.camera, std::span(&triangle, 1), kHighlight);
   std::string caption = "step 3: piece " + std::to_string(index + 1) + " of " + std::to_string(painted.order.pieces.size()) +
-                        " painted over what is behind it (tinted red; outlined: its triangle";
+                        " painted over what is behind it (tinted red; outlined: its triangle, " + scene.triangleName(triangle);
   if (piece.cutCount > 0) caption += ", of which the piece is the part cut out by " + std::to_string(piece.cutCount) + (piece.cutCount == 1 ? " plane" : " planes");
   steps.record(caption + ")", std::move(picture));
 }

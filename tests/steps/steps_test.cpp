@@ -184,6 +184,47 @@ TEST(Steps, NewellShowsItsSplitsAndEachCullingStageWhatItRemoved) {
   EXPECT_GT(countCaptions(culled, "pyramid level"), 3u);
 }
 
+// A student follows the paint order from the captions alone: each names the polygons it
+// talks about by triangle and object (and a piece by its number), and a cyclic overlap,
+// where each polygon straddles the other's plane without piercing it, is not called a
+// piercing. --stats lists Newell's tests in the order they are tried, (a) to (e).
+TEST(Steps, NewellsCaptionsNameTheirPolygonsAndItsTestsAreCountedInOrder) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/hard/cyclic_overlap.toml"), 160);
+  Stats stats;
+  StepRecorder steps;
+  pipeline::render(loaded.prepared, pipeline::configurationOf(findAlgorithm("painter"), {{"variant", "newell"}}), 1, stats, nullptr, &steps);
+  std::size_t conflicts = 0, painted = 0;
+  for (const Step& step : steps.steps()) {
+    EXPECT_EQ(step.caption.find("pierce"), std::string::npos) << step.caption;
+    if (step.caption.find("split") != std::string::npos || step.caption.find("reorder") != std::string::npos) {
+      ++conflicts;
+      EXPECT_NE(step.caption.find("P = "), std::string::npos) << step.caption;
+      EXPECT_NE(step.caption.find("Q = "), std::string::npos) << step.caption;
+    }
+    if (step.caption.find("painted over") != std::string::npos) {
+      ++painted;
+      EXPECT_NE(step.caption.find("its triangle, triangle "), std::string::npos) << step.caption;
+    }
+    if (step.caption.find("P = ") != std::string::npos) {
+      EXPECT_TRUE(step.caption.find("of \"first\"") != std::string::npos || step.caption.find("of \"second\"") != std::string::npos ||
+                  step.caption.find("of \"third\"") != std::string::npos)
+          << step.caption;
+    }
+  }
+  EXPECT_GT(conflicts, 0u);
+  EXPECT_GT(painted, 0u);
+  EXPECT_GT(countCaptions(steps.steps(), "piece "), 0u) << "the cycle is split, and its pieces are named";
+  const std::string report = stats.report();
+  std::size_t previous = 0;
+  for (const char* test : {"newell test a: depth extents", "newell test b: bounding boxes", "newell test c: P behind Q's plane",
+                           "newell test d: Q in front of P's plane", "newell test e: projections"}) {
+    const std::size_t at = report.find(test);
+    ASSERT_NE(at, std::string::npos) << test << " in\n" << report;
+    EXPECT_GT(at, previous) << test;
+    previous = at;
+  }
+}
+
 TEST(Steps, TheCommandWritesFramesCaptionsAndAnAnimationOfThem) {
   const auto folder = test::outputPath("steps-folder");
   std::filesystem::remove_all(folder);
