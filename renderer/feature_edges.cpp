@@ -92,6 +92,7 @@ std::vector<FeatureEdge> featureEdges(const PreparedScene& scene, const CameraTr
     edge.vertexFrom = mesh.a;
     edge.vertexTo = mesh.b;
     edge.meshEdge = index;
+    edge.faces = {mesh.faces[0], mesh.faceCount > 1 ? mesh.faces[1] : FeatureEdge::kNone};
     edges.push_back(edge);
   }
   stats.add("feature edges", static_cast<std::int64_t>(edges.size()));

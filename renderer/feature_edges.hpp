@@ -10,6 +10,7 @@
 // edge; FeatureEdge::edgeParameter converts.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -63,6 +64,9 @@ struct FeatureEdge {
   double divisorFrom, divisorTo;   // the projection's w at each end: d under perspective, 1 under orthographic
   std::uint32_t vertexFrom = kNone, vertexTo = kNone;  // scene vertices (kNone for a junction)
   std::uint32_t meshEdge = kNone;  // index into EdgeAdjacency::edges (kNone for a junction)
+  // The triangles it bounds (the second kNone on a boundary), or for a junction a triangle
+  // of each surface that meets there: whose edge it is, for a reader (SVG titles).
+  std::array<std::uint32_t, 2> faces = {kNone, kNone};
   EdgeKind kind = EdgeKind::crease;
 
   double lengthPixels() const;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "renderer/markup.hpp"
 #include "renderer/raster.hpp"
 #include "renderer/steps.hpp"
 
@@ -52,7 +53,28 @@ std::vector<const LineSegment*> drawingOrder(const LineSet& lines) {
 
 }  // namespace
 
-std::string lineSetSvg(const LineSet& lines, LineStyle style) {
+EdgeNamer edgeNamesOf(const PreparedScene& scene) {
+  return [&scene](const FeatureEdge& edge) {
+    const auto objectOf = [&](std::uint32_t triangle) { return "\"" + scene.scene().objects[scene.instanceOf(triangle).object].name + "\""; };
+    if (edge.faces[0] == FeatureEdge::kNone) return std::string();
+    if (edge.kind == EdgeKind::junction && edge.faces[1] != FeatureEdge::kNone)
+      return "junction where " + objectOf(edge.faces[0]) + " meets " + objectOf(edge.faces[1]);
+    return std::string(edgeKindName(edge.kind)) + " edge of " + objectOf(edge.faces[0]);
+  };
+}
+
+namespace {
+
+// A stroke's <title>: what it is, and its quantitative invisibility.
+std::string strokeTitle(const FeatureEdge& edge, int qi, const EdgeNamer& names) {
+  std::string title = names ? names(edge) : std::string();
+  if (!title.empty()) title += ", ";
+  return escapedMarkup(title + "QI " + std::to_string(qi) + (qi == 0 ? " (visible)" : " (hidden)"));
+}
+
+}  // namespace
+
+std::string lineSetSvg(const LineSet& lines, LineStyle style, const EdgeNamer& names) {
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(lines.width) + "\" height=\"" +
                     std::to_string(lines.height) + "\" viewBox=\"0 0 " + std::to_string(lines.width) + " " +
                     std::to_string(lines.height) + "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -62,6 +84,7 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
   // pixel long, which as one <line> each made a drawing megabytes large.
   std::vector<dvec2> path;
   Pen pathPen;
+  std::string pathTitle;
   char text[160];
   const auto stroke = [](const Pen& pen) {
     char attributes[128];
@@ -74,14 +97,14 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
       std::snprintf(text, sizeof text, "<line x1=\"%.3f\" y1=\"%.3f\" x2=\"%.3f\" y2=\"%.3f", path[0].x, path[0].y, path[1].x,
                     path[1].y);
       svg += text;
-      svg += stroke(pathPen) + "/>\n";
+      svg += stroke(pathPen) + "><title>" + pathTitle + "</title></line>\n";
     } else if (path.size() > 2) {
       svg += "<polyline points=\"";
       for (std::size_t i = 0; i < path.size(); ++i) {
         std::snprintf(text, sizeof text, "%s%.3f,%.3f", i ? " " : "", path[i].x, path[i].y);
         svg += text;
       }
-      svg += "\" fill=\"none" + stroke(pathPen) + " stroke-linejoin=\"round\"/>\n";
+      svg += "\" fill=\"none" + stroke(pathPen) + " stroke-linejoin=\"round\"><title>" + pathTitle + "</title></polyline>\n";
     }
     path.clear();
   };
@@ -89,14 +112,16 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style) {
     const Pen pen = penFor(segment->qi, style);
     if (!pen.draw) continue;
     const FeatureEdge& edge = lines.edges[segment->edge];
+    const std::string title = strokeTitle(edge, segment->qi, names);
     forEachStroke(pen, edge.lengthPixels(), segment->begin, segment->end, [&](double from, double to) {
       const dvec2 a = edge.pixelAt(from), b = edge.pixelAt(to);
-      const bool continues = !path.empty() && !pen.dashed && pen == pathPen &&
+      const bool continues = !path.empty() && !pen.dashed && pen == pathPen && title == pathTitle &&
                              glm::length(path.back() - a) < 1e-6;
       if (!continues) {
         flush();
         path = {a};
         pathPen = pen;
+        pathTitle = title;
       }
       const std::size_t n = path.size();
       const bool straightOn = n >= 2 && std::abs(cross(path[n - 1] - path[n - 2], b - path[n - 1])) <=

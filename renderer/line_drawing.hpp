@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <span>
 #include <string>
 #include <utility>
@@ -36,9 +37,16 @@ std::vector<std::pair<Rgb, std::string>> qiLegend();
 inline constexpr double kLineWidthPixels = 1.5;
 inline constexpr double kDashPixels = 6, kGapPixels = 4;
 
+// What a reader calls an edge in a drawing's <title>s: for a mesh edge its kind and
+// object, for a junction the two objects that meet there (edgeNamesOf).
+using EdgeNamer = std::function<std::string(const FeatureEdge&)>;
+EdgeNamer edgeNamesOf(const PreparedScene& scene);
+
 // SVG in the view's pixel coordinates (y down): pieces that continue one another as one
-// <polyline>; the QI style adds its legend.
-std::string lineSetSvg(const LineSet& lines, LineStyle style);
+// <polyline>; the QI style adds its legend. Each stroke carries a <title> (a tooltip in a
+// browser, a label to a screen reader) with its QI and, given `names`, the edge's name;
+// only strokes of the same title are joined.
+std::string lineSetSvg(const LineSet& lines, LineStyle style, const EdgeNamer& names = {});
 // The drawing rasterized (renderer/raster's line rule) over a white background; the QI
 // style with its legend in the top left corner.
 Frame lineSetFrame(const LineSet& lines, LineStyle style);

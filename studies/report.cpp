@@ -11,23 +11,10 @@
 #include <vector>
 
 #include "renderer/frame.hpp"
+#include "renderer/markup.hpp"
 
 namespace hsr::studies {
 namespace {
-
-std::string escaped(const std::string& text) {
-  std::string html;
-  for (const char c : text) {
-    switch (c) {
-      case '&': html += "&amp;"; break;
-      case '<': html += "&lt;"; break;
-      case '>': html += "&gt;"; break;
-      case '"': html += "&quot;"; break;
-      default: html += c;
-    }
-  }
-  return html;
-}
 
 // The rows of a CSV as results.cpp writes it: fields separated by commas, a field with a
 // comma, quote or line break in double quotes, a quote inside doubled.
@@ -70,11 +57,11 @@ std::string readText(const std::filesystem::path& path) {
 std::string tableHtml(const std::vector<std::vector<std::string>>& rows) {
   if (rows.empty()) return "<p>(empty)</p>\n";
   std::string html = "<div class=\"scroll\"><table class=\"sortable\">\n<thead><tr>";
-  for (const std::string& name : rows.front()) html += "<th title=\"sort by " + escaped(name) + "\">" + escaped(name) + "</th>";
+  for (const std::string& name : rows.front()) html += "<th title=\"sort by " + escapedMarkup(name) + "\">" + escapedMarkup(name) + "</th>";
   html += "</tr></thead>\n<tbody>\n";
   for (std::size_t r = 1; r < rows.size(); ++r) {
     html += "<tr>";
-    for (const std::string& field : rows[r]) html += "<td>" + escaped(field) + "</td>";
+    for (const std::string& field : rows[r]) html += "<td>" + escapedMarkup(field) + "</td>";
     html += "</tr>\n";
   }
   return html + "</tbody></table></div>\n";
@@ -164,22 +151,22 @@ void writeReport(const std::filesystem::path& folder, const std::string& title, 
     if (extension == ".svg" || (extension == ".png" && !wrote(std::filesystem::path(file).replace_extension(".svg"))))
       pictures.push_back(file);
   }
-  std::string html = "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(title) +
-                     "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + escaped(title) + "</h1>\n<dl>\n";
-  html += "<dt>command</dt><dd><code>" + escaped(invocation.commandLine) + "</code></dd>\n";
-  html += "<dt>hsr</dt><dd>" + escaped(invocation.version) + "</dd>\n";
-  html += "<dt>machine</dt><dd>" + escaped(machineDescription()) + "</dd>\n";
+  std::string html = "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapedMarkup(title) +
+                     "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + escapedMarkup(title) + "</h1>\n<dl>\n";
+  html += "<dt>command</dt><dd><code>" + escapedMarkup(invocation.commandLine) + "</code></dd>\n";
+  html += "<dt>hsr</dt><dd>" + escapedMarkup(invocation.version) + "</dd>\n";
+  html += "<dt>machine</dt><dd>" + escapedMarkup(machineDescription()) + "</dd>\n";
   html += "<dt>written</dt><dd>" + utcNow() + "</dd>\n</dl>\n";
   html += "<p>The columns are described in the hsr README. Click a column's heading to sort by it.</p>\n";
   for (const std::filesystem::path& table : tables)
-    html += "<h2>" + escaped(table.string()) + "</h2>\n" + tableHtml(parsedCsv(readText(folder / table)));
+    html += "<h2>" + escapedMarkup(table.string()) + "</h2>\n" + tableHtml(parsedCsv(readText(folder / table)));
   for (const std::filesystem::path& picture : pictures) {
-    const std::string name = escaped(picture.string());
+    const std::string name = escapedMarkup(picture.string());
     html += "<h2>" + name + "</h2>\n<figure><a href=\"" + name + "\"><img src=\"" + name + "\" alt=\"" + name +
             "\"></a><figcaption>click for full size</figcaption></figure>\n";
   }
   html += "<h2>Files</h2>\n<ul>\n";
-  for (const std::filesystem::path& file : written) html += "<li><a href=\"" + escaped(file.string()) + "\">" + escaped(file.string()) + "</a></li>\n";
+  for (const std::filesystem::path& file : written) html += "<li><a href=\"" + escapedMarkup(file.string()) + "\">" + escapedMarkup(file.string()) + "</a></li>\n";
   html += "</ul>\n<script>" + std::string(kScript) + "</script>\n</body>\n</html>\n";
   OutputFiles files;
   files.addText(folder / "report.html", html);

@@ -108,8 +108,10 @@ class QuantitativeInvisibility {
     // Where surfaces pass through each other (renderer/intersections.hpp): the lines where
     // faces cross join the drawing's edges.
     firstJunction_ = static_cast<std::uint32_t>(lines_.edges.size());
-    for (const Junction& junction : intersections_.junctions)
+    for (const Junction& junction : intersections_.junctions) {
       lines_.edges.push_back(projectEdge(camera_, junction.from, junction.to, EdgeKind::junction));
+      lines_.edges.back().faces = {junction.faces[0], junction.faces[1]};
+    }
     // The grid covers every edge's projection in the view and lists the contours through
     // each cell.
     dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());

@@ -324,6 +324,7 @@ class Roberts {
             };
             if (!strictlyInside(A, f) || !strictlyInside(B, g)) continue;
             lines.edges.push_back(projectEdge(camera_, from, to, EdgeKind::junction));
+            lines.edges.back().faces = {scene_.instances()[a].firstTriangle, scene_.instances()[b].firstTriangle};
             owner.push_back(a);
             secondOwner.push_back(b);
             // On a back face of either body, the line is inside that body's shadow of itself.

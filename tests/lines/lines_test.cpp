@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "algorithms/appel/appel.hpp"
@@ -265,6 +266,35 @@ TEST(LineInfrastructure, SvgDrawsVisibleSolidAndHiddenDashed) {
   const std::size_t visiblePieces = std::count_if(lines.segments.begin(), lines.segments.end(), [](const LineSegment& s) { return s.visible(); });
   EXPECT_GT(strokedLength(hidden, 136).second, visiblePieces / 4);  // dashes of the hidden parts
   EXPECT_NEAR(strokedLength(hidden, 0).first, black, 1e-9) << "the same visible lines in both styles";
+}
+
+// Every stroke of the SVG says what it is (a reader hovering over it, a screen reader):
+// the edge's kind and object, or the objects meeting at a junction, and its QI; names
+// from the scene file are escaped. Strokes of different titles are never joined.
+TEST(LineInfrastructure, SvgStrokesNameTheirEdgeObjectAndQi) {
+  const test::LoadedScene loaded(test::sourcePath("scenes/blocks.toml"));
+  const LineSet lines = draw("appel", loaded.prepared);
+  const std::string svg = lineSetSvg(lines, LineStyle::hidden, edgeNamesOf(loaded.prepared));
+  const std::size_t strokes = strokedLength(svg, 0).second + strokedLength(svg, 136).second;
+  std::size_t titles = 0;
+  std::set<std::string> objectsNamed;
+  for (std::size_t at = svg.find("<title>"); at != std::string::npos; at = svg.find("<title>", at + 1)) {
+    ++titles;
+    const std::string title = svg.substr(at + 7, svg.find("</title>", at) - at - 7);
+    EXPECT_TRUE(title.find(" edge of &quot;") != std::string::npos || title.find("junction where &quot;") != std::string::npos) << title;
+    EXPECT_TRUE(title.find(", QI 0 (visible)") != std::string::npos || title.find(" (hidden)") != std::string::npos) << title;
+    for (const SceneObject& object : loaded.scene.objects)
+      if (title.find("&quot;" + object.name + "&quot;") != std::string::npos) objectsNamed.insert(object.name);
+  }
+  EXPECT_EQ(titles, strokes);
+  EXPECT_EQ(objectsNamed.size(), loaded.scene.objects.size());
+  // A name with markup in it reads as written.
+  Scene tricky = loaded.scene;
+  tricky.objects[0].name = "R&D <slab>";
+  const PreparedScene prepared(tricky);
+  const std::string escaped = lineSetSvg(draw("appel", prepared), LineStyle::visible, edgeNamesOf(prepared));
+  EXPECT_NE(escaped.find("&quot;R&amp;D &lt;slab&gt;&quot;"), std::string::npos);
+  EXPECT_EQ(escaped.find("<slab>"), std::string::npos);
 }
 
 // The floating horizon draws each curve as pieces about a pixel long; the SVG joins the
