@@ -37,6 +37,7 @@ FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& 
   row.triangles = std::int64_t(kept.triangles.size());
   row.objects = std::count_if(runs.begin(), runs.end(), [](const culling::TriangleRun& run) { return run.end > run.first; });
   row.queries = stats.counter("queries: issued"), row.wasted = stats.counter("queries: answered visible");
+  row.multiqueries = stats.counter("queries: multiqueries");
   walk.drawnInSpell.resize(seen.size(), 0);
   for (std::size_t object = 0; object < seen.size(); ++object) {
     const bool drawn = runs[object].end > runs[object].first;

@@ -40,7 +40,7 @@ struct FrameRow {
   std::string level, method;
   int segment = 0, frame = 0;
   double ms = 0, waitingMs = 0;
-  std::int64_t triangles = 0, objects = 0, queries = 0, wasted = 0, late = 0, falseCulls = 0;
+  std::int64_t triangles = 0, objects = 0, queries = 0, multiqueries = 0, wasted = 0, late = 0, falseCulls = 0;
 };
 
 // One frame of `walk` at the scene's camera: its culling stages, then (unless its last

@@ -97,7 +97,7 @@ std::vector<CsvRow> csvRows(const std::vector<FrameRow>& rows) {
     csv.push_back({{"level", r.level}, {"segment", std::to_string(r.segment)}, {"frame", std::to_string(r.frame)}, {"method", r.method},
                    {"frame_ms", formatted(r.ms, "%.6g")}, {"waiting_ms", formatted(r.waitingMs, "%.6g")},
                    {"triangles", std::to_string(r.triangles)}, {"queries", std::to_string(r.queries)},
-                   {"wasted_queries", std::to_string(r.wasted)}, {"objects_late", std::to_string(r.late)},
+                   {"multiqueries", std::to_string(r.multiqueries)}, {"wasted_queries", std::to_string(r.wasted)}, {"objects_late", std::to_string(r.late)},
                    {"false_culls", std::to_string(r.falseCulls)}});
   return csv;
 }
@@ -109,7 +109,8 @@ std::vector<FrameRow> readFrames(const std::filesystem::path& folder) {
   if (!in) throw InputError("--merge " + folder.string() + ": no " + kFramesFile + " in it; expected a folder a --shard run wrote");
   std::string line;
   std::getline(in, line);
-  const std::string header = "level,segment,frame,method,frame_ms,waiting_ms,triangles,queries,wasted_queries,objects_late,false_culls";
+  const std::string written = csvOf(csvRows({FrameRow{}}));  // the header as this study writes it
+  const std::string header = written.substr(0, written.find('\n'));
   if (line != header) throw InputError("--merge " + file.string() + ": line 1 is not the header this study writes; expected " + header);
   std::vector<FrameRow> rows;
   for (int number = 2; std::getline(in, line); ++number) {
@@ -118,13 +119,13 @@ std::vector<FrameRow> readFrames(const std::filesystem::path& folder) {
     for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
     FrameRow row;
     try {
-      if (fields.size() != 11) throw std::invalid_argument("fields");
+      if (fields.size() != 12) throw std::invalid_argument("fields");
       row.level = fields[0], row.segment = std::stoi(fields[1]), row.frame = std::stoi(fields[2]), row.method = fields[3];
       row.ms = std::stod(fields[4]), row.waitingMs = std::stod(fields[5]);
-      row.triangles = std::stoll(fields[6]), row.queries = std::stoll(fields[7]), row.wasted = std::stoll(fields[8]);
-      row.late = std::stoll(fields[9]), row.falseCulls = std::stoll(fields[10]);
+      row.triangles = std::stoll(fields[6]), row.queries = std::stoll(fields[7]), row.multiqueries = std::stoll(fields[8]);
+      row.wasted = std::stoll(fields[9]), row.late = std::stoll(fields[10]), row.falseCulls = std::stoll(fields[11]);
     } catch (const std::exception&) {
-      throw InputError("--merge " + file.string() + ":" + std::to_string(number) + ": not a row of 11 numbers and names; expected " + header);
+      throw InputError("--merge " + file.string() + ":" + std::to_string(number) + ": not a row of 12 numbers and names; expected " + header);
     }
     rows.push_back(row);
   }
