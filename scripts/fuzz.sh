@@ -15,7 +15,7 @@ seconds=${1:-20}
 targets=(obj scene render)
 [ $# -gt 1 ] && targets=("${@:2}")
 
-bash scripts/setup.sh >/dev/null
+bash scripts/setup.sh tests >/dev/null
 cmake --preset sanitize >/dev/null
 cmake --build build-sanitize -j"$(nproc)" --target $(printf '%s_fuzz ' "${targets[@]}")
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1

@@ -1,26 +1,29 @@
 #!/usr/bin/env bash
-# Installs hsr's build dependencies from Debian's repositories when any is missing.
+# Installs what hsr needs from Debian's repositories when any of it is missing, in two
+# sets:
+#   scripts/setup.sh          what building and running the hsr program needs (the demo)
+#   scripts/setup.sh tests    that, and what the tests, the benchmarks and the figures need
 # Idempotent: a machine that already has every package runs no apt-get at all.
 # Runs as root (as on a fresh Debian 12 machine); otherwise through sudo when there is one.
 set -euo pipefail
 
-packages=(
+program=(
   build-essential cmake pkg-config
   libglm-dev                   # vectors and matrices
-  libopenimageio-dev           # EXR depth, image comparison, contact sheets, goldens (loaded on use)
+  libopenimageio-dev           # EXR depth, GIF steps, contact sheets, hsr diff (loaded on use)
   libpng-dev                   # the PNGs every render writes, without OpenImageIO's start-up cost
   libtinyobjloader-dev         # OBJ meshes
   libtomlplusplus-dev          # TOML scenes
   libcli11-dev                 # the hsr command line
   libgmp-dev                   # exact rational arithmetic in the reference
-  gnuplot-nox                  # hsr sweep's plots; the floating horizon's peer (bench/gnuplot_peer)
-  openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
-  graphviz                     # dot: the BSP tree in the painter's steps; scripts/figures.sh draws the architecture
-  librsvg2-bin                 # rsvg-convert: scripts/figures.sh draws Weiler-Atherton's SVG as a PNG
-  python3                      # scripts/readme_outputs.py: README's quoted outputs, checked by a test
+  gnuplot-nox                  # hsr sweep's and the studies' plots
+  graphviz                     # dot: the BSP tree in the painter's steps
   fonts-dejavu-core            # labels on hsr compare's contact sheet and on the steps' pictures
+)
+tests=(
+  libgtest-dev libgmock-dev    # the tests
+  python3                      # scripts/readme_outputs.py: the documents' quoted outputs, checked by a test
   chromium                     # tests: report.html loaded in a real browser, headless
-  libgtest-dev libgmock-dev    # tests
   clang libclang-rt-14-dev     # the sanitizer build (scripts/sanitize.sh)
   libbenchmark-dev             # bench/
   hyperfine                    # bench/startup.sh: how long a command takes, start to finish
@@ -29,7 +32,15 @@ packages=(
   libocct-modeling-algorithms-dev  # the Open CASCADE hidden-line peer (bench/occt_peer only);
   libocct-visualization-dev        # Debian ships OCCT 7.6's NCollection_AliasedArray.hxx
                                    # (which Poly_Triangulation.hxx includes) in this package
+  openimageio-tools            # oiiotool: scripts/figures.sh lays figures side by side
+  librsvg2-bin                 # rsvg-convert: scripts/figures.sh draws Weiler-Atherton's SVG as a PNG
 )
+
+case "${1:-program}" in
+  program) packages=("${program[@]}") ;;
+  tests) packages=("${program[@]}" "${tests[@]}") ;;
+  *) echo "setup: unknown set '$1'; expected program or tests" >&2; exit 2 ;;
+esac
 
 missing=()
 for package in "${packages[@]}"; do
