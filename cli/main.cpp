@@ -81,8 +81,9 @@ int main(int argc, char** argv) {
   compareCommand->add_option("--repeat", compare.repeat, "timed runs after one warm-up")->capture_default_str();
   compareCommand->add_option("--size", compare.size, "WIDTHxHEIGHT for every scene");
   threadsOption(compareCommand, compare.threads);
-  compareCommand->add_option("--out", compare.out, "folder for contact_sheet.png, results.csv, results.json")
+  compareCommand->add_option("--out", compare.out, "folder for contact_sheet.png, results.csv, results.json, report.html")
       ->capture_default_str();
+  compareCommand->add_flag("--wide", compare.wide, "print every column (the CSV and JSON always have them)");
 
   hsr::studies::SweepOptions sweep;
   CLI::App* sweepCommand = app.add_subcommand("sweep", "an algorithm's accuracy against time over its knobs, plotted");
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
   sweepCommand->add_option("--size", sweep.size, "WIDTHxHEIGHT, overrides the scene's image size");
   threadsOption(sweepCommand, sweep.threads);
   sweepCommand->add_option("--out", sweep.out, "folder for the CSV, JSON and plots")->capture_default_str();
+  sweepCommand->add_flag("--wide", sweep.wide, "print every column (the CSV and JSON always have them)");
 
   hsr::studies::StudyOptions study;
   CLI::App* studyCommand = app.add_subcommand(
@@ -128,8 +130,9 @@ int main(int argc, char** argv) {
   hsr::cli::PvsOptions pvs;
   CLI::App* pvsCommand = app.add_subcommand("pvs", "a level's potentially visible sets (--cull pvs)");
   pvsCommand->require_subcommand(1);
-  CLI::App* pvsBuildCommand = pvsCommand->add_subcommand("build", "build a level's visible sets and cache them beside the scene file");
+  CLI::App* pvsBuildCommand = pvsCommand->add_subcommand("build", "build a level's visible sets into a file (--cull pvs:cache=FILE reads it)");
   pvsBuildCommand->add_option("scene", pvs.scene, "scene file with [[cells]] and [[portals]]")->required();
+  pvsBuildCommand->add_option("--out", pvs.out, "the file to write (a checkout shared by a class may be read-only)")->required();
   pvsBuildCommand->add_option("--build", pvs.build, "conservative (portal chains) or sampled (eye points traced exactly)")->capture_default_str();
   pvsBuildCommand->add_option("--samples", pvs.samples, "sampled: eye points per cell (default 64)");
   pvsBuildCommand->add_option("--resolution", pvs.resolution, "sampled: pixels a side of each cube-map face (default 64)");
@@ -148,7 +151,10 @@ int main(int argc, char** argv) {
   const auto runStart = std::filesystem::file_time_type::clock::now();
   const hsr::studies::Invocation invocation{commandLineOf(argc, argv), kHsrVersion};
   const auto reported = [&](int status, const std::filesystem::path& folder, const std::string& title) {
-    if (status == 0 || status == hsr::studies::kInterruptedExit) hsr::studies::writeReport(folder, title, invocation, runStart);
+    if (status == 0 || status == hsr::studies::kInterruptedExit) {
+      hsr::studies::writeReport(folder, title, invocation, runStart);
+      std::printf("open %s in a browser: every table, image and plot of this run\n", (folder / "report.html").string().c_str());
+    }
     return status;
   };
   try {
@@ -161,6 +167,10 @@ int main(int argc, char** argv) {
     if (*pvsCommand) return hsr::cli::pvsBuild(pvs);
   } catch (const hsr::InputError& error) {
     std::fprintf(stderr, "hsr: error: %s\n", error.what());
+    return hsr::studies::kBadInput;
+  } catch (const std::bad_alloc&) {
+    // Not a bug but a size or scene larger than this machine's memory: say so, as bad input.
+    std::fprintf(stderr, "hsr: error: out of memory; expected a smaller --size or scene\n");
     return hsr::studies::kBadInput;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "hsr: error: %s\n", error.what());

@@ -61,7 +61,7 @@ culling::Pipeline cullingPipelineOf(const std::string& text, const AlgorithmEntr
 // for an algorithm, ":" after a culling stage).
 void printKnobs(const std::vector<KnobSpec>& knobs, const std::string& prefix) {
   for (const auto& knob : knobs) {
-    std::string choices;
+    std::string choices = knob.file ? "FILE" : "";
     for (const auto& choice : knob.choices) choices += (choices.empty() ? "" : " | ") + choice;
     if (knob.range) {
       char range[96];
@@ -105,9 +105,17 @@ void printDepthResolutions(const CameraTransform& camera, std::pair<double, doub
                 depthResolution(DepthFormat(f), camera, depths.second));
 }
 
-// One line when the z-buffer's format could not order some fragments: how many, and the
-// format that resolves the finest separation at the farthest visible depth, if finer.
-void warnAboutDepthTies(std::int64_t ties, const std::string& formatName, const CameraTransform& camera, double farthest) {
+// When the z-buffer's format could not order some fragments: a short note, and with
+// `advise` (--stats, --explain) one line of advice instead: how many, and the format that
+// resolves the finest separation at the farthest visible depth, if finer. Ties are
+// common (faces that touch, coplanar decals) and drawing order settles them the same way
+// every time, so by default they get a note, not a warning that reads as a failure.
+void reportDepthTies(std::int64_t ties, const std::string& formatName, const CameraTransform& camera, double farthest, bool advise) {
+  if (!advise) {
+    std::fprintf(stderr, "hsr: note: %lld depth ties (fragments at one %s depth, ordered by drawing order); --stats says more\n",
+                 static_cast<long long>(ties), formatName.c_str());
+    return;
+  }
   const auto& names = depthFormatNames();
   const auto current = DepthFormat(std::find(names.begin(), names.end(), formatName) - names.begin());
   const auto resolution = [&](DepthFormat format) { return depthResolution(format, camera, farthest); };
@@ -176,6 +184,21 @@ class StepsFolder {
   bool made_ = false, written_ = false;
 };
 
+// What to say when a render runs out of memory: a size within the limits can still be
+// more than the machine has. The frame's own buffers are the part that grows with the
+// size for every algorithm; an algorithm's own (a depth buffer, fragment lists, a tree)
+// come on top.
+std::string outOfMemory(int width, int height, const std::string& algorithm) {
+  const double pixels = double(width) * double(height);
+  const double frameBytes = pixels * (sizeof(std::uint32_t) + sizeof(float) + 4);  // ids, depth, RGBA colour
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "out of memory rendering %dx%d with %s: the frame alone needs %.1f GiB (ids, depth and colour, 12 bytes a pixel), "
+                "and the algorithm's own buffers come on top; expected a smaller --size",
+                width, height, algorithm.c_str(), frameBytes / double(1u << 30));
+  return text;
+}
+
 }  // namespace
 
 int render(const RenderOptions& options) {
@@ -209,18 +232,23 @@ int render(const RenderOptions& options) {
   if (stepsFolder) steps.emplace(std::size_t(options.every), [&](const Step& step) { stepsFolder->writer().add(step); });
   const auto start = std::chrono::steady_clock::now();
   Stats stats;
-  const pipeline::Rendered rendered =
-      pipeline::render(*scene.prepared, configuration, options.threads, stats, nullptr, steps ? &*steps : nullptr);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Frame& frame = rendered.frame;
+  pipeline::Rendered rendered;
+  double seconds = 0;
   OutputFiles outputs;
-  if (lines && output.extension() == ".svg") outputs.addText(output, lineSetSvg(rendered.drawing, style));
-  else if (polygonSvg) outputs.addText(output, visiblePolygonsSvg(rendered.polygons, frame));
-  else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
-  else outputs.addColorPng(output, frame);
-  if (!options.depth.empty()) outputs.addDepthExr(options.depth, frame);
-  if (!options.ids.empty()) outputs.addIdsPng(options.ids, frame);
+  try {
+    rendered = pipeline::render(*scene.prepared, configuration, options.threads, stats, nullptr, steps ? &*steps : nullptr);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (lines && output.extension() == ".svg") outputs.addText(output, lineSetSvg(rendered.drawing, style, edgeNamesOf(*scene.prepared)));
+    else if (polygonSvg) outputs.addText(output, visiblePolygonsSvg(rendered.polygons, rendered.frame));
+    else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
+    else outputs.addColorPng(output, rendered.frame);
+    if (!options.depth.empty()) outputs.addDepthExr(options.depth, rendered.frame);
+    if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
+  } catch (const std::bad_alloc&) {
+    throw InputError(outOfMemory(scene.prepared->width(), scene.prepared->height(), algorithm.name));
+  }
   outputs.commit();
+  const Frame& frame = rendered.frame;
   if (stepsFolder) {
     const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
     steps->record(lines ? "the finished drawing" : "the finished image, after the passes that follow visibility (hsr render --explain)",
@@ -232,8 +260,14 @@ int render(const RenderOptions& options) {
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
   const std::optional<std::pair<double, double>> depths = lines ? std::nullopt : visibleDepths(frame);
   if (stats.counter("depth ties") > 0 && depths)
-    warnAboutDepthTies(stats.counter("depth ties"), configuration.knobs.at("depth-format"), scene.prepared->camera(), depths->second);
-  if (options.stats) std::printf("%s", stats.report().c_str());
+    reportDepthTies(stats.counter("depth ties"), configuration.knobs.at("depth-format"), scene.prepared->camera(), depths->second,
+                    options.stats || options.explain);
+  if (options.stats) {
+    // Asked for here, not counted by any pass: the pixels a surface shows (for depth
+    // complexity, fragments per covered pixel).
+    if (!lines) stats.add("covered pixels", std::count_if(frame.ids.begin(), frame.ids.end(), [](std::uint32_t id) { return id != 0; }));
+    std::printf("%s", stats.report().c_str());
+  }
   if (options.explain) {
     printDecisions(stats, seconds);
     if (depths) printDepthResolutions(scene.prepared->camera(), *depths);

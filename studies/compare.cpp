@@ -123,7 +123,7 @@ int compare(const CompareOptions& options) {
                                     {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
       }
     }
-    std::printf("%s\n", resultsTable(sceneRows, {}).c_str());
+    std::printf("%s\n", resultsTable(sceneRows, {}, options.wide).c_str());
     rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
     sections.push_back(std::move(section));
   }

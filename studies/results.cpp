@@ -175,38 +175,46 @@ std::string resultsJson(const std::vector<ResultRow>& rows) {
   return json + "\n]\n";
 }
 
-std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
+std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs, bool wide) {
   std::vector<std::vector<std::string>> cells;
   std::vector<std::string> heading = {"algorithm", "knobs"};
   heading.insert(heading.end(), sweptKnobs.begin(), sweptKnobs.end());
-  for (const char* name : {"visibility ms: median [min-max]", "+ shading, effects ms", "= total ms", "error", "wrong px",
-                           "depth error mean / max", "peak MB", "counters", "median ms per pass"})
-    heading.push_back(name);
+  heading.push_back("visibility ms: median [min-max]");
+  heading.push_back("error");
+  heading.push_back("wrong px");
+  if (wide)
+    for (const char* name : {"+ shading, effects ms", "= total ms", "depth error mean / max", "peak MB", "counters", "median ms per pass"})
+      heading.push_back(name);
   cells.push_back(heading);
   for (const ResultRow& row : rows) {
     std::vector<std::string> line = {row.algorithm + (row.pareto ? " *" : ""), row.knobs};
     for (const auto& [knob, value] : row.swept) line.push_back(value);
     line.push_back(formattedRange(row.visibility, 1e3));
-    line.push_back(formattedRange(row.effects, 1e3));
-    line.push_back(formattedRange(row.time, 1e3));
     char text[160];
     if (row.lines) {
       std::snprintf(text, sizeof text, "%.4f%% of lines", row.lineError.error * 100);
       line.push_back(text);
       std::snprintf(text, sizeof text, "%.1f of line", row.lineError.wronglyDrawn + row.lineError.wronglyHidden);
       line.push_back(text);
-      line.push_back("-");
     } else {
       std::snprintf(text, sizeof text, "%.4f%%", row.error.pixelError * 100);
       line.push_back(text);
       line.push_back(std::to_string(row.error.wrongPixels));
-      std::snprintf(text, sizeof text, "%.2g / %.2g", row.error.depthErrorMean, row.error.depthErrorMax);
-      line.push_back(text);
     }
-    std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
-    line.push_back(text);
-    line.push_back(joinedCounters(row, " ", ", "));
-    line.push_back(joinedPasses(row, " ", ", ", "%.2f"));
+    if (wide) {
+      line.push_back(formattedRange(row.effects, 1e3));
+      line.push_back(formattedRange(row.time, 1e3));
+      if (row.lines) {
+        line.push_back("-");
+      } else {
+        std::snprintf(text, sizeof text, "%.2g / %.2g", row.error.depthErrorMean, row.error.depthErrorMax);
+        line.push_back(text);
+      }
+      std::snprintf(text, sizeof text, "%.1f", double(row.peakBytes) / (1 << 20));
+      line.push_back(text);
+      line.push_back(joinedCounters(row, " ", ", "));
+      line.push_back(joinedPasses(row, " ", ", ", "%.2f"));
+    }
     cells.push_back(line);
   }
   std::vector<std::size_t> widths(heading.size(), 0);

@@ -62,7 +62,10 @@ ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, c
   row.time = measured.time;
   splitTimes(row, measured.runs, measured.seconds);
   row.peakBytes = measured.peakBytes;
-  for (const std::string& counter : algorithm.keyCounters) row.counters.emplace_back(counter, measured.lastStats().counter(counter));
+  // A key counter only where the configuration counted it (the z-buffer's block skips,
+  // say, exist on its fast path only).
+  for (const std::string& counter : algorithm.keyCounters)
+    if (measured.lastStats().counted(counter)) row.counters.emplace_back(counter, measured.lastStats().counter(counter));
   return row;
 }
 
@@ -84,8 +87,11 @@ MeasuredConfiguration measureConfiguration(const std::string& scene, const Prepa
 std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
 // An array of objects with the same fields; counters as an object.
 std::string resultsJson(const std::vector<ResultRow>& rows);
-// The terminal table: one line per row.
-std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs);
+// The terminal table: one line per row. By default the columns a reader compares first
+// (algorithm, knobs, the swept knobs, visibility time, error, wrong pixels), narrow
+// enough for a terminal; `wide` adds the rest (effects and total time, depth error,
+// memory, counters, time per pass), which the CSV and JSON always hold.
+std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs, bool wide);
 
 // A CSV field, quoted when it holds a comma, quote or newline; a JSON string literal.
 std::string csvField(const std::string& text);

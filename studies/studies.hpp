@@ -19,6 +19,7 @@ struct CompareOptions {
   int threads = 0;
   std::string size;
   std::string out = "out/compare";
+  bool wide = false;  // print every column (default: the five a reader compares first)
 };
 int compare(const CompareOptions& options);
 
@@ -32,6 +33,7 @@ struct SweepOptions {
   int threads = 0;
   std::string size;
   std::string out = "out/sweep";
+  bool wide = false;  // print every column (default: the five a reader compares first)
 };
 int sweep(const SweepOptions& options);
 

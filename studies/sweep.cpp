@@ -184,7 +184,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   const std::string errorName = lines ? "line error" : "pixel error";
   std::printf("%s on %s (* = on the Pareto front of visibility time and %s; times within each other's range tie)\n%s",
               algorithm.name.c_str(), options.scene.c_str(),
-              errorName.c_str(), resultsTable(rows, sweptKnobs).c_str());
+              errorName.c_str(), resultsTable(rows, sweptKnobs, options.wide).c_str());
 
   // The error on a log axis, where a tenfold gain in accuracy reads as one step; an
   // error of exactly 0 is drawn on the floor below the smallest non-zero one.
@@ -347,7 +347,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
   warnIfBusy(rows, options.repeat);
   const auto [exponent, intercept] = powerFit(sizes, times);
   std::printf("%s on %s, growing %s\n%s  fit: visibility time ~ %s^%.3f\n", algorithm.name.c_str(), options.scene.c_str(),
-              options.scale.c_str(), resultsTable(rows, {options.scale}).c_str(), options.scale.c_str(), exponent);
+              options.scale.c_str(), resultsTable(rows, {options.scale}, options.wide).c_str(), options.scale.c_str(), exponent);
 
   std::vector<std::string> points;
   for (std::size_t i = 0; i < rows.size(); ++i) {

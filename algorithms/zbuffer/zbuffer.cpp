@@ -150,7 +150,7 @@ AlgorithmEntry entry() {
   entry.name = "zbuffer";
   entry.summary = "per-pixel depth test (Catmull 1974): full-frame or one-scanline buffer";
   setKnobs(entry, knobTable());
-  entry.keyCounters = {"screen triangles", "fragments tested", "fragments written"};
+  entry.keyCounters = {"screen triangles", "fragments tested", "fragments written", "fragments skipped by block depth"};
   entry.studyConfigurations = {{}, {{"path", "scalar"}}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
   entry.takesTriangleSubsets = true;
   setVisibility(entry, visibility);

@@ -281,11 +281,23 @@ INSTANTIATE_TEST_SUITE_P(
              "--cull: pvs:build=sampled:max-chains=5: max-chains bounds the conservative build's search; expected build=conservative with it"},
         Case{"portals-max-passes-zero", kCube + " --cull portals:max-passes=0 -o OUT",
              "culling stage portals max-passes must be an integer in [1, 1e+09]"},
-        Case{"pvs-build-without-cells", kCube, "hsr pvs build: " + kCube + " has no cells", "pvs build"},
-        Case{"pvs-build-zero-samples", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --build sampled --samples 0",
+        Case{"pvs-build-without-cells", kCube + " --out OUT", "hsr pvs build: " + kCube + " has no cells", "pvs build"},
+        Case{"pvs-build-zero-samples", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --build sampled --samples 0 --out OUT",
              "hsr pvs build samples=0: culling stage pvs samples must be an integer in [1, 100000]", "pvs build"},
-        Case{"pvs-build-unknown-build", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --build exact",
-             "culling stage pvs build must be one of conservative, sampled", "pvs build"}),
+        Case{"pvs-build-unknown-build", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --build exact --out OUT",
+             "culling stage pvs build must be one of conservative, sampled", "pvs build"},
+        // A class shares one checkout, which may be read-only: the file is always named.
+        Case{"pvs-build-without-out", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml",
+             "--out is required", "pvs build"},
+        Case{"pvs-cache-missing", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --cull pvs:cache=/no/such.pvs -o OUT",
+             "/no/such.pvs: cannot open the visible-set cache; expected a file hsr pvs build --out wrote"},
+        Case{"pvs-cache-of-another-level", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --cull pvs:cache=" +
+                                               write("other-level.pvs", "hsr pvs 1\nfingerprint 0123456789abcdef\n") + " -o OUT",
+             "other-level.pvs:2: built for another level"},
+        Case{"pvs-cache-empty-name", std::string(HSR_SOURCE_DIR) + "/scenes/hard/portal_row.toml --cull pvs:cache= -o OUT",
+             "culling stage pvs cache must be a file name"},
+        Case{"mistyped-table", write("mistyped-table.toml", kCamera + "[[object]]\nshape = \"box\"\n") + " -o OUT",
+             "mistyped-table.toml:4:3: object: unknown table; expected one of image, camera"}),
     [](const testing::TestParamInfo<Case>& param) {
       std::string name = param.param.name;
       std::replace(name.begin(), name.end(), '-', '_');
@@ -297,19 +309,59 @@ TEST(Cli, RenderWritesColorDepthAndIds) {
   const auto color = test::outputPath("cli-cube.png"), depth = test::outputPath("cli-cube.exr"), ids = test::outputPath("cli-cube-ids.png");
   for (const auto& path : {color, depth, ids}) std::filesystem::remove(path);
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " render " + kCube + " --size 64x48 -o " +
-                                                      color.string() + " --depth " + depth.string() + " --ids " + ids.string());
+                                                      color.string() + " --depth " + depth.string() + " --ids " + ids.string() + " --stats");
   ASSERT_EQ(result.exitCode, 0) << result.output;
   const Image idImage = readImage(ids);
   ASSERT_EQ(idImage.width, 64);
   ASSERT_EQ(idImage.channels, 3);
   // The cube has 12 triangles: every decoded id is 0 (background) or 1..12.
   std::set<std::uint32_t> seen;
-  for (std::size_t p = 0; p < 64 * 48; ++p) seen.insert(idFromRgb(&idImage.pixels[3 * p]));
+  std::int64_t covered = 0;
+  for (std::size_t p = 0; p < 64 * 48; ++p) {
+    seen.insert(idFromRgb(&idImage.pixels[3 * p]));
+    covered += idFromRgb(&idImage.pixels[3 * p]) != 0;
+  }
+  // --stats counts the pixels a surface shows (what depth complexity is measured over).
+  char line[64];
+  std::snprintf(line, sizeof line, "%-32s %lld\n", "covered pixels", static_cast<long long>(covered));
+  EXPECT_GT(covered, 0);
+  EXPECT_NE(result.output.find(line), std::string::npos) << line << " in:\n" << result.output;
   EXPECT_TRUE(seen.count(0));
   EXPECT_LE(*seen.rbegin(), 12u);
   EXPECT_GE(seen.size(), 5u);  // background and at least two faces of two triangles each
   EXPECT_EQ(readImage(color).width, 64);
   EXPECT_TRUE(std::filesystem::exists(depth));
+}
+
+// A size within the limits that this machine's memory cannot hold (here, a memory
+// limit of 1.5 GiB against the 3 GiB frame of 16384 x 16384): bad input, said as such,
+// with what the frame needs; no file.
+TEST(Cli, RunningOutOfMemorySaysWhatTheSizeNeedsAndWritesNothing) {
+  const auto output = test::outputPath("cli-out-of-memory.png");
+  std::filesystem::remove(output);
+  const test::CommandResult result = test::runCommand("ulimit -v 1500000 && " + std::string(HSR_BINARY) + " render " + kCube +
+                                                      " --size 16384x16384 --threads 1 -o " + output.string());
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+  EXPECT_EQ(result.output.rfind("hsr: error: out of memory rendering 16384x16384 with zbuffer: the frame alone needs 3.0 GiB", 0), 0u)
+      << result.output;
+  EXPECT_FALSE(std::filesystem::exists(output));
+}
+
+// A shipped scene by the name `hsr list` prints, with or without ".toml", from any folder.
+TEST(Cli, ShippedScenesAreFoundByName) {
+  const auto byName = test::outputPath("cli-by-name-ids.png"), byPath = test::outputPath("cli-by-path-ids.png");
+  const std::string render = std::string(HSR_BINARY) + " render ";
+  const std::string options = " --size 64x36 -o " + test::outputPath("cli-by-name.png").string() + " --ids ";
+  ASSERT_EQ(test::runCommand("cd / && " + render + "counters" + options + byName.string()).exitCode, 0);
+  ASSERT_EQ(test::runCommand(render + test::sourcePath("scenes/counters.toml").string() + options + byPath.string()).exitCode, 0);
+  EXPECT_EQ(readImage(byName).pixels, readImage(byPath).pixels);
+  EXPECT_EQ(test::runCommand("cd / && " + render + "hard/coplanar.toml" + options + byName.string()).exitCode, 0);
+  // A name that is neither a file nor a shipped scene says both were tried.
+  const test::CommandResult missing = test::runCommand(render + "countres -o " + test::outputPath("x.png").string());
+  EXPECT_EQ(missing.exitCode, 2);
+  EXPECT_NE(missing.output.find("countres: cannot open the scene file (no such file), and no shipped scene has that name"),
+            std::string::npos) << missing.output;
 }
 
 TEST(Cli, ListShowsAlgorithmsKnobsAndScenes) {

@@ -12,6 +12,7 @@
 #include "json_reader.hpp"
 #include "renderer/depth.hpp"
 #include "renderer/frame.hpp"
+#include "renderer/simd.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -105,10 +106,13 @@ const std::string kScenes = std::string(HSR_SOURCE_DIR) + "/scenes/";
 TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   const auto folder = freshFolder("compare");
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " compare " + kScenes + "cube.toml " +
-                                                      kScenes + "hard/coplanar.toml --size 96x72 --repeat 2 --out " + folder.string());
+                                                      kScenes + "hard/coplanar.toml --size 96x72 --repeat 2 --wide --out " + folder.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_NE(result.output.find("reference: 0 ambiguous pixels"), std::string::npos) << result.output;
-  // The table leads with the algorithm's own time, the shared passes beside it.
+  // The last line says where the report is.
+  const std::string lastLine = result.output.substr(result.output.rfind('\n', result.output.size() - 2) + 1);
+  EXPECT_EQ(lastLine, "open " + (folder / "report.html").string() + " in a browser: every table, image and plot of this run\n");
+  // The table (--wide: every column) leads with the algorithm's own time, the shared passes beside it.
   const std::size_t visibility = result.output.find("visibility ms: median [min-max]");
   ASSERT_NE(visibility, std::string::npos) << result.output;
   EXPECT_LT(visibility, result.output.find("+ shading, effects ms", visibility)) << result.output;
@@ -145,6 +149,8 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   EXPECT_EQ(rows[1].at("algorithm"), "zbuffer");
   EXPECT_EQ(rows[1].at("knobs"), "defaults");
   EXPECT_NE(rows[1].at("counters").find("fragments tested="), std::string::npos);
+  // The fast path's own counter where it ran (on a CPU with AVX2), and only there.
+  EXPECT_EQ(rows[1].at("counters").find("fragments skipped by block depth=") != std::string::npos, cpuHasAvx2()) << rows[1].at("counters");
   EXPECT_EQ(rows[1].at("pass_ms").rfind("visibility=", 0), 0u) << rows[1].at("pass_ms");
   EXPECT_NE(rows[1].at("pass_ms").find(";shading="), std::string::npos) << "cube.toml is lambert: a shading pass";
   EXPECT_EQ(rows[1].at("pass_ms").find("shadow maps"), std::string::npos) << "and no shadows";
@@ -191,6 +197,27 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
 // and every thumbnail pixel is filled (none transparent); the line algorithms' long
 // captions are broken into lines that stay inside their tile, so the 10-pixel gaps
 // between tiles hold nothing but the sheet's background below the heading.
+// Without --wide, the five columns a reader compares first, in a terminal's width.
+TEST(Compare, TheDefaultTableFitsATerminal) {
+  const auto folder = freshFolder("compare-narrow");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " compare " + kScenes + "counters.toml " +
+                                                      "--algos zbuffer,zbuffer:path=scalar,painter --size 64x36 --repeat 1 --out " +
+                                                      folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const std::size_t heading = result.output.find("  algorithm");
+  ASSERT_NE(heading, std::string::npos) << result.output;
+  const std::string headingLine = result.output.substr(heading, result.output.find('\n', heading) - heading);
+  for (const char* column : {"knobs", "visibility ms: median [min-max]", "error", "wrong px"})
+    EXPECT_NE(headingLine.find(column), std::string::npos) << column << " in " << headingLine;
+  EXPECT_EQ(headingLine.find("total"), std::string::npos) << headingLine;
+  std::istringstream lines(result.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  ", 0) == 0) {  // the table's lines
+      EXPECT_LE(line.size(), 100u) << line;
+    }
+  }
+}
+
 TEST(Compare, TheContactSheetOfASmallSceneIsFilledAndItsCaptionsStayInTheirTiles) {
   const auto folder = freshFolder("compare-small");
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " compare " + kScenes +
@@ -281,6 +308,16 @@ TEST(Study, OcclusionQueriesShardedAndMergedEqualsOneRun) {
     shards += ' ';
     shards += shard.string();
   }
+  // Each frame's multiqueries (exercise 12.5): CHC++ batches its queries; no other method does.
+  {
+    std::vector<std::string> header;
+    std::int64_t chcppMultiqueries = 0;
+    for (const Row& row : readCsv(whole / "occlusion_queries_frames.csv", header)) {
+      if (row.at("method") == "chcpp") chcppMultiqueries += std::stoll(row.at("multiqueries"));
+      else EXPECT_EQ(row.at("multiqueries"), "0") << row.at("method");
+    }
+    EXPECT_GT(chcppMultiqueries, 0);
+  }
   const auto merged = freshFolder("queries-merged");
   result = test::runCommand(std::string(HSR_BINARY) + " study occlusion-queries --out " + merged.string() + " --merge" + shards);
   ASSERT_EQ(result.exitCode, 0) << result.output;
@@ -332,6 +369,14 @@ TEST(Render, DepthTiesAreCountedAndWarnedAboutWithAFinerFormat) {
                            "reversed-float32 resolves ", "at the farthest visible depth (3.", " where float32 resolves "})
     EXPECT_NE(line.find(part), std::string::npos) << part << "\n" << line;
   EXPECT_TRUE(std::filesystem::exists(folder / "x.png")) << "a warning, not an error: the image is written";
+  // Without --stats or --explain, one short note: ties are common, and not a failure.
+  const test::CommandResult noted = test::runCommand(command);
+  ASSERT_EQ(noted.exitCode, 0) << noted.output;
+  EXPECT_EQ(noted.output.rfind("hsr: note: ", 0), 0u) << noted.output;
+  EXPECT_EQ(std::count(noted.output.begin(), noted.output.end(), '\n'), 1) << noted.output;
+  EXPECT_LE(noted.output.size(), 120u) << noted.output;
+  EXPECT_NE(noted.output.find(" depth ties (fragments at one float32 depth, ordered by drawing order); --stats says more"),
+            std::string::npos) << noted.output;
   const test::CommandResult resolved = test::runCommand(command + " --depth-format reversed-float32 --explain");
   ASSERT_EQ(resolved.exitCode, 0) << resolved.output;
   EXPECT_EQ(resolved.output.find("warning"), std::string::npos) << resolved.output;
@@ -340,7 +385,7 @@ TEST(Render, DepthTiesAreCountedAndWarnedAboutWithAFinerFormat) {
   for (const std::string& format : depthFormatNames()) EXPECT_NE(resolved.output.find("  " + format + " ", table), std::string::npos) << format;
   // An exact tie (the coplanar case's left pair) no format resolves: the warning says so.
   const test::CommandResult coplanar = test::runCommand(std::string(HSR_BINARY) + " render " + kScenes +
-                                                        "hard/coplanar.toml --depth-format reversed-float32 -o " + (folder / "c.png").string());
+                                                        "hard/coplanar.toml --depth-format reversed-float32 --stats -o " + (folder / "c.png").string());
   EXPECT_NE(coplanar.output.find("no format resolves finer than reversed-float32's"), std::string::npos) << coplanar.output;
 }
 
