@@ -1,7 +1,7 @@
 #include "algorithms/algorithm.hpp"
 
-#include "renderer/line_errors.hpp"
-#include "renderer/line_reference.hpp"
+#include "renderer/lines/line_errors.hpp"
+#include "renderer/reference/line_reference.hpp"
 
 namespace hsr {
 

@@ -16,17 +16,18 @@
 #include <vector>
 
 #include "algorithms/knobs.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/coverage.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/pieces.hpp"
-#include "renderer/polygon_svg.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/steps.hpp"
-#include "renderer/visible_set.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/image/polygon_svg.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/raster/coverage.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/raster/pieces.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/visible_set.hpp"
+#include "renderer/steps/steps.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr {
 
@@ -45,7 +46,7 @@ struct VisibilityRequest {
   const VisibleSet* triangles;   // only these (what culling kept, or the opaque ones); nullptr: all
   int threads;                   // 0 = all cores; the answer is the same bits for any count
   Stats& stats;
-  StepRecorder* steps = nullptr;  // where the algorithm records its steps; null: not asked (renderer/steps.hpp)
+  StepRecorder* steps = nullptr;  // where the algorithm records its steps; null: not asked (renderer/steps/steps.hpp)
 };
 
 // A surface algorithm's answer, written into a frame of the view's size (which a caller
@@ -56,7 +57,7 @@ struct VisibilityRequest {
 // from an algorithm that decides in object space (Weiler-Atherton), the visible
 // polygons themselves, which hsr render can draw as SVG; from an antialiasing algorithm
 // (the A-buffer), each pixel's surfaces and their shares of it, which the shading pass
-// blends (renderer/coverage.hpp; frame.ids then names the surface with the largest share).
+// blends (renderer/raster/coverage.hpp; frame.ids then names the surface with the largest share).
 struct Visibility {
   Frame frame;
   std::optional<PaintedPieces> painted;
@@ -65,7 +66,7 @@ struct Visibility {
 };
 
 // A line drawing judged against the exact one: its line error, where it is wrong
-// (renderer/line_errors: lineErrorMap's colours), and the exact drawing it was judged by.
+// (renderer/lines/line_errors: lineErrorMap's colours), and the exact drawing it was judged by.
 struct LineJudgement {
   LineError error;
   std::vector<std::uint8_t> errorMap;
@@ -100,11 +101,14 @@ struct AlgorithmEntry {
   // It can leave triangles out (request.triangles): culling stages may run before it,
   // and the transparency pass can ask it for the opaque surfaces alone.
   bool takesTriangleSubsets = false;
+  // It decides with a depth buffer: the format its knobs chose (what a tie is a tie of:
+  // hsr render's note on depth ties, and its advice).
+  std::function<DepthFormat(const KnobValues&)> depthFormat;
   // List-priority algorithms: the requested triangles' screen pieces, back to front.
   std::function<PaintedPieces(const VisibilityRequest&, const KnobValues&)> order;
 
   // Line algorithms: the drawing, and how it is judged.
-  // steps: where it records its steps, or null (renderer/steps.hpp).
+  // steps: where it records its steps, or null (renderer/steps/steps.hpp).
   std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&, StepRecorder* steps)> drawLines;
   std::function<LineJudgement(const PreparedScene&, const KnobValues&, const LineSet&, int threads, Stats&)> judgeLines;
 
@@ -118,7 +122,7 @@ inline constexpr const char* kCreaseKnobHelp =
     "feature edges: draw the edges whose two faces' normals differ by more than this many degrees";
 
 // A line drawing judged by the exact line reference of its own edges
-// (renderer/line_reference): what Roberts and Appel are judged by (judgeLines).
+// (renderer/reference/line_reference): what Roberts and Appel are judged by (judgeLines).
 LineJudgement judgedByLineReference(const PreparedScene& scene, const KnobValues& knobs, const LineSet& lines, int threads,
                                     Stats& stats);
 

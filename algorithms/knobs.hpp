@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr {
 

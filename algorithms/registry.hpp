@@ -15,8 +15,16 @@ namespace hsr {
 const std::vector<AlgorithmEntry>& algorithms();
 
 // Throws InputError naming the unknown algorithm (after `where`, the option that gave
-// it) and listing the known ones.
+// it) and listing the known ones: for names a user typed.
 const AlgorithmEntry& findAlgorithm(const std::string& name, const std::string& where = "--algo");
+
+// The registered entry that `make` made: how code names an algorithm, typed, so that a
+// renamed or removed one is a compile error rather than an unknown name at run time
+// (entryOf(zbuffer::entry)).
+using MakeEntry = AlgorithmEntry (*)();
+const AlgorithmEntry& entryOf(MakeEntry make);
+// The exact reference's entry.
+const AlgorithmEntry& referenceEntry();
 
 // The algorithm's knob of that name, or nullptr.
 const KnobSpec* findKnob(const AlgorithmEntry& algorithm, const std::string& name);
@@ -29,8 +37,8 @@ KnobValues resolveKnobs(const AlgorithmEntry& algorithm, const KnobSettings& set
 // The algorithm's name as prose ("ray casting" for ray_casting), for messages.
 std::string displayName(const AlgorithmEntry& algorithm);
 
-// The algorithms the build registered, in the order of algorithms/CMakeLists.txt
-// (defined in the generated registered_algorithms.cpp).
-std::vector<AlgorithmEntry> registeredAlgorithms();
+// The functions that make the entries of the algorithms the build registered, in the
+// order of algorithms/CMakeLists.txt (defined in the generated registered_algorithms.cpp).
+std::vector<MakeEntry> registeredAlgorithms();
 
 }  // namespace hsr

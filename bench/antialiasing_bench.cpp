@@ -3,7 +3,7 @@
 // same subsamples (rendered k times larger, then each pixel the mean of its k x k), whole
 // renders (visibility and shading), on counters, trees and dragons at 320 x 180, one
 // thread. Each row's counters hold its coverage error against the exact shares (the
-// reference traced at 32 x 32 samples per pixel, renderer/coverage.hpp): the mean
+// reference traced at 32 x 32 samples per pixel, renderer/raster/coverage.hpp): the mean
 // over all pixels, and over the pixels where more than one thing shows.
 //
 // Run: build/bench/antialiasing_bench --benchmark_repetitions=3
@@ -12,8 +12,8 @@
 #include <map>
 
 #include "bench_scenes.hpp"
-#include "renderer/coverage.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/raster/coverage.hpp"
+#include "renderer/reference/reference.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/prepare.hpp"
+#include "renderer/scene/prepare.hpp"
 
 namespace hsr::bench {
 

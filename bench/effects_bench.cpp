@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "algorithms/registry.hpp"
+#include "bench_scenes.hpp"
 #include "pipeline/pipeline.hpp"
 #include "studies/effect_ladder.hpp"
-#include "bench_scenes.hpp"
 
 namespace {
 

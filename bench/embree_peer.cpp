@@ -27,9 +27,9 @@
 
 #include "algorithms/ray_casting/ray_casting.hpp"
 #include "peer_timing.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/memory.hpp"
-#include "renderer/parallel.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/util/memory.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include "algorithms/appel/appel.hpp"
 #include "algorithms/roberts/roberts.hpp"
 #include "bench_scenes.hpp"
-#include "renderer/line_reference.hpp"
+#include "renderer/reference/line_reference.hpp"
 
 namespace {
 

@@ -29,7 +29,7 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "peer_timing.hpp"
-#include "renderer/memory.hpp"
+#include "renderer/util/memory.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 //                        visible) or with the hierarchical-Z pyramid; items: tests
 //   zbuffer-depth        for scale: hsr's z-buffer (geometry stage and float depth
 //                        raster) of the whole city at 1920 x 1080
-//   gpu/query, gpu/draw  on the simulated GPU (renderer/simulated_gpu.hpp), at 1920 x 1080
+//   gpu/query, gpu/draw  on the simulated GPU (algorithms/culling/occlusion/simulated_gpu.hpp), at 1920 x 1080
 //                        with the 500 nearest buildings drawn: the next 100 buildings'
 //                        boxes queried, or the buildings themselves drawn (what a query
 //                        spares); items: buildings
@@ -22,12 +22,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algorithms/culling/culling.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "bench_scenes.hpp"
-#include "algorithms/culling/culling.hpp"
-#include "renderer/screen_triangles.hpp"
-#include "renderer/simulated_gpu.hpp"
+#include "renderer/raster/screen_triangles.hpp"
 
 namespace {
 

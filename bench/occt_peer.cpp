@@ -15,7 +15,7 @@
 // Every 2D segment Open CASCADE outputs lies on the projection of one mesh edge; it is
 // matched to that feature edge of hsr's (both ends on its line within kOnEdgePixels), so
 // the two drawings become visible intervals of the same edges and the line error of
-// renderer/metrics judges both against the exact line reference. Printed: each side's
+// renderer/reference/metrics judges both against the exact line reference. Printed: each side's
 // visible length and time, and a table by kind of edge (contour, crease, boundary; on
 // one, two or more faces) of the length each side draws wrongly or misses. Written to
 // DIR (default out/occt_peer): overlay.png (white; Open CASCADE's hidden lines grey,
@@ -54,15 +54,15 @@
 
 #include "algorithms/registry.hpp"
 #include "peer_timing.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/error.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/line_reference.hpp"
-#include "renderer/feature_edges.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/line_errors.hpp"
-#include "renderer/image_grid.hpp"
-#include "renderer/raster.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/image/image_grid.hpp"
+#include "renderer/lines/feature_edges.hpp"
+#include "renderer/lines/line_errors.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/raster/raster.hpp"
+#include "renderer/reference/line_reference.hpp"
+#include "renderer/util/error.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // The stages every rasterizing algorithm shares (README "Speed"), on one thread at
 // 1280 x 720:
-//   geometry/SCENE              the geometry stage (renderer/screen_triangles): per triangle in
-//   shading/SCENE/SHADING/REAL  the shading pass (renderer/shading) over the z-buffer's
+//   geometry/SCENE              the geometry stage (renderer/raster/screen_triangles): per triangle in
+//   shading/SCENE/SHADING/REAL  the shading pass (renderer/shading/shading) over the z-buffer's
 //                               ids: per shaded pixel, set-ups included; REAL float is what
 //                               every algorithm runs, double what the exact reference runs
 //   shading/SCENE/lambert+shadows/float   the same with shadow-map lookups (maps built once, outside the timing)
@@ -14,8 +14,8 @@
 
 #include "bench_scenes.hpp"
 #include "pipeline/shadow_maps.hpp"
-#include "renderer/screen_triangles.hpp"
-#include "renderer/shading.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/shading/shading.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // vs one-scanline, 1 vs 2 threads. Measures the visibility pass (geometry stage and
 // depth-tested rasterization: what Mesa's peer run does too); "shaded" adds the
 // deferred Lambert shading of the whole render. "reference" traces the exact reference
-// (renderer/reference) over the same scenes, by packets (its default) or by the textbook
+// (renderer/reference/reference) over the same scenes, by packets (its default) or by the textbook
 // traversal, BVHs already built, so the cost of ground truth comes out as a ratio to the
 // z-buffer from one run (ray_casting_bench times the BVH builds).
 //
@@ -15,8 +15,8 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "bench_scenes.hpp"
-#include "renderer/reference.hpp"
-#include "renderer/shading.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/shading/shading.hpp"
 
 namespace {
 

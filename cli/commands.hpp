@@ -21,7 +21,7 @@ struct RenderOptions {
   std::string cull;       // culling stages before the algorithm: "backface,frustum:sphere"
   bool stats = false;
   bool explain = false;   // print the pass plan before rendering, the decisions and time per pass after
-  std::string steps;      // folder for the algorithm's steps (renderer/steps.hpp); "" = none
+  std::string steps;      // folder for the algorithm's steps (renderer/steps/steps.hpp); "" = none
   int every = 0;          // record every Nth repeated step; 0 = about 40 frames per run
 };
 int render(const RenderOptions& options);

@@ -5,9 +5,9 @@
 #include <cstdio>
 
 #include "cli/commands.hpp"
-#include "renderer/error.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/image_library.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/image/image_library.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::cli {
 

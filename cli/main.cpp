@@ -7,8 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
-#include "renderer/error.hpp"
-#include "renderer/memory.hpp"
+#include "renderer/util/error.hpp"
+#include "renderer/util/memory.hpp"
 #include "studies/common.hpp"
 #include "studies/interrupt.hpp"
 #include "studies/report.hpp"

@@ -5,7 +5,7 @@
 
 #include "algorithms/culling/cells/pvs.hpp"
 #include "cli/commands.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 #include "studies/common.hpp"
 
 namespace hsr::cli {

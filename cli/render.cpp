@@ -10,12 +10,12 @@
 #include "algorithms/registry.hpp"
 #include "cli/commands.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/depth.hpp"
-#include "renderer/error.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/steps.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/steps/steps.hpp"
+#include "renderer/util/error.hpp"
 #include "studies/common.hpp"
 #include "studies/results.hpp"
 
@@ -110,14 +110,14 @@ void printDepthResolutions(const CameraTransform& camera, std::pair<double, doub
 // resolves the finest separation at the farthest visible depth, if finer. Ties are
 // common (faces that touch, coplanar decals) and drawing order settles them the same way
 // every time, so by default they get a note, not a warning that reads as a failure.
-void reportDepthTies(std::int64_t ties, const std::string& formatName, const CameraTransform& camera, double farthest, bool advise) {
+void reportDepthTies(std::int64_t ties, DepthFormat current, const CameraTransform& camera, double farthest, bool advise) {
+  const std::string formatName = depthFormatName(current);
   if (!advise) {
     std::fprintf(stderr, "hsr: note: %lld depth ties (fragments at one %s depth, ordered by drawing order); --stats says more\n",
                  static_cast<long long>(ties), formatName.c_str());
     return;
   }
   const auto& names = depthFormatNames();
-  const auto current = DepthFormat(std::find(names.begin(), names.end(), formatName) - names.begin());
   const auto resolution = [&](DepthFormat format) { return depthResolution(format, camera, farthest); };
   DepthFormat finest = current;
   for (std::size_t f = 0; f < names.size(); ++f)
@@ -259,8 +259,8 @@ int render(const RenderOptions& options) {
   const std::string& partial = lines ? rendered.drawing.partial : frame.partial;
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
   const std::optional<std::pair<double, double>> depths = lines ? std::nullopt : visibleDepths(frame);
-  if (stats.counter("depth ties") > 0 && depths)
-    reportDepthTies(stats.counter("depth ties"), configuration.knobs.at("depth-format"), scene.prepared->camera(), depths->second,
+  if (stats.counter(kDepthTiesCounter) > 0 && depths && algorithm.depthFormat)
+    reportDepthTies(stats.counter(kDepthTiesCounter), algorithm.depthFormat(configuration.knobs), scene.prepared->camera(), depths->second,
                     options.stats || options.explain);
   if (options.stats) {
     // Asked for here, not counted by any pass: the pixels a surface shows (for depth

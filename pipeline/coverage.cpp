@@ -1,6 +1,6 @@
 #include "pipeline/coverage.hpp"
 
-#include "renderer/parallel.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr::pipeline {
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "algorithms/algorithm.hpp"
-#include "renderer/shading.hpp"
+#include "renderer/shading/shading.hpp"
 
 namespace hsr::pipeline {
 

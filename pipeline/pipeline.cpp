@@ -4,22 +4,22 @@
 #include <cstdio>
 #include <optional>
 
+#include "algorithms/painter/painter.hpp"
 #include "algorithms/registry.hpp"
 #include "pipeline/coverage.hpp"
 #include "pipeline/shadow_maps.hpp"
 #include "pipeline/transparency.hpp"
-#include "renderer/fog.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/outline.hpp"
-#include "renderer/shading.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/shading/fog.hpp"
+#include "renderer/shading/outline.hpp"
+#include "renderer/shading/shading.hpp"
 
 namespace hsr::pipeline {
 namespace {
 
 // The order the transparency pass blends transparent surfaces in when the visibility
 // pass found no order of its own: the painter's depth sort by centroid.
-const AlgorithmEntry& transparencySorter() { return findAlgorithm("painter"); }
-const KnobSettings kTransparencySort = {{"variant", "sort"}, {"key", "centroid"}};
+const painter::Knobs kTransparencySort{.variant = painter::Variant::sort, .key = painter::SortKey::centroid};
 
 std::string count(std::size_t n, const std::string& what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); }
 
@@ -149,7 +149,7 @@ void runShadowMaps(Context& context) {
   context.shadowMaps.emplace(context.scene, context.scene.scene().effects.shadow, context.threads, context.stats);
 }
 
-// The work inside shading (renderer/shading: PixelShader), wherever a pass shades.
+// The work inside shading (renderer/shading/shading: PixelShader), wherever a pass shades.
 std::vector<PlannedPass> shadingWork(const Facts& facts) {
   const Effects& effects = facts.effects;
   std::size_t views = 0;
@@ -213,9 +213,7 @@ void runTransparency(Context& context) {
     return;
   }
   const VisibleSet glass = trianglesByOpacity(scene, context.kept ? &*context.kept : nullptr, false);
-  const AlgorithmEntry& sorter = transparencySorter();
-  const PaintedPieces order = sorter.order({scene, context.camera, &glass, context.threads, context.stats},
-                                           resolveKnobs(sorter, kTransparencySort));
+  const PaintedPieces order = painter::order({scene, context.camera, &glass, context.threads, context.stats}, kTransparencySort);
   blendOverOpaque(scene, order, context.pixelShader(), context.threads, frame, context.stats);
 }
 

@@ -1,6 +1,6 @@
 // The pipeline: one place that runs a configuration on a scene, pass by pass,
 //   culling -> visibility -> shadow maps -> shading -> transparency -> fog -> outline,
-// each pass only when the scene's effects (renderer/scene.hpp: Effects) and the
+// each pass only when the scene's effects (renderer/scene/scene.hpp: Effects) and the
 // configuration call for it. The algorithm answers visibility alone (algorithms/
 // algorithm.hpp); everything after it is the same for every algorithm. `hsr render
 // --explain` prints plan(), which asks the same passes the same question render() asks
@@ -13,10 +13,11 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/culling/culling.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "algorithms/registry.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::pipeline {
 
@@ -29,6 +30,13 @@ struct Configuration {
 
 // A configuration of an algorithm's settings, checked (InputError naming `where`).
 Configuration configurationOf(const AlgorithmEntry& algorithm, const KnobSettings& settings, const std::string& where = "--knob");
+// The same in the algorithm's own types: the function that makes its entry and its Knobs
+// struct (configurationOf(zbuffer::entry, zbuffer::knobTable(), {.depthTest = false})),
+// so that code names no algorithm or knob by a string.
+template <typename Knobs>
+Configuration configurationOf(MakeEntry make, const KnobTable<Knobs>& table, const Knobs& knobs = {}) {
+  return {&entryOf(make), table.valuesOf(knobs)};
+}
 
 // Why the configuration cannot render the scene, or "" when it can: the algorithm's own
 // refusal (a budget, a shape it cannot handle), or transparency an algorithm cannot blend
@@ -56,7 +64,7 @@ struct Rendered {
 // Renders the scene at its size. threads: 0 = all cores; the image is the same bits for
 // every count. `previous`: the previous frame, for a culling stage that reuses it
 // (occlusion:previous-frame). `steps`: where the culling stages and the algorithm record
-// their steps (renderer/steps.hpp), or null. The configuration must not be refused
+// their steps (renderer/steps/steps.hpp), or null. The configuration must not be refused
 // (refusal()).
 Rendered render(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
                 const culling::PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr);

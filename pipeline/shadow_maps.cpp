@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "algorithms/registry.hpp"
+#include "algorithms/zbuffer/zbuffer.hpp"
 
 namespace hsr::pipeline {
 namespace {
@@ -60,8 +60,7 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
   // Only opaque surfaces cast shadows: a transparent one lets the light through (and
   // tints nothing: there are no colored shadows).
   const VisibleSet casters = trianglesByOpacity(scene, nullptr, true);
-  const AlgorithmEntry& zbuffer = findAlgorithm("zbuffer");
-  const KnobValues float32 = resolveKnobs(zbuffer, {{"depth-format", "float32"}});
+  const zbuffer::Knobs float32{.depthFormat = DepthFormat::float32};
   for (const Light& light : scene.scene().lights) {
     std::vector<View>& lightViewsDrawn = views_.emplace_back();
     for (const CameraTransform& view : lightViews(light, center, radius, settings.resolution)) {
@@ -69,7 +68,7 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
       // apart so that the camera's pass reads the same with and without shadows.
       Stats mapStats;
       Visibility map{Frame(settings.resolution, settings.resolution), std::nullopt};
-      zbuffer.visibility({scene, view, &casters, threads, mapStats}, float32, map);
+      zbuffer::visibility({scene, view, &casters, threads, mapStats}, float32, map);
       stats.add("shadow maps rendered");
       stats.add("shadow map texels", static_cast<std::int64_t>(map.frame.pixelCount()));
       stats.add("shadow map fragments written", mapStats.counter("fragments written"));

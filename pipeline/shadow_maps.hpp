@@ -17,10 +17,10 @@
 
 #include <vector>
 
-#include "renderer/camera.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/shading.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/shading/shading.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::pipeline {
 

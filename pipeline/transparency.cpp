@@ -3,7 +3,7 @@
 #include <limits>
 #include <vector>
 
-#include "renderer/tiles.hpp"
+#include "renderer/raster/tiles.hpp"
 
 namespace hsr::pipeline {
 namespace {

@@ -9,15 +9,15 @@
 //     in front of the opaque depth. Transparent surfaces that overlap in depth cyclically
 //     or pass through each other blend in the wrong order somewhere: only the painter's
 //     newell and bsp split them.
-// Either way each blended fragment is shaded when it is drawn (renderer/shading), and a
+// Either way each blended fragment is shaded when it is drawn (renderer/shading/shading), and a
 // pixel's id and depth end as the nearest surface's.
 #pragma once
 
-#include "renderer/frame.hpp"
-#include "renderer/pieces.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/shading.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/raster/pieces.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/shading/shading.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::pipeline {
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs what hsr needs from Debian's repositories when any of it is missing, in two
-# sets:
-#   scripts/setup.sh          what building and running the hsr program needs (the demo)
-#   scripts/setup.sh tests    that, and what the tests, the benchmarks and the figures need
+# Installs what hsr needs from Debian's repositories when any of it is missing, in sets:
+#   scripts/setup.sh                what building and running the hsr program needs (the demo)
+#   scripts/setup.sh tests          that, and what the tests, the benchmarks and the figures need
+#   scripts/setup.sh tests arm64    that, and the arm64 cross-compiler and qemu-user (scripts/cross.sh)
+#   scripts/setup.sh web            that, and emscripten and Node.js (scripts/web.sh)
 # Idempotent: a machine that already has every package runs no apt-get at all.
 # Runs as root (as on a fresh Debian 12 machine); otherwise through sudo when there is one.
 set -euo pipefail
@@ -15,13 +16,13 @@ program=(
   libtinyobjloader-dev         # OBJ meshes
   libtomlplusplus-dev          # TOML scenes
   libcli11-dev                 # the hsr command line
-  libgmp-dev                   # exact rational arithmetic in the reference
   gnuplot-nox                  # hsr sweep's and the studies' plots
   graphviz                     # dot: the BSP tree in the painter's steps
   fonts-dejavu-core            # labels on hsr compare's contact sheet and on the steps' pictures
 )
 tests=(
   libgtest-dev libgmock-dev    # the tests
+  libgmp-dev                   # the tests: GMP's rationals, the oracle the exact arithmetic is checked against
   python3                      # scripts/readme_outputs.py: the documents' quoted outputs, checked by a test
   chromium                     # tests: report.html loaded in a real browser, headless
   clang libclang-rt-14-dev     # the sanitizer build (scripts/sanitize.sh)
@@ -36,11 +37,19 @@ tests=(
   librsvg2-bin                 # rsvg-convert: scripts/figures.sh draws Weiler-Atherton's SVG as a PNG
 )
 
-case "${1:-program}" in
-  program) packages=("${program[@]}") ;;
-  tests) packages=("${program[@]}" "${tests[@]}") ;;
-  *) echo "setup: unknown set '$1'; expected program or tests" >&2; exit 2 ;;
-esac
+arm64=(g++-aarch64-linux-gnu qemu-user)
+web=(emscripten binaryen nodejs node-acorn)
+
+packages=("${program[@]}")
+for set in "$@"; do
+  case "$set" in
+    program) ;;
+    tests) packages+=("${tests[@]}") ;;
+    arm64) packages+=("${arm64[@]}") ;;
+    web) packages+=("${web[@]}") ;;
+    *) echo "setup: unknown set '$set'; expected program, tests, arm64 or web" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for package in "${packages[@]}"; do

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <regex>
 
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::studies {
 

@@ -10,8 +10,8 @@
 
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace hsr::studies {
 

@@ -4,15 +4,15 @@
 #include <cstdio>
 #include <utility>
 
-#include "studies/studies.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
 #include "studies/common.hpp"
 #include "studies/contact_sheet.hpp"
 #include "studies/measure.hpp"
 #include "studies/results.hpp"
-#include "renderer/error.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "studies/studies.hpp"
 
 namespace hsr::studies {
 namespace {
@@ -63,7 +63,7 @@ int compare(const CompareOptions& options) {
 
   std::vector<ResultRow> rows;
   std::vector<SheetSection> sections;
-  const AlgorithmEntry& referenceEntry = findAlgorithm("reference");
+  const AlgorithmEntry& referenceAlgorithm = referenceEntry();
   for (const LoadedScene& scene : scenes) {
     const PreparedScene& prepared = *scene.prepared;
     const auto reference = measure(options.repeat, [&](Stats& stats) { return renderReference(prepared, options.threads, stats); });
@@ -77,7 +77,7 @@ int compare(const CompareOptions& options) {
                 formatCount(truth.ambiguousPixels).c_str(), formatCount(truth.exactFallbacks).c_str());
 
     std::vector<ResultRow> sceneRows;
-    ResultRow referenceRow = measuredRow(scene.name, prepared, referenceEntry, "exact", reference, options.threads);
+    ResultRow referenceRow = measuredRow(scene.name, prepared, referenceAlgorithm, "exact", reference, options.threads);
     referenceRow.error = surfaceError(truth.frame, truth);
     sceneRows.push_back(referenceRow);
     char line[128];

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "renderer/error.hpp"
-#include "renderer/image_library.hpp"
+#include "renderer/image/image_library.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::studies {
 namespace {

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "renderer/frame.hpp"
+#include "renderer/image/frame.hpp"
 
 namespace hsr::studies {
 

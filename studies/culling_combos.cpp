@@ -19,15 +19,16 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
+#include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
-#include "studies/studies.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
 #include "studies/common.hpp"
 #include "studies/interrupt.hpp"
 #include "studies/plot.hpp"
 #include "studies/results.hpp"
-#include "renderer/error.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "studies/studies.hpp"
 
 namespace hsr::studies {
 namespace {
@@ -83,7 +84,7 @@ FrameTimes frameTimes(std::vector<double> seconds) {
 // (float32 depth), with or without its test; timed through the visibility pass.
 pipeline::Configuration configurationOf(const Mode& mode) {
   pipeline::Configuration configuration =
-      pipeline::configurationOf(findAlgorithm("zbuffer"), {{"depth-test", mode.depthTest ? "on" : "off"}});
+      pipeline::configurationOf(zbuffer::entry, zbuffer::knobTable(), {.depthTest = mode.depthTest});
   if (!mode.cull.empty()) configuration.culling = culling::parsePipeline(mode.cull);
   return configuration;
 }
@@ -119,7 +120,7 @@ SceneResult runScene(const std::string& name, const StudyOptions& options, Progr
   for (int f = 0; f < options.frames; ++f) {
     // Untimed: this frame's world, every object turned about its own vertical axis.
     const double degrees = 360.0 * f / options.frames;
-    const dmat4 turn = glm::rotate(dmat4(1.0), glm::radians(degrees), dvec3(0, 1, 0));
+    const dmat4 turn = rotate(dmat4(1.0), glm::radians(degrees), dvec3(0, 1, 0));
     PreparedScene prepared(*loaded.scene, {dmat4(1.0)}, turn);
     prepared.setSize(result.width, result.height);
     // The modes in a different order each frame, so that no mode always runs first

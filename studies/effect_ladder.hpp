@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace hsr::studies {
 

@@ -9,10 +9,11 @@
 #include <chrono>
 #include <cstdio>
 
+#include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/shadow_maps.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "studies/common.hpp"
 #include "studies/contact_sheet.hpp"
 #include "studies/effect_ladder.hpp"
@@ -33,7 +34,7 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
   const LoadedScene showcase = loadPrepared((std::filesystem::path(HSR_SCENES_DIR) / kShowcase).string(), options.size);
   const int width = showcase.prepared->width(), height = showcase.prepared->height();
   const int repeats = options.frames > 0 ? options.frames : 9;
-  const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
+  const pipeline::Configuration zbuffer = pipeline::configurationOf(zbuffer::entry, zbuffer::knobTable());
   const std::vector<std::string> passes = {"visibility", "shadow maps", "shading", "transparency", "fog", "outline"};
 
   std::printf("effects added in turn to %s, %dx%d, z-buffer, %d renders on %d thread(s), ms: median [fastest-slowest]:\n  %-16s",
@@ -131,7 +132,7 @@ int shadowMapSweep(const StudyOptions& options, const std::filesystem::path& fol
   PreparedScene prepared(scene);
   prepared.setSize(showcase.prepared->width(), showcase.prepared->height());
   Stats stats;
-  const Frame frame = pipeline::render(prepared, pipeline::configurationOf(findAlgorithm("zbuffer"), {}), options.threads, stats).frame;
+  const Frame frame = pipeline::render(prepared, pipeline::configurationOf(zbuffer::entry, zbuffer::knobTable()), options.threads, stats).frame;
   const ExactShadows exact(prepared, stats);
   const std::vector<int> resolutions = {128, 256, 512, 1024, 2048, 4096};
   const std::vector<double> biases = {0, 0.5, 1, 1.5, 3, 6, 12};

@@ -4,9 +4,10 @@
 #include <algorithm>
 
 #include "algorithms/registry.hpp"
+#include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "studies/plot.hpp"
 
 namespace hsr::studies {
@@ -26,7 +27,7 @@ FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& 
   if (walk.lastStageIs("previous-frame")) {
     // Untimed: the depth the next frame reprojects.
     Stats untimed;
-    const pipeline::Configuration zbuffer = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
+    const pipeline::Configuration zbuffer = pipeline::configurationOf(zbuffer::entry, zbuffer::knobTable());
     walk.last.frame = Frame(scene.width(), scene.height());
     zbuffer.algorithm->visibility({scene, scene.camera(), &kept, threads, untimed}, zbuffer.knobs, walk.last);
   }

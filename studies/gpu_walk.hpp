@@ -1,5 +1,5 @@
 // What the walkthrough studies share (occlusion-queries, indoor): a culling method
-// walking a level on a simulated GPU (renderer/simulated_gpu.hpp), so that methods that
+// walking a level on a simulated GPU (algorithms/culling/occlusion/simulated_gpu.hpp), so that methods that
 // cull on the CPU and methods that ask the GPU are timed on one timeline; a frame's row
 // judged against the exact reference; and the spread of a column of frame times.
 #pragma once
@@ -11,7 +11,7 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/culling/culling.hpp"
-#include "renderer/simulated_gpu.hpp"
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 #include "studies/results.hpp"
 
 namespace hsr::studies {

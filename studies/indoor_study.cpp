@@ -20,8 +20,8 @@
 
 #include "algorithms/culling/cells/portals.hpp"
 #include "algorithms/culling/cells/pvs.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "studies/common.hpp"
 #include "studies/gpu_walk.hpp"
 #include "studies/interrupt.hpp"

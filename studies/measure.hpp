@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "renderer/util/stats.hpp"
 #include "studies/allocation_meter.hpp"
-#include "renderer/stats.hpp"
 
 namespace hsr::studies {
 

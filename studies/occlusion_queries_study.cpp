@@ -1,6 +1,6 @@
 // occlusion-queries (README "Occlusion queries"): the survey's walkthrough experiment.
 // Four levels of different depth complexity, each walked along a camera path; nine
-// culling methods draw every position on a simulated GPU (renderer/simulated_gpu.hpp),
+// culling methods draw every position on a simulated GPU (algorithms/culling/occlusion/simulated_gpu.hpp),
 // so that the methods that cull on the CPU (depth map, HZB, previous frame) and those
 // that ask the GPU (the query strategies) are timed on one timeline: the frame ends when
 // both the CPU and the GPU have finished. A method without queries culls on the CPU,
@@ -26,11 +26,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "algorithms/culling/culling.hpp"
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 #include "algorithms/registry.hpp"
-#include "renderer/error.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
-#include "renderer/simulated_gpu.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
 #include "studies/common.hpp"
 #include "studies/gpu_walk.hpp"
 #include "studies/interrupt.hpp"
@@ -78,7 +78,7 @@ Camera pathCamera(const Level& level, const Camera& base, int f, int frames) {
     return camera;
   }
   Camera camera = base;
-  const dmat4 turn = glm::rotate(dmat4(1), 2 * glm::pi<double>() * f / frames, dvec3(0, 1, 0));
+  const dmat4 turn = rotate(dmat4(1), 2 * glm::pi<double>() * f / frames, dvec3(0, 1, 0));
   camera.eye = base.target + dvec3(turn * dvec4(base.eye - base.target, 0));
   return camera;
 }

@@ -19,14 +19,15 @@
 
 #include "algorithms/culling/occlusion/occlusion.hpp"
 #include "algorithms/registry.hpp"
+#include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
-#include "studies/studies.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "studies/common.hpp"
 #include "studies/interrupt.hpp"
 #include "studies/plot.hpp"
 #include "studies/results.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "studies/studies.hpp"
 
 namespace hsr::studies {
 namespace {
@@ -36,7 +37,7 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
 
 // The z-buffer (float32, full frame) after the culling stages of `cull`.
 pipeline::Configuration zbufferAfter(const std::string& cull) {
-  pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm("zbuffer"), {});
+  pipeline::Configuration configuration = pipeline::configurationOf(zbuffer::entry, zbuffer::knobTable());
   if (!cull.empty()) configuration.culling = culling::parsePipeline(cull);
   return configuration;
 }

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "renderer/image/frame.hpp"
 #include "studies/results.hpp"
-#include "renderer/frame.hpp"
 
 namespace hsr::studies {
 

@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "renderer/frame.hpp"
-#include "renderer/markup.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/util/markup.hpp"
 
 namespace hsr::studies {
 namespace {

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "renderer/line_reference.hpp"
-#include "renderer/line_drawing.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/reference/line_reference.hpp"
 
 namespace hsr::studies {
 namespace {
@@ -267,23 +267,6 @@ std::string csvField(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
-std::string jsonString(const std::string& text) {
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') {
-      quoted += '\\';
-      quoted += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\u%04x", c);
-      quoted += escape;
-    } else {
-      quoted += c;
-    }
-  }
   return quoted + "\"";
 }
 

@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "pipeline/pipeline.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/util/markup.hpp"
 #include "studies/common.hpp"
 #include "studies/measure.hpp"
 
@@ -93,7 +94,8 @@ std::string resultsJson(const std::vector<ResultRow>& rows);
 // memory, counters, time per pass), which the CSV and JSON always hold.
 std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs, bool wide);
 
-// A CSV field, quoted when it holds a comma, quote or newline; a JSON string literal.
+// A CSV field, quoted when it holds a comma, quote or newline (a JSON string literal:
+// jsonString, renderer/util/markup.hpp).
 std::string csvField(const std::string& text);
 
 // Rows of (column, value) pairs, every row with the same columns, as CSV with a header.
@@ -101,7 +103,6 @@ using CsvRow = std::vector<std::pair<std::string, std::string>>;
 std::string csvOf(const std::vector<CsvRow>& rows);
 // A number in a printf format ("%.4g" unless told).
 std::string formatted(double value, const char* format = "%.4g");
-std::string jsonString(const std::string& text);
 // "8.73 [8.70-9.02]": a timing's median and range, each multiplied by `scale` (1e3: seconds to ms).
 std::string formattedRange(const Timing& time, double scale = 1, const char* format = "%.2f");
 

@@ -9,14 +9,14 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "studies/studies.hpp"
-#include "studies/interrupt.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
 #include "studies/common.hpp"
+#include "studies/interrupt.hpp"
 #include "studies/plot.hpp"
 #include "studies/results.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/error.hpp"
-#include "renderer/reference.hpp"
+#include "studies/studies.hpp"
 
 namespace hsr::studies {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "renderer/screen_triangles.hpp"
+#include "renderer/raster/screen_triangles.hpp"
 
 namespace hsr::test {
 

@@ -23,11 +23,11 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
-#include "renderer/line_reference.hpp"
-#include "renderer/feature_edges.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/lines/feature_edges.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/reference/line_reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr::test {

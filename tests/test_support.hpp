@@ -16,21 +16,21 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/painter/painter.hpp"
-#include "algorithms/registry.hpp"
-#include "algorithms/ray_casting/ray_casting.hpp"
 #include "algorithms/abuffer/abuffer.hpp"
+#include "algorithms/painter/painter.hpp"
+#include "algorithms/ray_casting/ray_casting.hpp"
+#include "algorithms/registry.hpp"
 #include "algorithms/warnock/warnock.hpp"
-#include "algorithms/weiler_atherton/weiler_atherton.hpp"
 #include "algorithms/watkins/watkins.hpp"
+#include "algorithms/weiler_atherton/weiler_atherton.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/depth.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/reference.hpp"
-#include "renderer/scene.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace hsr::test {
 
@@ -387,7 +387,7 @@ inline double hitDistance(const PreparedScene& scene, const CameraTransform& cam
 
 // An exact algorithm's depth tolerance: whether two view distances at a pixel center are
 // too close for it to order. The painter's and ray casting's: coplanar up to rounding
-// (the painter's, a few roundings of the placements, renderer/rounding.hpp, far under
+// (the painter's, a few roundings of the placements, renderer/geometry/rounding.hpp, far under
 // 1e-12 of the depth in these scenes); 1e-9 here, for the rounding of this check itself
 // (plain double Moller-Trumbore).
 using DepthTie = std::function<bool(double shown, double exact)>;

@@ -6,10 +6,10 @@
 #include <bit>
 #include <limits>
 
-#include "renderer/conventions.hpp"
-#include "renderer/parallel.hpp"
-#include "renderer/plane_depth.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/raster/plane_depth.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr::abuffer {
 namespace {

@@ -7,7 +7,7 @@
 // it takes its opacity times what nearer fragments let through there, so partial
 // coverage and transparency are resolved together, in any order of submission. The
 // pixel's colour is each surface's colour (shaded once, at the pixel's center) weighted
-// by its share, the rest the background's (the shading pass: renderer/shading.hpp,
+// by its share, the rest the background's (the shading pass: renderer/shading/shading.hpp,
 // shadeCoverage).
 //
 // Coverage is exact per subsample: the masks are the rasterizer's coverage of the

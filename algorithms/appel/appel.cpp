@@ -1,15 +1,18 @@
 #include "algorithms/appel/appel.hpp"
 
+#include "renderer/scene/intersections.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "renderer/camera.hpp"
-#include "renderer/error.hpp"
-#include "renderer/image_grid.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/predicates.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/geometry/predicates.hpp"
+#include "renderer/image/image_grid.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/scene/intersections.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::appel {
 
@@ -50,7 +53,7 @@ struct Contour {
 
 // A change of QI along an edge.
 // A change of QI along an edge: by `change`, or, after a degenerate piercing
-// (renderer/intersections.hpp) or where a contour's projection runs along the edge's, to
+// (renderer/scene/intersections.hpp) or where a contour's projection runs along the edge's, to
 // whatever a fresh count finds.
 struct Crossing {
   double u;
@@ -75,7 +78,7 @@ class QuantitativeInvisibility {
         stats_(stats),
         adjacency_(scene.edgeAdjacency(stats)),
         point_(scene.distinctPoints(stats)),
-        intersections_(scene.surfaceIntersections(stats)) {
+        intersections_(surfaceIntersectionsOf(scene, stats)) {
     // Step 1: facing, feature edges, contours.
     facing_ = viewFacing(scene, camera_, stats);
     countEveryFace_ = knobs.surfaces == Surfaces::any;
@@ -105,7 +108,7 @@ class QuantitativeInvisibility {
     for (Triangle& t : welded)
       for (std::uint32_t& v : t) v = point_[v];
     aroundPoint_ = buildVertexTriangles(point_.size(), welded);
-    // Where surfaces pass through each other (renderer/intersections.hpp): the lines where
+    // Where surfaces pass through each other (renderer/scene/intersections.hpp): the lines where
     // faces cross join the drawing's edges.
     firstJunction_ = static_cast<std::uint32_t>(lines_.edges.size());
     for (const Junction& junction : intersections_.junctions) {
@@ -182,7 +185,7 @@ class QuantitativeInvisibility {
  private:
   static constexpr int kUnknownQi = std::numeric_limits<int>::min();
 
-  // A step (renderer/steps.hpp): the pieces known so far, edge e just decided.
+  // A step (renderer/steps/steps.hpp): the pieces known so far, edge e just decided.
   void recordStep(const std::vector<std::vector<LineSegment>>& pieces, std::uint32_t e, std::string caption) {
     if (!steps_->due(recorded_++, lines_.edges.size())) return;
     LineSet sofar;

@@ -18,31 +18,31 @@
 //      edge's end or the next edge's start.
 //   4. Intersection lines: where two faces cross, the line between them is drawn too,
 //      its QI counted by a ray cast to its longest piece, then changing as along any edge.
-// Every decision is an exact predicate on the scene's doubles (renderer/predicates), so
+// Every decision is an exact predicate on the scene's doubles (renderer/geometry/predicates), so
 // the QI is exact wherever it is defined; where an edge's projection runs exactly along a
 // contour, or through a contour vertex, the rules below settle it the way the line
-// reference does (renderer/line_reference).
+// reference does (renderer/reference/line_reference).
 //
 // Input: closed, consistently oriented meshes (every edge in exactly two triangles that
 // run it in opposite directions), all beyond the near plane; anything else is refused
 // with the first edge that breaks the assumption, unless surfaces=any (below) is asked
 // for. The contours are then every edge where the counted faces around it do not
 // balance: a rim, a non-manifold fan. Surfaces may pass through each other and through
-// themselves (renderer/intersections.hpp finds where). Where an edge passes exactly
+// themselves (renderer/scene/intersections.hpp finds where). Where an edge passes exactly
 // through a side or corner of a face, or ends on its plane, the QI after that point is
 // counted afresh by a ray cast; a count that still does not close labels the drawing
 // partial (LineSet::partial).
-// Output: a LineSet of the feature edges (renderer/feature_edges) with each piece's QI.
+// Output: a LineSet of the feature edges (renderer/lines/feature_edges) with each piece's QI.
 #pragma once
 
 #include <string>
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
-#include "renderer/feature_edges.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/lines/feature_edges.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::appel {
 

@@ -4,8 +4,8 @@
 #include <array>
 
 #include "algorithms/culling/culling.hpp"
-#include "renderer/clip.hpp"
-#include "renderer/predicates.hpp"
+#include "renderer/geometry/clip.hpp"
+#include "renderer/geometry/predicates.hpp"
 
 namespace hsr::culling::backface {
 namespace {

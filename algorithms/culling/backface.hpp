@@ -11,7 +11,7 @@
 // Three ways to ask "does it face away?":
 //   object          the triangle's plane against the eye: which side of it the eye is on
 //                   (under orthographic projection, against the view direction), an exact
-//                   sign (renderer/predicates). Culls the edge-on triangles too: they
+//                   sign (renderer/geometry/predicates). Culls the edge-on triangles too: they
 //                   cover no pixel.
 //   screen          the signed area of the triangle as projected, after clipping at the
 //                   near plane (a corner behind the eye projects through it and flips
@@ -24,10 +24,10 @@
 #pragma once
 
 #include "algorithms/culling/culling.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/visible_set.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/visible_set.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::culling::backface {
 

@@ -6,7 +6,7 @@
 #include "algorithms/culling/cells/pvs.hpp"
 #include "algorithms/culling/frustum.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::culling {
 namespace {

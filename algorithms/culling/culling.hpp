@@ -14,7 +14,7 @@
 //                            the eye's cell
 //
 // A pipeline runs stages in the order given, each on what the previous one kept, and
-// hands the surviving VisibleSet (renderer/visible_set.hpp) to a surface algorithm.
+// hands the surviving VisibleSet (renderer/scene/visible_set.hpp) to a surface algorithm.
 #pragma once
 
 #include <algorithm>
@@ -24,15 +24,15 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 #include "algorithms/knobs.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/parallel.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/simulated_gpu.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/steps.hpp"
-#include "renderer/visible_set.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/visible_set.hpp"
+#include "renderer/steps/steps.hpp"
+#include "renderer/util/parallel.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::culling {
 
@@ -46,7 +46,7 @@ struct StageMemory {
 // What earlier frames of a walk left behind, for the stages that use them: the previous
 // frame's camera and image, whose depth occlusion:previous-frame reads (null on the
 // first frame); a memory slot per stage of the pipeline, kept by the caller from frame
-// to frame; and the simulated GPU the walk is drawn on (renderer/simulated_gpu.hpp),
+// to frame; and the simulated GPU the walk is drawn on (algorithms/culling/occlusion/simulated_gpu.hpp),
 // for occlusion:queries, which draws and queries as it goes (the caller begins and ends
 // its frames). Null memory or GPU: the stage starts from nothing, on a GPU of its own.
 struct PreviousFrame {
@@ -64,7 +64,7 @@ struct StageInput {
   int threads;
   Stats& stats;
   const PreviousFrame* previous;  // nullptr: none (the first frame, or a single image)
-  StepRecorder* steps = nullptr;  // where the stage records its steps; null: not asked (renderer/steps.hpp)
+  StepRecorder* steps = nullptr;  // where the stage records its steps; null: not asked (renderer/steps/steps.hpp)
   std::unique_ptr<StageMemory>* memory = nullptr;  // this stage's slot in previous->memory, or null
 };
 

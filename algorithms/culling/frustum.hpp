@@ -5,7 +5,7 @@
 //   sphere    outside when the center is farther than the radius behind some plane
 //   aabb      outside when the box's center is farther behind some plane than the box
 //             reaches towards it (its extent projected on the plane's normal)
-//   bvh       the aabb test down the object BVH (renderer/bvh): a node outside a plane
+//   bvh       the aabb test down the object BVH (renderer/rays/bvh): a node outside a plane
 //             drops its whole subtree; a node wholly inside a plane passes that plane on
 //             to its children as already settled, so they do not test it again (plane
 //             masking). Keeps exactly what aabb keeps, with fewer tests on big scenes.
@@ -25,10 +25,10 @@
 #include <cstdint>
 
 #include "algorithms/culling/culling.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/visible_set.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/visible_set.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::culling::frustum {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <optional>
 
-#include "renderer/error.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/line_errors.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/lines/line_errors.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr {
 namespace {

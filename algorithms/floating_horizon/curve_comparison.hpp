@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "renderer/line_set.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/reference/metrics.hpp"
 
 namespace hsr {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::floating_horizon {
 

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "algorithms/floating_horizon/floating_horizon.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/prepare.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/scene/prepare.hpp"
 
 namespace hsr::floating_horizon {
 

@@ -8,8 +8,8 @@
 
 #include "algorithms/floating_horizon/curve_comparison.hpp"
 #include "algorithms/floating_horizon/curves.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/steps.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/steps/steps.hpp"
 
 namespace hsr::floating_horizon {
 

@@ -35,10 +35,10 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::floating_horizon {
 
@@ -76,7 +76,7 @@ LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRe
 
 // The exact drawing of the same curves (reference.cpp): each curve sampled every
 // kReferenceSpacingPixels or finer, on a lattice of the same function whose lines include
-// every curve, judged by the exact line reference (renderer/line_reference).
+// every curve, judged by the exact line reference (renderer/reference/line_reference).
 inline constexpr double kReferenceSpacingPixels = 1.0;
 struct ExactDrawing {
   LineSet lines;

@@ -2,7 +2,7 @@
 // function, each sampled every kReferenceSpacingPixels or finer, on a lattice whose lines
 // include every curve (with the mesh option, fine in both directions, so the surface
 // between curves is the function too), with the same holes and jumps left open. Which
-// parts are visible is decided by the exact line reference (renderer/line_reference),
+// parts are visible is decided by the exact line reference (renderer/reference/line_reference),
 // which shares no code with the algorithm: what the two share is only the problem (the
 // curves, where f is defined, where it jumps).
 #include <algorithm>
@@ -10,7 +10,7 @@
 
 #include "algorithms/floating_horizon/curves.hpp"
 #include "algorithms/floating_horizon/floating_horizon.hpp"
-#include "renderer/line_reference.hpp"
+#include "renderer/reference/line_reference.hpp"
 
 namespace hsr::floating_horizon {
 

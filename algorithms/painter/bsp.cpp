@@ -8,9 +8,9 @@
 // An explicit stack replaces recursion: a poor splitter on a large scene makes a tree
 // as deep as the scene has triangles.
 //
-// The side tests are exact (renderer/predicates). The one tolerance: a polygon whose
+// The side tests are exact (renderer/geometry/predicates). The one tolerance: a polygon whose
 // every vertex lies on the plane within a few times the rounding of the placements
-// (RoundedPlane::holds, renderer/rounding.hpp: relative to the coordinates' magnitude)
+// (RoundedPlane::holds, renderer/geometry/rounding.hpp: relative to the coordinates' magnitude)
 // is coplanar with it, because faces coplanar in the model are coplanar only up to that
 // rounding, and splitting them by rounding noise would cost slivers. Far from the origin
 // the bound grows with the coordinates (at 1e5 it is about 1e-10), so planes half a
@@ -21,7 +21,7 @@
 #include <cmath>
 #include <optional>
 
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::painter {
 namespace {

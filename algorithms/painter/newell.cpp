@@ -18,10 +18,10 @@
 //      (or Q by P's) and put the pieces back in the list.
 //   4. A marked Q that must move again closes a cycle of three or more polygons: split.
 //
-// The sign tests (c, d, e and the splits) are exact (renderer/predicates) on the
+// The sign tests (c, d, e and the splits) are exact (renderer/geometry/predicates) on the
 // screen-space coordinates. The one tolerance: a polygon whose world triangle lies within
 // what the placements' rounding can move of another's world plane
-// (PreparedScene::liesOn, renderer/rounding.hpp: relative to the coordinates' magnitude)
+// (PreparedScene::liesOn, renderer/geometry/rounding.hpp: relative to the coordinates' magnitude)
 // is taken as coplanar with it, because faces coplanar as modelled are coplanar only up
 // to that rounding, and either order is right for them (the reference marks their pixels
 // ambiguous, or orders them by a depth difference within rounding). A piece cut from a
@@ -353,7 +353,7 @@ class Newell {
     insertSorted(static_cast<std::uint32_t>(pool_.size() - 1));
   }
 
-  // A step (renderer/steps.hpp): the candidate P in red and the polygon Q it may hide in
+  // A step (renderer/steps/steps.hpp): the candidate P in red and the polygon Q it may hide in
   // blue, over the outlines of every screen triangle.
   void recordConflict(std::uint32_t p, std::uint32_t q, const std::string& caption) {
     if (!steps_ || !steps_->due(conflictsRecorded_++)) return;

@@ -1,4 +1,4 @@
-// What the three orders share: the back-to-front list they produce (renderer/pieces:
+// What the three orders share: the back-to-front list they produce (renderer/raster/pieces:
 // PaintOrder), the splitting of a polygon by a plane, and which side of a plane the eye
 // is on.
 #pragma once
@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "algorithms/painter/painter.hpp"
-#include "renderer/pieces.hpp"
-#include "renderer/predicates.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/geometry/predicates.hpp"
+#include "renderer/raster/pieces.hpp"
+#include "renderer/raster/screen_triangles.hpp"
 
 namespace hsr::painter {
 
@@ -24,7 +24,7 @@ SplitPolygon splitPolygon(const std::vector<dvec3>& vertices, const std::vector<
 
 // The orders (sort.cpp, newell.cpp; the BSP tree's is in bsp.hpp).
 PaintOrder sortOrder(const ScreenGeometry& geometry, SortKey key, Stats& stats);
-// steps: where Newell records its reorders and splits (renderer/steps.hpp), or null.
+// steps: where Newell records its reorders and splits (renderer/steps/steps.hpp), or null.
 PaintOrder newellOrder(const PreparedScene& scene, const ScreenGeometry& geometry, const Knobs& knobs, Stats& stats,
                        StepRecorder* steps = nullptr);
 

@@ -10,9 +10,10 @@
 
 #include "algorithms/painter/bsp.hpp"
 #include "algorithms/painter/order.hpp"
-#include "renderer/conventions.hpp"
-#include "renderer/pieces.hpp"
-#include "renderer/tiles.hpp"
+#include "renderer/raster/pieces.hpp"
+#include "renderer/raster/tiles.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/portable_math.hpp"
 
 namespace hsr::painter {
 
@@ -34,7 +35,7 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
     // splitting multiplies the polygons by about log2(n) more on curved meshes: the
     // estimate n log2(n)^2 is within a factor of 4 of the counted classifications on the
     // shipped scenes (algorithms/painter/README.md).
-    const double levels = std::log2(std::max(2.0, n));
+    const double levels = portable::log(std::max(2.0, n)) / portable::log(2.0);
     const double work = n * levels * levels;
     if (work <= knobs.buildBudget) return "";
     std::snprintf(text, sizeof text,

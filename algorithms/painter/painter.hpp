@@ -14,7 +14,7 @@
 //           eye, visiting it far side first gives a correct order.
 //
 // Every variant produces a back-to-front list of pieces of screen triangles
-// (renderer/pieces), which the last step paints. The pipeline's transparency pass blends
+// (renderer/raster/pieces), which the last step paints. The pipeline's transparency pass blends
 // the scene's transparent surfaces in that same order.
 //
 // Inputs: a PreparedScene, a view, the knobs. Output: per pixel, the id of the last
@@ -28,10 +28,10 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/visible_set.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/scene/visible_set.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::painter {
 

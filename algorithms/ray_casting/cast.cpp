@@ -1,7 +1,7 @@
 // The frame loop's ray set-up (cast.hpp), four rays at a time where the CPU has AVX2.
 #include "algorithms/ray_casting/cast.hpp"
 
-#include "renderer/simd.hpp"
+#include "renderer/util/simd.hpp"
 
 namespace hsr::ray_casting {
 HSR_AVX2 FourPixelRays::FourPixelRays(const CameraTransform& camera, Double4 centersX, int y)

@@ -8,13 +8,13 @@
 #include <limits>
 #include <vector>
 
-#include "renderer/camera.hpp"
-#include "renderer/conventions.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/parallel.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/steps.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/steps/steps.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/parallel.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::ray_casting {
 
@@ -57,7 +57,7 @@ inline constexpr double kReachWidening = 1 + 0x1p-32;
 inline double reachOf(const Hit& nearest) { return nearest.t * kReachWidening; }
 
 // What a traversal of a BVH counts (the bvh variant's, and the fast paths' over the
-// wide BVH, renderer/wide_bvh.hpp, whose nodes have four children instead of two).
+// wide BVH, renderer/rays/wide_bvh.hpp, whose nodes have four children instead of two).
 struct TraversalCounters {
   std::int64_t nodesVisited = 0, triangleTests = 0;
   TraversalCounters& operator+=(const TraversalCounters& other) {
@@ -92,7 +92,7 @@ inline float frameDepth(std::uint32_t id, double distance) {
   return id == conventions::kBackgroundId ? std::numeric_limits<float>::infinity() : static_cast<float>(distance);
 }
 
-// Where castRays records its steps (renderer/steps.hpp), and the scene its ids index.
+// Where castRays records its steps (renderer/steps/steps.hpp), and the scene its ids index.
 struct Recording {
   StepRecorder& steps;
   const PreparedScene& scene;

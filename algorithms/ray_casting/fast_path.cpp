@@ -1,5 +1,5 @@
 // The bvh variant's fast paths (fast_path.hpp says what they compute and why it is the
-// textbook's answer). Only the functions marked HSR_AVX2 use AVX2 (renderer/simd.hpp).
+// textbook's answer). Only the functions marked HSR_AVX2 use AVX2 (renderer/util/simd.hpp).
 #include "algorithms/ray_casting/fast_path.hpp"
 
 #include <algorithm>
@@ -8,9 +8,9 @@
 #include <utility>
 
 #include "algorithms/ray_casting/watertight.hpp"
-#include "renderer/ray_packet.hpp"
-#include "renderer/simd.hpp"
-#include "renderer/wide_bvh.hpp"
+#include "renderer/rays/ray_packet.hpp"
+#include "renderer/rays/wide_bvh.hpp"
+#include "renderer/util/simd.hpp"
 
 namespace hsr::ray_casting {
 namespace {

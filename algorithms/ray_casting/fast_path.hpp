@@ -1,5 +1,5 @@
 // The bvh variant's fast paths, beside its textbook traversal (ray_casting.cpp), over the
-// BVH with four children to a node (renderer/wide_bvh.hpp), with AVX2:
+// BVH with four children to a node (renderer/rays/wide_bvh.hpp), with AVX2:
 //
 //   simd    one ray at a time; a node's four child boxes tested at once, a child per
 //           lane, the nearest hit child entered and the others stacked farthest first.
@@ -19,8 +19,8 @@
 #pragma once
 
 #include "algorithms/ray_casting/cast.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::ray_casting {
 

@@ -21,7 +21,8 @@
 
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/occupancy.hpp"
-#include "renderer/bvh.hpp"
+#include "renderer/rays/bvh.hpp"
+#include "renderer/util/portable_math.hpp"
 
 namespace hsr::ray_casting {
 namespace {
@@ -67,7 +68,7 @@ bool insideSolid(const Solid& solid, const dvec3& p, double heightFieldTop) {
     case Solid::Kind::cylinder:
       return std::abs(p.y) <= 0.5 * solid.height && p.x * p.x + p.z * p.z <= solid.radius * solid.radius;
     case Solid::Kind::cone:  // radius shrinks linearly from the base (y = -h/2) to the apex
-      return std::abs(p.y) <= 0.5 * solid.height && std::hypot(p.x, p.z) <= solid.radius * (0.5 - p.y / solid.height);
+      return std::abs(p.y) <= 0.5 * solid.height && portable::hypot(p.x, p.z) <= solid.radius * (0.5 - p.y / solid.height);
     case Solid::Kind::heightField:
       return std::abs(p.x) <= 0.5 * solid.footprint.x && std::abs(p.z) <= 0.5 * solid.footprint.y &&
              p.y <= std::min(solid.function.evaluate(p.x, p.z), heightFieldTop);

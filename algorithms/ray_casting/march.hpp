@@ -3,7 +3,7 @@
 
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/ray_casting.hpp"
-#include "renderer/camera.hpp"
+#include "renderer/geometry/camera.hpp"
 
 namespace hsr::ray_casting {
 

@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "renderer/bvh.hpp"
-#include "renderer/mesh.hpp"
+#include "renderer/rays/bvh.hpp"
+#include "renderer/scene/mesh.hpp"
 
 namespace hsr::ray_casting {
 

@@ -11,9 +11,9 @@
 #include "algorithms/ray_casting/fast_path.hpp"
 #include "algorithms/ray_casting/march.hpp"
 #include "algorithms/ray_casting/watertight.hpp"
-#include "renderer/bvh.hpp"
-#include "renderer/error.hpp"
-#include "renderer/simd.hpp"
+#include "renderer/rays/bvh.hpp"
+#include "renderer/util/error.hpp"
+#include "renderer/util/simd.hpp"
 
 namespace hsr::ray_casting {
 namespace {

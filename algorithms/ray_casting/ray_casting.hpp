@@ -6,7 +6,7 @@
 //   march  step along the ray at a fixed step and ask, at each sample, whether the point
 //          is inside an object; the first object entered wins. Cheap per sample, but a
 //          step longer than an object is thin skips the object.
-//   bvh    the nearest hit through a bounding volume hierarchy (renderer/bvh): ordered
+//   bvh    the nearest hit through a bounding volume hierarchy (renderer/rays/bvh): ordered
 //          traversal, nearer child first, stopping at boxes beyond the nearest hit.
 //
 // Inputs: a PreparedScene, a view, the knobs. Output: per pixel, the visible triangle's
@@ -18,9 +18,9 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::ray_casting {
 

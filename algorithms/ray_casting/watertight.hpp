@@ -6,7 +6,7 @@
 // the other way round), so a ray through the edge cannot slip between them: no cracks in
 // a closed mesh, whatever the rounding.
 //
-// Number is double for one ray, or Double4 (renderer/simd.hpp) for four rays that share
+// Number is double for one ray, or Double4 (renderer/util/simd.hpp) for four rays that share
 // the permutation, one per lane: the same operations in the same order on each lane, so
 // the same bits as four single rays.
 #pragma once
@@ -15,9 +15,9 @@
 #include <utility>
 
 #include "algorithms/ray_casting/cast.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/math.hpp"
-#include "renderer/prepare.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/math.hpp"
 
 namespace hsr::ray_casting {
 

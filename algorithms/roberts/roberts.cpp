@@ -5,10 +5,10 @@
 #include <limits>
 #include <optional>
 
-#include "renderer/camera.hpp"
-#include "renderer/image_grid.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/image/image_grid.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/reference/metrics.hpp"
 
 namespace hsr::roberts {
 namespace {

@@ -21,7 +21,7 @@
 //      face of the other are drawn too, and judged like edges (hidden by a body they lie
 //      on when its face there is a back face, else tested against the other bodies).
 // Faces are the bodies' planes: triangles coplanar up to their coordinates' rounding
-// merged (renderer/rounding.hpp). A body must be convex up to that rounding: the decimals
+// merged (renderer/geometry/rounding.hpp). A body must be convex up to that rounding: the decimals
 // of its file and its placement (Instance), so a sphere exported with six digits, whose
 // quads are flat only to those digits, is accepted. Strict insideness uses a tolerance of
 // the larger of 1e-9 of the body's size and eight times that rounding, so bodies touching
@@ -30,7 +30,7 @@
 //
 // Input: scenes of closed convex polyhedra only (boxes, prisms, pyramids, convex meshes),
 // all beyond the near plane; anything else is refused naming the object.
-// Output: a LineSet of the feature edges (renderer/feature_edges) plus the junction lines, each
+// Output: a LineSet of the feature edges (renderer/lines/feature_edges) plus the junction lines, each
 // piece visible (QI 0) or hidden (LineSegment::kHidden: Roberts does not count faces).
 #pragma once
 
@@ -39,10 +39,10 @@
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
-#include "renderer/feature_edges.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/lines/feature_edges.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::roberts {
 

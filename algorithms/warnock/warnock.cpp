@@ -8,10 +8,10 @@
 #include <numeric>
 #include <optional>
 
-#include "renderer/conventions.hpp"
-#include "renderer/parallel.hpp"
-#include "renderer/plane_depth.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/raster/plane_depth.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr::warnock {
 namespace {
@@ -36,7 +36,7 @@ constexpr std::array<const char*, 5> kRuleCounters = {"windows empty", "windows 
                                                       "windows at smallest size", "windows subdivided"};
 
 // A triangle's edge function k at the center of pixel (x, y): non-negative inside, the
-// top-left rule folded in (renderer/raster.hpp). Exact integers.
+// top-left rule folded in (renderer/raster/raster.hpp). Exact integers.
 std::int64_t edgeAtCenter(const ScreenTriangle& tri, int k, int x, int y) {
   using conventions::kSubpixelScale;
   return tri.edgeA[k] * (x * kSubpixelScale + kSubpixelScale / 2) + tri.edgeB[k] * (y * kSubpixelScale + kSubpixelScale / 2) +
@@ -69,7 +69,7 @@ Relation relationTo(const ScreenTriangle& tri, const Window& window) {
 }
 
 // The range of a triangle's plane over a window's pixel centers, nearest to farthest
-// (renderer/plane_depth.hpp: smaller is nearer). The plane is affine, so its extremes lie
+// (renderer/raster/plane_depth.hpp: smaller is nearer). The plane is affine, so its extremes lie
 // at the corner centers. Each value computed at a corner is within a rounding bound of
 // the exact one, and so is each value computed at any center inside (the bound is
 // largest at a corner), so the range widened by twice the largest corner bound holds

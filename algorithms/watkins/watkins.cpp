@@ -8,11 +8,11 @@
 #include <limits>
 #include <optional>
 
-#include "renderer/active_triangles.hpp"
-#include "renderer/conventions.hpp"
-#include "renderer/parallel.hpp"
-#include "renderer/plane_depth.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/raster/active_triangles.hpp"
+#include "renderer/raster/plane_depth.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr::watkins {
 namespace {
@@ -58,7 +58,7 @@ class RowResolver {
   // marks: with a recording, where the row was cut (x, and whether at a split).
   void resolveRow(int y, const std::vector<std::uint32_t>& active, Counts& counts, std::vector<std::pair<int, bool>>* marks) {
     // Step 3: each active polygon's edges cross the row where its run of covered centers
-    // begins and ends (solved exactly from the integer edge functions, renderer/raster,
+    // begins and ends (solved exactly from the integer edge functions, renderer/raster/raster,
     // where the textbook steps x by dx/dy from row to row and drifts).
     crossings_.clear();
     for (const std::uint32_t i : active) {
@@ -215,7 +215,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
     const auto [first, last] = partRange(static_cast<std::size_t>(frame.height), static_cast<std::size_t>(workers), band);
     RowResolver rows(geometry, knobs, frame);
     // Step 2: going down, the active list admits each polygon on its first row and
-    // retires it after its last (renderer/active_triangles.hpp).
+    // retires it after its last (renderer/raster/active_triangles.hpp).
     ActiveTriangles activeList(geometry.triangles, startingAt, first);
     std::vector<std::pair<int, bool>> marks;
     for (std::size_t y = first; y < last; ++y) {

@@ -10,9 +10,9 @@
 #include <optional>
 #include <array>
 
-#include "renderer/conventions.hpp"
-#include "renderer/plane_depth.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/raster/plane_depth.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/util/conventions.hpp"
 
 namespace hsr::weiler_atherton {
 namespace {
@@ -327,7 +327,7 @@ class Clipper {
   }
 
   // Step 5: a visible piece is scan-converted: on each row, the centers strictly inside
-  // every line of its outline (solved exactly, as renderer/raster's coveredRun does for a
+  // every line of its outline (solved exactly, as renderer/raster/raster's coveredRun does for a
   // triangle), and of those the ones where it is nearer than each polygon it passes through.
   void show(Piece piece) {
     ++counts_.visible;

@@ -13,14 +13,14 @@
 //
 // Exactness. Every outline is an intersection of half-planes whose lines are the
 // rasterizer's integer edge functions, moved half a unit so that no pixel center lies
-// on any of them (2E + 1, renderer/raster); corners are intersections of two such lines,
+// on any of them (2E + 1, renderer/raster/raster); corners are intersections of two such lines,
 // kept as exact rationals in 128-bit integers, and which side of a line a corner lies
 // on is an exact sign. So a sliver is kept exactly when it has area, pieces cut along a
 // shared edge meet without gap or overlap, and a piece's pixels (the centers strictly
 // inside its outline) are the pixels its polygon covers in the z-buffer. Where two
 // polygons pass through each other inside a piece, the piece keeps only the part where
 // it is nearer, decided at each pixel center by the same plane comparison as the other
-// image-space algorithms (renderer/plane_depth.hpp): the one step not in object space.
+// image-space algorithms (renderer/raster/plane_depth.hpp): the one step not in object space.
 //
 // Cost grows with how much polygons overlap on screen: each clip polygon clips every
 // piece its outline meets (found through a grid of tiles), and the recursion clips the

@@ -1,14 +1,18 @@
 // The z-buffer's fast path (fast_path.hpp says what it computes and why it is the same).
-// Only the functions marked HSR_AVX2 use AVX2 instructions (renderer/simd.hpp).
+// Only the functions marked HSR_AVX2 use AVX2 instructions (renderer/util/simd.hpp); on
+// other targets than x86 this file compiles to nothing.
 #include "algorithms/zbuffer/fast_path.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
-#include "renderer/conventions.hpp"
-#include "renderer/simd.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/simd.hpp"
+
+#if HSR_X86
 
 namespace hsr::zbuffer {
 namespace {
@@ -342,4 +346,22 @@ HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) cons
     }
 }
 
+template <typename Format>
+void drawTileFast(const Tile<Format>& tile, TileWatcher* watcher) {
+  clearTile(tile);  // step 1, as the textbook
+  SimdTile fast(tile.area, tile.frame.width, tile.depth, tile.frame.ids.data(), tile.test.encoding,
+                std::is_same_v<Format, ReversedFloat32Depth>, tile.test.counts);
+  for (std::size_t drawn = 0; drawn < tile.triangles.size(); ++drawn) {
+    const ScreenTriangle& tri = tile.triangle(drawn);
+    if (fast.worthDrawing(tri)) fast.draw(tri);  // step 2, eight pixels at a time
+    else depthTestTriangle(tile, tri);           // step 2, a few pixels: the textbook's
+    if (watcher) watcher->drawn(drawn, tri);
+  }
+  fast.decode(tile.frame.depth, tile.geometry.camera.perspective());  // step 3
+}
+template void drawTileFast(const Tile<Float32Depth>&, TileWatcher*);
+template void drawTileFast(const Tile<ReversedFloat32Depth>&, TileWatcher*);
+
 }  // namespace hsr::zbuffer
+
+#endif  // HSR_X86

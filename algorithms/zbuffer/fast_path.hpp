@@ -20,8 +20,9 @@
 // rounding of the per-pixel formula. The skipped fragments
 // are still counted as tested (their coverage is counted, not their depth), so the
 // counters stay the textbook loop's; "fragments skipped by block depth" says how many.
-// Only float depth formats with the depth test on have a fast path; elsewhere, and on
-// a CPU without AVX2, the textbook loop runs.
+// Only float depth formats with the depth test on have a fast path; elsewhere, on a CPU
+// without AVX2, and on targets other than x86 (where this file compiles to nothing and
+// full_frame.cpp never names it: renderer/util/simd.hpp), the textbook loop runs.
 #pragma once
 
 #include <cstddef>
@@ -29,27 +30,12 @@
 #include <span>
 #include <vector>
 
-#include "renderer/depth.hpp"
-#include "renderer/raster.hpp"
-#include "renderer/tiles.hpp"
+#include "algorithms/zbuffer/textbook.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/raster/raster.hpp"
+#include "renderer/raster/tiles.hpp"
 
 namespace hsr::zbuffer {
-
-// What a depth test counts (DepthTest, zbuffer.hpp, and the fast path alike); only the
-// fast path skips fragments by block depth (covered, counted as tested, never computed).
-struct DepthCounts {
-  std::int64_t tested = 0, written = 0, ties = 0, skippedByBlockDepth = 0;
-};
-
-// Where a tile's depth values live: pixel (x, y) of the image is at(x, y), in a buffer
-// whose first value is pixel (x0, y0) and whose rows are `stride` values apart.
-template <typename Stored>
-struct DepthBuffer {
-  Stored* values;
-  std::size_t stride;
-  int x0, y0;
-  Stored& at(int x, int y) const { return values[std::size_t(y - y0) * stride + std::size_t(x - x0)]; }
-};
 
 class SimdTile {
  public:
@@ -81,5 +67,11 @@ class SimdTile {
   // (exactly the farthest when last found; writes since can only have brought depths nearer).
   std::vector<float> blockFarthest_;
 };
+
+// The textbook's loop on one tile (drawTile, textbook.hpp), with the tile's large
+// triangles drawn by SimdTile and its depth decoded by it: the same steps, the same bits.
+// For Float32Depth and ReversedFloat32Depth.
+template <typename Format>
+void drawTileFast(const Tile<Format>& tile, TileWatcher* watcher);
 
 }  // namespace hsr::zbuffer

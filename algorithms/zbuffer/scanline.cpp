@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
-#include "renderer/active_triangles.hpp"
-#include "renderer/parallel.hpp"
+#include "renderer/raster/active_triangles.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr::zbuffer {
 namespace {
@@ -77,7 +77,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
     for (const auto& test : bandResults) {
       stats.add("fragments tested", test.counts.tested);
       stats.add("fragments written", test.counts.written);
-      stats.add("depth ties", test.counts.ties);
+      stats.add(kDepthTiesCounter, test.counts.ties);
       stats.add("active triangles summed over rows", test.activeTriangles);
     }
     stats.add("depth buffer bytes",

@@ -6,19 +6,20 @@
 // the chosen format stored it (decoded to view distance).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
-#include "algorithms/zbuffer/fast_path.hpp"
-#include "renderer/conventions.hpp"
-#include "renderer/depth.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/screen_triangles.hpp"
-#include "renderer/stats.hpp"
-#include "renderer/steps.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/raster/screen_triangles.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/steps/steps.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::zbuffer {
 
@@ -70,7 +71,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
 // The registry's entry (algorithms/algorithm.hpp).
 AlgorithmEntry entry();
 
-// Where a variant records its steps (renderer/steps.hpp), and the scene its ids index.
+// Where a variant records its steps (renderer/steps/steps.hpp), and the scene its ids index.
 struct Recording {
   StepRecorder& steps;
   const PreparedScene& scene;
@@ -95,6 +96,22 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
 // triangles just drawn outlined in red.
 Image buffersPicture(const Recording& recording, const CameraTransform& view, std::span<const std::uint32_t> ids,
                      std::span<const float> depth, int width, int height, std::span<const std::uint32_t> justDrawn);
+
+// What a depth test counts (DepthTest, and the fast path alike); only the fast path skips
+// fragments by block depth (covered, counted as tested, never computed).
+struct DepthCounts {
+  std::int64_t tested = 0, written = 0, ties = 0, skippedByBlockDepth = 0;
+};
+
+// Where a tile's depth values live: pixel (x, y) of the image is at(x, y), in a buffer
+// whose first value is pixel (x0, y0) and whose rows are `stride` values apart.
+template <typename Stored>
+struct DepthBuffer {
+  Stored* values;
+  std::size_t stride;
+  int x0, y0;
+  Stored& at(int x, int y) const { return values[std::size_t(y - y0) * stride + std::size_t(x - x0)]; }
+};
 
 // A format whose test always passes: the buffer still records each fragment's depth
 // (the frame's depth is that of the triangle shown), but nothing is ever rejected.

@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "renderer/coverage.hpp"
+#include "renderer/raster/coverage.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

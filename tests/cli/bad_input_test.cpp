@@ -6,7 +6,7 @@
 
 #include <fstream>
 
-#include "renderer/frame.hpp"
+#include "renderer/image/frame.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "json_reader.hpp"
-#include "renderer/depth.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/simd.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/util/simd.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -8,9 +8,9 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
-#include "renderer/error.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -6,12 +6,12 @@
 #include <random>
 
 #include "algorithms/culling/culling.hpp"
-#include "renderer/clip.hpp"
-#include "renderer/error.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/predicates.hpp"
-#include "renderer/reference.hpp"
 #include "culling/culling_support.hpp"
+#include "renderer/geometry/clip.hpp"
+#include "renderer/geometry/predicates.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

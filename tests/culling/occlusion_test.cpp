@@ -12,8 +12,8 @@
 #include "algorithms/culling/occlusion/fast_path.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
 #include "culling/culling_support.hpp"
-#include "renderer/error.hpp"
-#include "renderer/simd.hpp"
+#include "renderer/util/error.hpp"
+#include "renderer/util/simd.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -13,11 +13,11 @@
 
 #include "algorithms/culling/occlusion/hierarchy.hpp"
 #include "algorithms/culling/occlusion/queries.hpp"
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 #include "culling/culling_support.hpp"
-#include "renderer/conventions.hpp"
-#include "renderer/depth.hpp"
-#include "renderer/error.hpp"
-#include "renderer/simulated_gpu.hpp"
+#include "renderer/raster/depth.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/error.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -1,4 +1,4 @@
-// Effects on demand (algorithms/effects, renderer/shading): a scene without an effect
+// Effects on demand (algorithms/effects, renderer/shading/shading): a scene without an effect
 // spends nothing on it, adding an effect adds only its own pass, and each effect is
 // checked against an independent computation: shadow maps against exact shadow rays,
 // blending against the reference's per-pixel sorted hits, fog against its formula,
@@ -9,14 +9,14 @@
 #include <set>
 
 #include "algorithms/culling/culling.hpp"
+#include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/shadow_maps.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/scene/obj.hpp"
+#include "renderer/shading/fog.hpp"
 #include "studies/effect_ladder.hpp"
-#include "algorithms/registry.hpp"
-#include "renderer/fog.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/obj.hpp"
-#include "renderer/reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -9,9 +9,9 @@
 #include <optional>
 #include <string>
 
-#include "renderer/error.hpp"
-#include "renderer/mesh.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/mesh.hpp"
+#include "renderer/scene/scene.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::fuzz {
 
@@ -28,7 +28,7 @@ inline std::optional<Scene> sceneOf(const std::uint8_t* data, std::size_t size) 
 
 inline bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The OBJ loader's and the primitives' promises (renderer/obj.hpp, renderer/mesh.hpp):
+// The OBJ loader's and the primitives' promises (renderer/scene/obj.hpp, renderer/scene/mesh.hpp):
 // triangles, each naming vertices that exist, at finite positions, and corner normals
 // for every triangle or none.
 inline void checkLoadedMesh(const Mesh& mesh) {
@@ -39,7 +39,7 @@ inline void checkLoadedMesh(const Mesh& mesh) {
   HSR_CHECK(mesh.cornerNormals.empty() || mesh.cornerNormals.size() == mesh.triangles.size());
 }
 
-// The loader's promises (renderer/scene.hpp): everything it accepts is in range.
+// The loader's promises (renderer/scene/scene.hpp): everything it accepts is in range.
 inline std::int64_t checkLoadedScene(const Scene& scene) {
   HSR_CHECK(scene.width >= 1 && scene.height >= 1 && scene.width <= kMaxImageSide && scene.height <= kMaxImageSide);
   HSR_CHECK(std::int64_t{scene.width} * scene.height <= kMaxImagePixels);

@@ -10,7 +10,7 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/prepare.hpp"
+#include "renderer/scene/prepare.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace hsr::fuzz {

@@ -1,4 +1,4 @@
-// Fuzz target: the scene loader and validator (renderer/scene, with the OBJ loader for
+// Fuzz target: the scene loader and validator (renderer/scene/scene, with the OBJ loader for
 // the models a scene names). Whatever the bytes, parseScene returns a scene that keeps
 // every promise of checkLoadedScene, or throws InputError; anything else is a bug.
 #include "tests/fuzz/fuzz_support.hpp"

@@ -29,13 +29,13 @@
 #include <functional>
 
 #include "algorithms/registry.hpp"
-#include "pipeline/pipeline.hpp"
-#include "renderer/line_errors.hpp"
-#include "renderer/line_reference.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
-#include "studies/effect_ladder.hpp"
 #include "floating_point_traps.hpp"
+#include "pipeline/pipeline.hpp"
+#include "renderer/lines/line_errors.hpp"
+#include "renderer/reference/line_reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "studies/effect_ladder.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

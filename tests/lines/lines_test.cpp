@@ -9,13 +9,13 @@
 #include "algorithms/appel/appel.hpp"
 #include "algorithms/registry.hpp"
 #include "algorithms/roberts/roberts.hpp"
-#include "renderer/line_reference.hpp"
-#include "renderer/feature_edges.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/line_errors.hpp"
-#include "renderer/raster.hpp"
 #include "lines/qi_support.hpp"
+#include "renderer/lines/feature_edges.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/lines/line_errors.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/raster/raster.hpp"
+#include "renderer/reference/line_reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -117,7 +117,7 @@ double visibleJunctionLength(const LineSet& lines) {
 }
 
 // Roberts intersects the bodies' face planes; Appel finds where edges pass through faces
-// (renderer/intersections.hpp). Both draw the same junction lines, exactly.
+// (renderer/scene/intersections.hpp). Both draw the same junction lines, exactly.
 TEST(LineHardCases, InterpenetratingBoxesGetJunctionLines) {
   const test::LoadedScene loaded(test::sourcePath("scenes/hard/box_junctions.toml"));
   Stats robertsStats, appelStats;

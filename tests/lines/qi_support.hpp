@@ -6,11 +6,11 @@
 #include <cstdlib>
 #include <string>
 
-#include "renderer/camera.hpp"
-#include "renderer/feature_edges.hpp"
-#include "renderer/line_set.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/lines/feature_edges.hpp"
+#include "renderer/lines/line_set.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::test {
 

@@ -5,8 +5,8 @@
 
 #include "algorithms/registry.hpp"
 #include "metamorphic.hpp"
-#include "renderer/line_reference.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/reference/line_reference.hpp"
+#include "renderer/reference/metrics.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "algorithms/painter/painter.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/reference/metrics.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

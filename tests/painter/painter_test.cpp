@@ -7,7 +7,7 @@
 
 #include "algorithms/painter/bsp.hpp"
 #include "algorithms/registry.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/reference/metrics.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

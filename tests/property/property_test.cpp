@@ -15,12 +15,12 @@
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
-#include "lines/qi_support.hpp"
 #include "floating_point_traps.hpp"
+#include "lines/qi_support.hpp"
 #include "metamorphic.hpp"
 #include "property/random_scene.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "algorithms/ray_casting/ray_casting.hpp"
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -7,7 +7,7 @@
 #include <regex>
 #include <sstream>
 
-#include "renderer/frame.hpp"
+#include "renderer/image/frame.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

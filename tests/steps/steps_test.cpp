@@ -1,4 +1,4 @@
-// Steps (renderer/steps.hpp, hsr render --steps): recording an algorithm's steps changes
+// Steps (renderer/steps/steps.hpp, hsr render --steps): recording an algorithm's steps changes
 // nothing it computes, records what it says, and writes a folder a person can look at.
 #include <gtest/gtest.h>
 
@@ -7,9 +7,9 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
-#include "renderer/image_library.hpp"
-#include "renderer/line_drawing.hpp"
-#include "renderer/steps.hpp"
+#include "renderer/image/image_library.hpp"
+#include "renderer/lines/line_drawing.hpp"
+#include "renderer/steps/steps.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "property/random_scene.hpp"
-#include "renderer/metrics.hpp"
+#include "renderer/reference/metrics.hpp"
 #include "studies/allocation_meter.hpp"
 #include "test_support.hpp"
 

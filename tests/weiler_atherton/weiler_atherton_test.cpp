@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "property/random_scene.hpp"
-#include "renderer/polygon_svg.hpp"
+#include "renderer/image/polygon_svg.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -9,7 +9,7 @@
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "property/random_scene.hpp"
-#include "renderer/screen_triangles.hpp"
+#include "renderer/raster/screen_triangles.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

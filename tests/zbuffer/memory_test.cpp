@@ -6,7 +6,7 @@
 // its peak memory column (studies/allocation_meter.cpp).
 #include <gtest/gtest.h>
 
-#include "renderer/simd.hpp"
+#include "renderer/util/simd.hpp"
 #include "studies/allocation_meter.hpp"
 #include "test_support.hpp"
 

@@ -10,8 +10,8 @@
 // This test classifies every such pixel (test::classifyWrongPixels) and fails on any other.
 #include <gtest/gtest.h>
 
-#include "renderer/metrics.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
 #include "test_support.hpp"
 
 namespace hsr {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::culling::cells {
 

@@ -1,4 +1,4 @@
-// Cells and portals (Scene::cells, Scene::portals in renderer/scene.hpp) as the stages
+// Cells and portals (Scene::cells, Scene::portals in renderer/scene/scene.hpp) as the stages
 // portals (portals.hpp) and pvs (pvs.hpp) use them: which objects each cell holds, which
 // portals lead out of it, where the eye is, and the one geometric operation both stages
 // are made of, cutting a convex polygon by a plane.
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "algorithms/culling/culling.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/prepare.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/scene/prepare.hpp"
 
 namespace hsr::culling::cells {
 

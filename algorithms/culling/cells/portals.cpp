@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "renderer/error.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::culling::portals {
 namespace {

@@ -9,10 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "renderer/error.hpp"
-#include "renderer/frame.hpp"
-#include "renderer/parallel.hpp"
-#include "renderer/reference.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/util/error.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr::culling::pvs {
 namespace {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "renderer/conventions.hpp"
 #include "algorithms/culling/occlusion/fast_path.hpp"
-#include "renderer/simd.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/simd.hpp"
 
 namespace hsr::culling::occlusion {
 namespace {

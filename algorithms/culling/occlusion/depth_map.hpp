@@ -27,9 +27,9 @@
 #include <limits>
 #include <vector>
 
-#include "renderer/bvh.hpp"
-#include "renderer/camera.hpp"
-#include "renderer/clip.hpp"
+#include "renderer/geometry/camera.hpp"
+#include "renderer/geometry/clip.hpp"
+#include "renderer/rays/bvh.hpp"
 
 namespace hsr::culling::occlusion {
 

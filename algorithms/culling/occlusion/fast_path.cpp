@@ -1,17 +1,13 @@
 // The occluder map's fast path (fast_path.hpp says what it computes and why it is the
-// same). Only the functions marked HSR_AVX2 use AVX2 (renderer/simd.hpp).
+// same). Only the functions marked HSR_AVX2 use AVX2 (renderer/util/simd.hpp).
 #include "algorithms/culling/occlusion/fast_path.hpp"
 
 #include <limits>
 
-#include "renderer/simd.hpp"
+#include "renderer/util/simd.hpp"
 
 namespace hsr::culling::occlusion {
 namespace {
-
-// Eight floats, and eight 32-bit integers: one AVX2 register each.
-using Float8 = float __attribute__((vector_size(32)));
-using Int8 = std::int32_t __attribute__((vector_size(32)));
 
 // nextUp (depth_map.hpp) lane by lane: a positive float's bits plus one, a negative's
 // minus one, and a zero the smallest positive float.
@@ -22,20 +18,10 @@ HSR_AVX2 Float8 nextUp(Float8 f) {
   return f == 0 ? Float8{} + smallest : stepped;
 }
 
-// Eight doubles (two vectors of four) to eight floats, each rounded to the nearest.
-HSR_AVX2 Float8 narrowed(Double4 low, Double4 high) {
-  return Float8(_mm256_set_m128(_mm256_cvtpd_ps(__m256d(high)), _mm256_cvtpd_ps(__m256d(low))));
-}
-
-// Eight floats widened back to doubles, four at a time.
-HSR_AVX2 Double4 widenedHalf(Float8 f, int half) {
-  return Double4(_mm256_cvtps_pd(half == 0 ? _mm256_castps256_ps128(__m256(f)) : _mm256_extractf128_ps(__m256(f), 1)));
-}
-
 // Two masks of four 64-bit lanes as one of eight 32-bit lanes.
 HSR_AVX2 Int8 narrowedMask(Mask4 low, Mask4 high) {
-  using Int4 = std::int32_t __attribute__((vector_size(16)));
-  return Int8(_mm256_set_m128i(__m128i(__builtin_convertvector(high, Int4)), __m128i(__builtin_convertvector(low, Int4))));
+  return Int8{std::int32_t(low[0]), std::int32_t(low[1]), std::int32_t(low[2]), std::int32_t(low[3]),
+              std::int32_t(high[0]), std::int32_t(high[1]), std::int32_t(high[2]), std::int32_t(high[3])};
 }
 
 // roundedUp lane by lane: to the nearest float, up one where that fell below, and up
@@ -58,9 +44,9 @@ HSR_AVX2 void eightCenterTexels(float* row, int x, Int8 inRun, const CenterRowKe
     const Float8 key = keys[k].atZero + keys[k].slope * texels;
     farthest = farthest < key ? key : farthest;  // std::max(farthest, key)
   }
-  const Float8 held = Float8(_mm256_maskload_ps(row + x, __m256i(inRun)));
+  const Float8 held = maskedLoad(row + x, inRun);
   const Float8 kept = farthest < held ? farthest : held;  // std::min(held, farthest)
-  _mm256_maskstore_ps(row + x, __m256i(inRun), __m256(kept));
+  maskedStore(row + x, inRun, kept);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ namespace hsr::culling::occlusion {
 // Writes texels first .. of `row` eight at a time as conservativeRow writes them, given
 // each face's key along the row; returns the first texel it did not write (at most
 // seven before last + 1), for that loop to finish. Only on a CPU with AVX2
-// (renderer/simd.hpp).
+// (renderer/util/simd.hpp).
 int conservativeRowEightAtATime(float* row, int first, int last, const RowKey* keys, int count);
 
 // Writes texels first .. last of `row` as centerRow writes them, eight at a time, the

@@ -2,7 +2,7 @@
 // a query of a node's box answers for everything below it, so one hidden node culls a
 // whole part of the scene with one query.
 //
-//   bvh  the scene's object BVH (renderer/bvh.hpp: the surface area heuristic over the
+//   bvh  the scene's object BVH (renderer/rays/bvh.hpp: the surface area heuristic over the
 //        objects' boxes): each object in exactly one leaf, boxes that may overlap.
 //   kd   a k-d tree: each cell split in half across its longest side until it holds at
 //        most kLeafObjects objects; an object reaching across a split is listed in
@@ -14,9 +14,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "renderer/bvh.hpp"
-#include "renderer/prepare.hpp"
-#include "renderer/stats.hpp"
+#include "renderer/rays/bvh.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr::culling::occlusion {
 

@@ -2,7 +2,7 @@
 #include "algorithms/culling/occlusion/occlusion.hpp"
 
 #include "algorithms/culling/occlusion/queries.hpp"
-#include "renderer/simd.hpp"
+#include "renderer/util/simd.hpp"
 
 #include <algorithm>
 #include <array>
@@ -108,7 +108,7 @@ std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const Cam
 
 namespace {
 
-// How many occluders ahead their data is asked for (renderer/simd.hpp, prefetch): on
+// How many occluders ahead their data is asked for (renderer/util/simd.hpp, prefetch): on
 // the city at 1920 x 1080 (occlusion_bench, least of 4 x 5 runs) 3.93 ms without, 3.40
 // at 4 ahead, 3.37 at 8.
 constexpr std::size_t kPrefetchAhead = 8;

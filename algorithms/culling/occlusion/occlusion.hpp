@@ -36,7 +36,7 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/culling/occlusion/depth_map.hpp"
 #include "algorithms/culling/occlusion/hierarchy.hpp"
-#include "renderer/simulated_gpu.hpp"
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 
 namespace hsr::culling::occlusion {
 

@@ -6,6 +6,7 @@
 #include <queue>
 
 #include "algorithms/culling/frustum.hpp"
+#include "renderer/util/portable_math.hpp"
 
 namespace hsr::culling::occlusion {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 // The chance that a node found hidden by its last `framesHidden` answers stays hidden:
 // 0.29 with none, 0.73 after one, above 0.98 after five. CHC++ fits a curve of this
 // shape to its measurements; this one is ours, and only shapes the multiqueries.
-double chanceStaysHidden(int framesHidden) { return 0.99 - 0.7 * std::exp(-double(framesHidden)); }
+double chanceStaysHidden(int framesHidden) { return 0.99 - 0.7 * portable::exp(-double(framesHidden)); }
 
 // A well-mixed 64-bit hash (splitmix64's finalizer): the "random" first wait of a leaf
 // that turns visible, the same on every run.

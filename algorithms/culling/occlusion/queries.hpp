@@ -1,6 +1,6 @@
 // Occlusion queries: ask the GPU how many pixels of a box would pass the depth test
 // against what is drawn so far, and skip what lies in the box when none would. The
-// GPU is simulated (renderer/simulated_gpu.hpp), and its answers come back late: the
+// GPU is simulated (algorithms/culling/occlusion/simulated_gpu.hpp), and its answers come back late: the
 // four strategies differ in what they do meanwhile. All walk a hierarchy of the objects
 // (hierarchy.hpp) nearest first, and a node found hidden culls everything below it.
 //
@@ -51,7 +51,7 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/culling/occlusion/hierarchy.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
-#include "renderer/simulated_gpu.hpp"
+#include "algorithms/culling/occlusion/simulated_gpu.hpp"
 
 namespace hsr::culling::occlusion {
 

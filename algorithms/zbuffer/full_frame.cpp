@@ -1,0 +1,119 @@
+// The full-frame z-buffer's machinery around the textbook loop (textbook.hpp): the image
+// cut into tiles drawn in parallel, the depth buffer they share, the fast path where it
+// runs, --steps' pictures, and the counters.
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <type_traits>
+
+#include "algorithms/zbuffer/fast_path.hpp"
+#include "algorithms/zbuffer/textbook.hpp"
+#include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/util/parallel.hpp"
+#include "renderer/util/simd.hpp"
+
+namespace hsr::zbuffer {
+namespace {
+
+// --steps on the full frame: the image is drawn as one tile on one thread, and after
+// each triangle (about 40 of them, StepRecorder::due) the colour beside the depth so
+// far, the triangle just drawn outlined; every pixel a triangle covers is one more
+// fragment tested there, for the overdraw the last picture shows.
+template <typename Format>
+class StepsWatcher final : public TileWatcher {
+ public:
+  StepsWatcher(const Recording& recording, const Tile<Format>& tile, std::vector<double>& testedAt)
+      : recording_(recording), tile_(tile), testedAt_(testedAt) {}
+
+  void drawn(std::size_t index, const ScreenTriangle& tri) override {
+    const Frame& frame = tile_.frame;
+    for (int y = tri.minY; y <= tri.maxY; ++y) rasterizeSpan(tri, y, tri.minX, tri.maxX + 1, [&](int x) { ++testedAt_[tile_.pixel(x, y)]; });
+    if (!recording_.steps.due(index, tile_.triangles.size())) return;
+    std::vector<float> distances(frame.pixelCount());
+    for (int y = 0; y < frame.height; ++y)
+      for (int x = 0; x < frame.width; ++x)
+        distances[tile_.pixel(x, y)] = tile_.test.distance(frame.ids[tile_.pixel(x, y)], tile_.depth.at(x, y), tile_.geometry.camera);
+    const DepthCounts& counts = tile_.test.counts;
+    recording_.steps.record("step 2, depth test: triangle " + std::to_string(index + 1) + " of " + std::to_string(tile_.triangles.size()) +
+                                " drawn (red); " + std::to_string(counts.written) + " of " + std::to_string(counts.tested) +
+                                " fragments so far were nearer and kept",
+                            buffersPicture(recording_, tile_.geometry.camera, frame.ids, distances, frame.width, frame.height,
+                                           std::span(&tri.triangle, 1)));
+  }
+
+ private:
+  const Recording& recording_;
+  const Tile<Format>& tile_;
+  std::vector<double>& testedAt_;
+};
+
+}  // namespace
+
+void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
+                     const FullFrameOptions& options) {
+  const Recording* recording = options.recording;
+  // Binning: each tile gets the triangles whose pixel box overlaps it, in submission
+  // order, so that within a tile triangles are drawn in the same order as on one thread.
+  // A recording draws the whole image as one tile.
+  const TileGrid tiles(frame.width, frame.height, recording ? std::max(frame.width, frame.height) : TileGrid::kTileSize);
+  std::vector<std::vector<std::uint32_t>> bins;
+  {
+    PhaseTimer timer(stats, "binning");
+    bins = tiles.bin(geometry.triangles.size(), [&](std::uint32_t i) -> const ScreenTriangle& { return geometry.triangles[i]; });
+  }
+
+  PhaseTimer timer(stats, "rasterization");
+  withDepthTest(format, options.depthTest, [&]<typename Format>() {
+    const DepthEncoding encoding = depthEncoding(format, geometry.camera);
+    // The fast path runs float formats with the depth test on, on an x86 CPU with AVX2.
+    constexpr bool kFastPathBuilt = kX86 && (std::is_same_v<Format, Float32Depth> || std::is_same_v<Format, ReversedFloat32Depth>);
+    const bool simd = kFastPathBuilt && options.path == Path::simd && cpuHasAvx2();
+    // The textbook's depth buffer covers the whole frame. The fast path draws each tile
+    // in a buffer of its own, one per worker, which stays in the cache while the tile is
+    // drawn (a tiling GPU keeps its tile in on-chip memory for the same reason): the same
+    // values, stored closer. Left uninitialized here: each tile clears its own part, on
+    // the thread that will use it.
+    const auto depthValues = [&](const TileGrid& grid, int workers) {
+      return simd ? std::size_t(parallelWorkers(grid.count(), workers)) * grid.largestTileArea() : frame.pixelCount();
+    };
+    const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(depthValues(tiles, threads));
+    std::vector<double> testedAt(recording ? frame.pixelCount() : 0);  // fragments tested per pixel, for the steps
+    std::vector<DepthTest<Format>> tileResults(bins.size());
+    parallelFor(bins.size(), threads, [&](std::size_t index, int worker) {
+      const TileGrid::Rect area = tiles.rect(index);
+      using TileDepth = DepthBuffer<typename Format::Stored>;
+      DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other tiles
+      const Tile<Format> tile{area, geometry, bins[index],
+                              simd ? TileDepth{&depth[std::size_t(worker) * tiles.largestTileArea()], std::size_t(area.x1 - area.x0), area.x0, area.y0}
+                                   : TileDepth{depth.get(), std::size_t(frame.width), 0, 0},
+                              frame, test};
+      std::optional<StepsWatcher<Format>> watcher;
+      if (recording) watcher.emplace(*recording, tile, testedAt);
+      TileWatcher* watching = watcher ? &*watcher : nullptr;
+      if constexpr (kFastPathBuilt) {
+        if (simd) drawTileFast(tile, watching);
+        else drawTile(tile, watching);
+      } else {
+        drawTile(tile, watching);
+      }
+      tileResults[index] = test;
+    });
+    if (recording)
+      recording->steps.record("overdraw: fragments tested per pixel (" + std::to_string(tileResults[0].counts.tested) + " in all, " +
+                                  std::to_string(tileResults[0].counts.written) + " written)",
+                              heatMapPicture(testedAt, frame.width, frame.height, "fragments tested per pixel"));
+    for (const auto& test : tileResults) {
+      stats.add("fragments tested", test.counts.tested);
+      stats.add("fragments written", test.counts.written);
+      stats.add(kDepthTiesCounter, test.counts.ties);
+      if (simd) stats.add("fragments skipped by block depth", test.counts.skippedByBlockDepth);  // present exactly when the fast path ran
+    }
+    // What drawing needs. A recording draws the image as one tile, on one thread; it
+    // counts what drawing in tiles on one thread needs, so that recording the steps
+    // changes no counter.
+    const std::size_t counted = recording ? depthValues(TileGrid(frame.width, frame.height), 1) : depthValues(tiles, threads);
+    stats.add("depth buffer bytes", static_cast<std::int64_t>(counted * sizeof(typename Format::Stored)));
+  });
+}
+
+}  // namespace hsr::zbuffer

@@ -1,0 +1,293 @@
+#include "renderer/reference/reference.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <optional>
+
+#include "renderer/geometry/rounding.hpp"
+#include "renderer/rays/ray_packet.hpp"
+#include "renderer/reference/bounded_woop.hpp"
+#include "renderer/reference/nearest_hit.hpp"
+#include "renderer/shading/fog.hpp"
+#include "renderer/shading/outline.hpp"
+#include "renderer/shading/shading.hpp"
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/error.hpp"
+#include "renderer/util/parallel.hpp"
+
+namespace hsr {
+namespace {
+
+using namespace reference_search;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal)
+    : scene_(scene),
+      bvh_(scene.triangleBvh(stats)),
+      triangles_(scene.leafTriangles(stats)),
+      wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats) : nullptr) {}
+
+void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const {
+  // Eight rays at a time; where they cannot travel together (they straddle a plane of
+  // the view where a direction's component changes sign), four and four; and where four
+  // cannot, one by one.
+  const auto traceOneByOne = [&](int x, int rays) {
+    for (int i = 0; i < rays; ++i)
+      hits[x - x0 + i] = trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x + i), conventions::pixelCenter(y)), counters);
+  };
+  for (int x = x0; x < x0 + count; x += RayPacket::kRays) {
+    const int rays = std::min(RayPacket::kRays, x0 + count - x);
+    if (!wideBvh_) traceOneByOne(x, rays);
+    else if (tracePacket(camera, y, x, rays, hits + (x - x0), counters)) continue;
+    else
+      for (int half = x; half < x + rays; half += 4)
+        if (!tracePacket(camera, y, half, std::min(4, x + rays - half), hits + (half - x0), counters)) traceOneByOne(half, std::min(4, x + rays - half));
+  }
+}
+
+ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const {
+  if (bvh_.empty()) return {};
+  RayQuery query(ray, camera);
+  const RayBoxTest boxes(ray.origin, ray.direction);
+  NearestHitSearch search;
+
+  // Front-to-back traversal: the nearer child first, and a node is skipped once its
+  // entry lies beyond the horizon (widened by the rounding of the entry itself).
+  constexpr double widen = NearestHitSearch::kEntryWidening;
+  struct Pending {
+    std::uint32_t node;
+    double entry;
+  };
+  std::array<Pending, Bvh::kMaxDepth + 1> stack;
+  int size = 0;
+  const std::vector<BvhNode>& nodes = bvh_.nodes();
+  const double rootEntry = boxes.entry(nodes[0], kInfinity);
+  if (rootEntry < kInfinity) stack[size++] = {0, rootEntry};
+  while (size > 0) {
+    const Pending pending = stack[--size];
+    if (pending.entry > search.horizon() * widen) continue;
+    const BvhNode& node = nodes[pending.node];
+    ++counters.nodesVisited;
+    if (node.leaf()) {
+      for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
+        search.offer(boundedHitInDouble(query, triangles_[slot], search.horizon(), counters), slot);
+      continue;
+    }
+    const double limit = search.horizon() * widen;
+    Pending first{node.index, boxes.entry(nodes[node.index], limit)};
+    Pending second{node.index + 1, boxes.entry(nodes[node.index + 1], limit)};
+    if (second.entry < first.entry) std::swap(first, second);
+    if (second.entry < kInfinity) stack[size++] = second;
+    if (first.entry < kInfinity) stack[size++] = first;
+  }
+  return search.nearest(triangles_, counters, [&](double t) { return query.distance(t); }, [&]() -> RayQuery& { return query; });
+}
+
+SurfaceReference::Layers SurfaceReference::traceAll(const CameraTransform& camera, const Ray& ray, Counters& counters) const {
+  Layers layers;
+  if (bvh_.empty()) return layers;
+  RayQuery query(ray, camera);
+  const RayBoxTest boxes(ray.origin, ray.direction);
+  struct Candidate {
+    double t, bound;
+    std::uint32_t slot;
+    bool exact;
+  };
+  std::vector<Candidate> candidates;
+  bvh_.visitPrimitives([&](const BvhNode& node) { return ++counters.nodesVisited, boxes.entry(node, kInfinity) < kInfinity; },
+                       [&](std::uint32_t, std::uint32_t slot) {
+                         const BoundedHit hit = boundedHit(query, triangles_[slot], kInfinity, counters);
+                         if (hit.hit) candidates.push_back({hit.t, hit.bound, slot, hit.exact});
+                       });
+  // Nearest first: by the double t where the bounds separate two hits, exactly where
+  // they do not; exact ties go by id.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ties;
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
+    if (a.t + a.bound < b.t - b.bound) return true;
+    if (b.t + b.bound < a.t - a.bound) return false;
+    ++counters.exactComparisons;
+    const woop::ExactParameter ta = *query.exactHit(triangles_[a.slot].a, triangles_[a.slot].b, triangles_[a.slot].c);
+    const woop::ExactParameter tb = *query.exactHit(triangles_[b.slot].a, triangles_[b.slot].b, triangles_[b.slot].c);
+    if (const int order = compare(ta, tb); order != 0) return order < 0;
+    if (triangles_[a.slot].id != triangles_[b.slot].id) ties.emplace_back(triangles_[a.slot].id, triangles_[b.slot].id);
+    return triangles_[a.slot].id < triangles_[b.slot].id;
+  });
+  // Nothing behind the nearest opaque surface shows, so only ties up to it matter.
+  for (const Candidate& candidate : candidates) {
+    const std::uint32_t id = triangles_[candidate.slot].id;
+    layers.hits.push_back({id, query.distance(candidate.t), false, candidate.exact});
+    if (scene_.instanceOf(id - 1).opacity >= 1) break;
+  }
+  const auto shown = [&](std::uint32_t id) {
+    return std::any_of(layers.hits.begin(), layers.hits.end(), [&](const ReferenceHit& hit) { return hit.id == id; });
+  };
+  layers.tied = std::any_of(ties.begin(), ties.end(), [&](const auto& tie) { return shown(tie.first) && shown(tie.second); });
+  return layers;
+}
+
+bool SurfaceReference::blocked(const Ray& segment, double tMin, std::uint32_t except, Counters& counters) const {
+  if (bvh_.empty()) return false;
+  const ShearedRay<double> shear(segment);
+  const RayBoxTest boxes(segment.origin, segment.direction);
+  const auto meets = [&](const PackedTriangle& tri) {
+    ++counters.triangleTests;
+    const WoopTerms<double> terms = woopTerms(shear, tri.a, tri.b, tri.c);
+    const WoopBounds<double> bounds = woopBounds(shear, tri.a, tri.b, tri.c, terms);
+    const double t = bounds.t;
+    const Certainty hit = certainty(insideWithBounds(terms, bounds));
+    if (hit == Certainty::no) return false;
+    if (hit == Certainty::yes && t - bounds.tBound > tMin && t + bounds.tBound <= 1) return true;
+    if (hit == Certainty::yes && (t + bounds.tBound <= tMin || t - bounds.tBound > 1)) return false;
+    ++counters.exactTriangleTests;
+    const woop::ExactTerms exact = woop::exactTerms(segment, tri.a, tri.b, tri.c);
+    return woop::inside(exact) && exact.t.compareWith(tMin) > 0 && exact.t.compareWith(1) <= 0;
+  };
+  std::array<std::uint32_t, Bvh::kMaxDepth + 1> stack;
+  int size = 0;
+  const std::vector<BvhNode>& nodes = bvh_.nodes();
+  stack[size++] = 0;
+  while (size > 0) {
+    const BvhNode& node = nodes[stack[--size]];
+    ++counters.nodesVisited;
+    if (boxes.entry(node, 1.0) == kInfinity) continue;
+    if (!node.leaf()) {
+      stack[size++] = node.index;
+      stack[size++] = node.index + 1;
+      continue;
+    }
+    for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
+      if (triangles_[slot].id != except + 1 && scene_.instanceOf(triangles_[slot].id - 1).opacity >= 1 && meets(triangles_[slot]))
+        return true;
+  }
+  return false;
+}
+
+ExactShadows::ExactShadows(const PreparedScene& scene, Stats& stats) : scene_(scene), reference_(scene, stats) {
+  const Aabb bounds = scene.bounds();
+  reach_ = bounds.empty() ? 1.0 : 2 * glm::length(bounds.hi - bounds.lo) + 1.0;
+}
+
+bool ExactShadows::shadowed(std::size_t light, const dvec3& point, std::uint32_t triangle) const {
+  const Light& source = scene_.scene().lights[light];
+  const dvec3 direction = source.kind == Light::Kind::directional ? -source.direction * reach_ : source.position - point;
+  SurfaceReference::Counters counters;
+  return reference_.blocked({point, direction}, 1e-9, triangle, counters);
+}
+
+ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal) {
+  ReferenceImage image;
+  traceReference(scene, threads, stats, traversal, image);
+  return image;
+}
+
+void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image) {
+  const SurfaceReference reference(scene, stats, traversal);
+  const CameraTransform& camera = scene.camera();
+  PhaseTimer timer(stats, "reference");
+  // Every pixel's id, depth and ambiguity is written below: an image of this size is
+  // reused as it is, as a renderer reuses its framebuffer.
+  if (image.frame.width != scene.width() || image.frame.height != scene.height()) image.frame = Frame(scene.width(), scene.height());
+  image.ambiguous.resize(image.frame.pixelCount());
+  image.ambiguousPixels = image.exactFallbacks = image.blendTiedPixels = 0;
+  image.blendTied.clear();
+
+  // One work item per row; each writes only its own pixels and counters.
+  const auto rows = static_cast<std::size_t>(scene.height());
+  std::vector<SurfaceReference::Counters> counters(rows);
+  std::vector<std::int64_t> exactRays(rows, 0), ambiguousPixels(rows, 0);
+  std::vector<std::vector<ReferenceHit>> rowHits(std::size_t(resolveThreadCount(threads)), std::vector<ReferenceHit>(std::size_t(scene.width())));
+  parallelFor(rows, threads, [&](std::size_t row, int worker) {
+    // Counted on this thread's stack and stored once: neighbouring rows' counters share
+    // cache lines, and other threads work on them.
+    SurfaceReference::Counters rowCounters;
+    std::int64_t rowExact = 0, rowAmbiguous = 0;
+    std::vector<ReferenceHit>& hits = rowHits[std::size_t(worker)];
+    reference.traceRun(camera, int(row), 0, scene.width(), hits.data(), rowCounters);
+    for (int x = 0; x < scene.width(); ++x) {
+      const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
+      const ReferenceHit& hit = hits[std::size_t(x)];
+      image.frame.ids[pixel] = hit.id;
+      image.frame.depth[pixel] = static_cast<float>(hit.distance);
+      image.ambiguous[pixel] = hit.ambiguous;
+      rowExact += hit.usedExact;
+      rowAmbiguous += hit.ambiguous;
+    }
+    counters[row] = rowCounters;
+    exactRays[row] = rowExact;
+    ambiguousPixels[row] = rowAmbiguous;
+  });
+  SurfaceReference::Counters total;
+  for (std::size_t row = 0; row < rows; ++row) {
+    total.nodesVisited += counters[row].nodesVisited;
+    total.triangleTests += counters[row].triangleTests;
+    total.exactTriangleTests += counters[row].exactTriangleTests;
+    total.exactComparisons += counters[row].exactComparisons;
+    image.exactFallbacks += exactRays[row];
+    image.ambiguousPixels += ambiguousPixels[row];
+  }
+  stats.add("reference rays", static_cast<std::int64_t>(image.frame.pixelCount()));
+  stats.add("reference exact fall-backs", image.exactFallbacks);
+  stats.add("reference ambiguous pixels", image.ambiguousPixels);
+  stats.add("bvh nodes visited", total.nodesVisited);
+  stats.add("ray-triangle tests", total.triangleTests);
+  stats.add("exact ray-triangle tests", total.exactTriangleTests);
+  stats.add("exact depth comparisons", total.exactComparisons);
+}
+
+ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats) {
+  ReferenceImage image = traceReference(scene, threads, stats);
+  const CameraTransform& camera = scene.camera();
+  const Effects& effects = scene.scene().effects;
+  std::optional<ExactShadows> shadows;
+  if (effects.shadows) shadows.emplace(scene, stats);
+  PixelShader<double> shader(scene, camera, shadows ? &*shadows : nullptr);
+  if (!effects.transparency) {
+    shadeFrame(scene, image.frame, shader, threads, stats);
+  } else {
+    // The exact blend: every surface along the pixel's ray, in exact depth order, each
+    // "over" the ones behind it, from the nearest opaque one (or the background) forward.
+    PhaseTimer timer(stats, "shading");
+    // Any surface may be seen through glass: every one is set up.
+    std::vector<std::uint32_t> everyTriangle(scene.triangleCount());
+    std::iota(everyTriangle.begin(), everyTriangle.end(), 0u);
+    shader.setUp(everyTriangle, threads, stats);
+    const SurfaceReference reference(scene, stats);
+    const dvec3 background(scene.scene().background);
+    const auto rows = static_cast<std::size_t>(scene.height());
+    image.blendTied.assign(image.frame.pixelCount(), 0);
+    std::vector<ShadingCounts> counts(rows);
+    parallelFor(rows, threads, [&](std::size_t row, int) {
+      SurfaceReference::Counters rayCounters;
+      for (int x = 0; x < scene.width(); ++x) {
+        const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
+        const auto layers = reference.traceAll(camera, camera.rayThroughPixel(conventions::pixelCenter(x), conventions::pixelCenter(int(row))), rayCounters);
+        // The last layer is the opaque surface everything else is seen over, if any.
+        std::size_t layer = layers.hits.size();
+        const bool opaqueLast = layer > 0 && scene.instanceOf(layers.hits[layer - 1].id - 1).opacity >= 1;
+        dvec3 color = opaqueLast ? shader.shade(layers.hits[--layer].id - 1, x, int(row), counts[row]) : background;
+        while (layer-- > 0) {
+          const double opacity = scene.instanceOf(layers.hits[layer].id - 1).opacity;
+          color = opacity * shader.shade(layers.hits[layer].id - 1, x, int(row), counts[row]) + (1 - opacity) * color;
+        }
+        image.blendTied[pixel] = layers.tied;
+        for (int c = 0; c < 3; ++c) image.frame.color[4 * pixel + std::size_t(c)] = channelByte(color[c]);
+        image.frame.color[4 * pixel + 3] = 255;
+      }
+    });
+    ShadingCounts total;
+    for (const ShadingCounts& row : counts) total += row;
+    total.addTo(stats);
+    for (const std::uint8_t tied : image.blendTied) image.blendTiedPixels += tied;
+  }
+  if (effects.fog) applyFog(effects.fogSettings, image.frame, threads, stats);
+  if (effects.outline) drawOutline(scene, camera, effects.outlineSettings, effects.fog ? &effects.fogSettings : nullptr, image.frame, stats);
+  return image;
+}
+
+}  // namespace hsr

@@ -1,0 +1,127 @@
+// The exact surface reference: for every pixel center, the visible triangle decided in
+// object space, the ground truth every surface algorithm is measured against.
+//
+// It shares no code with the rasterizer. A ray leaves the eye through the pixel center
+// (parallel to the view axis from the near-plane rectangle under orthographic, as
+// CameraTransform::rayThroughPixel defines it), and the nearest triangle it meets
+// between the near and far planes wins:
+//   1. Candidates come from a BVH (renderer/rays/bvh) with conservative box tests.
+//   2. Each is tested with the watertight ray-triangle test of Woop, Benthin and Wald
+//      (2013) in double precision, with a forward error bound on each of its values.
+//   3. Wherever a bound leaves a decision open (a pixel center on an edge, a hit on the
+//      near plane, two hits closer than their depth bounds), the same test is evaluated
+//      again exactly (renderer/geometry/exact.hpp): the ray's origin and direction and
+//      the vertices are doubles, and every value the test compares is a quotient of sums
+//      of their products, so the decision is exact for that ray.
+//   4. A pixel whose nearest hit is shared exactly by two or more triangles (coplanar
+//      faces overlapping, a center exactly on a shared edge or vertex) is *ambiguous*:
+//      any of them is a correct answer. The id recorded is the lowest, and metrics skip
+//      the pixel.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "renderer/geometry/camera.hpp"
+#include "renderer/image/frame.hpp"
+#include "renderer/scene/prepare.hpp"
+#include "renderer/shading/shading.hpp"
+#include "renderer/util/stats.hpp"
+
+namespace hsr {
+
+struct ReferenceHit {
+  std::uint32_t id = 0;     // global triangle index + 1; 0 = nothing between near and far
+  // Along the view axis, as Frame::depth measures it: +infinity where nothing was met.
+  double distance = std::numeric_limits<double>::infinity();
+  bool ambiguous = false;   // two or more triangles are exactly the nearest
+  bool usedExact = false;   // some decision for this ray needed exact arithmetic
+};
+
+// How the reference traverses the BVH for a row of primary rays: eight rays at a time
+// through the wide BVH where the CPU has AVX2 (reference_packets.cpp), or the textbook
+// traversal of one ray at a time. The same ids, depths, ambiguity and fall-backs.
+enum class ReferenceTraversal { packets, textbook };
+
+class SurfaceReference {
+ public:
+  // Builds (or reuses) the scene's triangle BVH, and the wide one for packets.
+  SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal = ReferenceTraversal::textbook);
+
+  // Per-ray work counters, summed by the caller.
+  struct Counters {
+    std::int64_t nodesVisited = 0, triangleTests = 0, exactTriangleTests = 0, exactComparisons = 0;
+  };
+  ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
+  // trace() for the rays through pixels x0 .. x0 + count - 1 of row y
+  // (CameraTransform::rayThroughPixel), by the traversal chosen.
+  void traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const;
+
+  // Every triangle the ray meets between the near and far planes, nearest first in the
+  // exact order of their distances, up to the first opaque one (for the exact blend of
+  // transparent surfaces); `tied` when two of those are met at exactly the same distance
+  // (a pixel center on a shared edge, coplanar faces), where no order is the right one.
+  struct Layers {
+    std::vector<ReferenceHit> hits;
+    bool tied = false;
+  };
+  Layers traceAll(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
+
+  // Whether an opaque triangle other than global triangle `except` meets the segment
+  // origin + t direction for t in (tMin, 1]: the exact shadow ray (each inside decision
+  // and each comparison with tMin and 1 exact for these doubles).
+  bool blocked(const Ray& segment, double tMin, std::uint32_t except, Counters& counters) const;
+
+ private:
+  using PackedTriangle = PreparedScene::LeafTriangle;
+  const PreparedScene& scene_;
+  const Bvh& bvh_;
+  const std::vector<PackedTriangle>& triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
+  const WideBvh* wideBvh_;                         // for packets; null for the textbook traversal
+  // Up to eight rays of a row as one packet, when they can travel together
+  // (RayPacket::travelTogether); false when they cannot.
+  bool tracePacket(const CameraTransform& camera, int y, int x, int count, ReferenceHit* hits, Counters& counters) const;
+};
+
+// Exact shadow rays: a point is shadowed from a light when a segment from it to the light
+// (a point light) or out of the scene's bounds toward it (a directional light) meets
+// another opaque triangle (a transparent one lets the light through, as in the shadow maps). Hits within 1e-9 of the segment's length from the point are ignored:
+// the point lies on its own triangle and that triangle's neighbours only to rounding.
+// Stats (summed by the caller through counters()): the reference's counters.
+class ExactShadows : public ShadowTest {
+ public:
+  ExactShadows(const PreparedScene& scene, Stats& stats);
+  bool shadowed(std::size_t light, const dvec3& point, std::uint32_t triangle) const override;
+
+ private:
+  const PreparedScene& scene_;
+  SurfaceReference reference_;
+  double reach_;  // longer than any path across the scene's bounds
+};
+
+struct ReferenceImage {
+  Frame frame;                           // ids, depth, and color shaded as every algorithm shades
+  std::vector<std::uint8_t> ambiguous;   // 1 where the pixel is ambiguous (see above)
+  std::int64_t ambiguousPixels = 0;
+  std::int64_t exactFallbacks = 0;       // pixels whose ray needed exact arithmetic
+  // With transparency only: 1 where two surfaces along the ray lie at exactly the same
+  // distance, so that no blending order is the right one (metrics skip the pixel).
+  std::vector<std::uint8_t> blendTied;
+  std::int64_t blendTiedPixels = 0;
+};
+
+// The visibility pass alone: ids, depth and ambiguity; the color is left black.
+// Stats: "reference rays", "reference exact fall-backs", "reference ambiguous pixels",
+// "bvh nodes visited", "ray-triangle tests", "exact ray-triangle tests", "exact depth
+// comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
+ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats,
+                              ReferenceTraversal traversal = ReferenceTraversal::packets);
+// The same into `image`, reusing its buffers when it has the scene's size (a benchmark's
+// frames, as the z-buffer's reuse theirs); its color is left as it was.
+void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image);
+// traceReference, then the shading every algorithm's frame gets (renderer/shading/shading), with
+// exact shadow rays where an algorithm's frame has shadow maps, then fog and outline.
+ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);
+
+}  // namespace hsr

@@ -1,0 +1,43 @@
+// Text placed in XML, SVG, HTML or JSON: the characters each gives a meaning replaced,
+// so that a name from a scene file ("<b>", "R&D", a quote) reads as written.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+namespace hsr {
+
+inline std::string escapedMarkup(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// Text as a JSON string, quotes included: quote and backslash escaped, control
+// characters as \u00XX.
+inline std::string jsonString(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", c);
+      quoted += escape;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
+}  // namespace hsr

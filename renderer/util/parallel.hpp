@@ -1,0 +1,159 @@
+// Deterministic parallel loops. Work items are claimed dynamically, but every item
+// writes only its own output, so the result does not depend on the thread count or
+// on which thread ran which item: that is how the renderer stays bit-identical.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cfenv>
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "renderer/util/simd.hpp"
+
+namespace hsr {
+
+// 0 means "all cores".
+inline int resolveThreadCount(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// Threads kept from one parallel loop to the next: starting a thread for every loop
+// cost about 45 microseconds a loop on this machine kind, and a frame runs several loops
+// (the z-buffer's visibility pass four: a twentieth of counters' pass on two threads).
+// One loop at a time uses the pool; a loop started while it is busy (from inside a loop's
+// body, or from another thread) starts threads of its own, as every loop once did.
+//
+// Waking a sleeping thread costs about as much as starting one on a virtual machine (its
+// idle core has to be woken too), and loops come in bursts, so a thread that has
+// finished, and the caller waiting for the helpers, first spin a short while.
+class ThreadPool {
+ public:
+  static ThreadPool& shared() {
+    static ThreadPool pool;
+    return pool;
+  }
+
+  // Runs work(worker) for worker in [1, helpers] on the pool's threads, each in the
+  // caller's floating-point environment (as a thread started by the caller would be:
+  // the tests trap exceptions by it), while the caller runs work(0); returns when all
+  // have returned. False, having run nothing, when the pool is busy.
+  template <typename Work>
+  bool run(int helpers, Work& work) {
+    std::unique_lock busy(busy_, std::try_to_lock);
+    if (!busy.owns_lock()) return false;
+    {
+      std::lock_guard lock(mutex_);
+      while (int(threads_.size()) < helpers) threads_.emplace_back([this, worker = int(threads_.size()) + 1] { serve(worker); });
+      fegetenv(&environment_);
+      job_ = {&work, [](void* context, int worker) { (*static_cast<Work*>(context))(worker); }};
+      helpers_ = helpers;
+      unfinished_ = helpers;
+      ++generation_;
+    }
+    jobReady_.notify_all();
+    struct WaitForHelpers {  // also when work(0) throws: the helpers still use `work`
+      ThreadPool& pool;
+      ~WaitForHelpers() {
+        spinWhile([&] { return pool.unfinished_ != 0; });
+        std::unique_lock lock(pool.mutex_);
+        pool.jobDone_.wait(lock, [&] { return pool.unfinished_ == 0; });
+      }
+    } waitForHelpers{*this};
+    work(0);
+    return true;
+  }
+
+  ~ThreadPool() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    jobReady_.notify_all();
+  }
+
+ private:
+  ThreadPool() = default;
+
+  // Spins while `busy()` holds, up to kSpin.
+  template <typename Busy>
+  static void spinWhile(Busy&& busy) {
+    constexpr auto kSpin = std::chrono::microseconds(50);
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    while (busy() && std::chrono::steady_clock::now() < until) spinWaitHint();
+  }
+
+  void serve(int worker) {
+    std::uint64_t served = 0;
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      lock.unlock();
+      spinWhile([&] { return generation_ == served && !stopping_; });
+      lock.lock();
+      jobReady_.wait(lock, [&] { return stopping_ || generation_ != served; });
+      if (stopping_) return;
+      served = generation_;
+      if (worker > helpers_) continue;
+      const Job job = job_;
+      const fenv_t environment = environment_;
+      lock.unlock();
+      fesetenv(&environment);
+      job.run(job.context, worker);
+      lock.lock();
+      if (--unfinished_ == 0) jobDone_.notify_one();
+    }
+  }
+
+  struct Job {
+    void* context = nullptr;
+    void (*run)(void*, int) = nullptr;
+  };
+  std::mutex busy_;   // held by the loop using the pool
+  std::mutex mutex_;  // guards everything below
+  std::condition_variable jobReady_, jobDone_;
+  Job job_;
+  fenv_t environment_{};
+  int helpers_ = 0;
+  // Written under mutex_, and also read without it while spinning.
+  std::atomic<int> unfinished_ = 0;
+  std::atomic<std::uint64_t> generation_ = 0;  // one more for every job
+  std::atomic<bool> stopping_ = false;
+  std::vector<std::jthread> threads_;  // declared last: joined first, while the rest still lives
+};
+
+// How many workers parallelFor(count, threads, ...) runs: its bodies see worker numbers
+// [0, parallelWorkers(count, threads)), so per-worker state can be made in advance.
+inline int parallelWorkers(std::size_t count, int threads) {
+  return std::max(1, std::min<int>(resolveThreadCount(threads), static_cast<int>(count)));
+}
+
+// Calls body(item, worker) for item in [0, count), worker in [0, threads).
+template <typename Body>
+void parallelFor(std::size_t count, int threads, Body&& body) {
+  const int workers = parallelWorkers(count, threads);
+  if (workers <= 1) {
+    for (std::size_t item = 0; item < count; ++item) body(item, 0);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  auto work = [&](int worker) {
+    for (std::size_t item = next++; item < count; item = next++) body(item, worker);
+  };
+  if (ThreadPool::shared().run(workers - 1, work)) return;
+  std::vector<std::jthread> pool;
+  for (int worker = 1; worker < workers; ++worker) pool.emplace_back(work, worker);
+  work(0);
+}
+
+// Splits [0, count) into `parts` contiguous ranges, as even as possible.
+inline std::pair<std::size_t, std::size_t> partRange(std::size_t count, std::size_t parts, std::size_t part) {
+  return {count * part / parts, count * (part + 1) / parts};
+}
+
+}  // namespace hsr
