@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "renderer/geometry/predicates.hpp"
+#include "renderer/rays/bvh.hpp"
 #include "renderer/reference/bounded_woop.hpp"
 #include "renderer/reference/nearest_hit.hpp"
 #include "renderer/reference/reference.hpp"
-#include "renderer/rays/bvh.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/scene/scene.hpp"
 #include "renderer/util/conventions.hpp"

@@ -183,7 +183,8 @@ class FloatingHorizon {
           const auto alongLess = [](const Sample& s, double along) { return s.along < along; };
           const auto first = std::lower_bound(curve.begin(), curve.end(), from, alongLess);
           const auto last = std::lower_bound(first, curve.end(), to, alongLess);
-          drawCurve(cross, cross.positions[c], rows.positions.size() + c, std::span<const Sample>(first, last + 1));
+          drawCurve(cross, cross.positions[c], rows.positions.size() + c, 
+                    std::span<const Sample>(&*first, std::size_t(last - first) + 1));
         }
       drawCurve(rows, rows.positions[row], row, rowSamples[row]);
     }

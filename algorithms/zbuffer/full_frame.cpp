@@ -9,6 +9,7 @@
 #include "algorithms/zbuffer/fast_path.hpp"
 #include "algorithms/zbuffer/textbook.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
+#include "renderer/util/memory.hpp"
 #include "renderer/util/parallel.hpp"
 #include "renderer/util/simd.hpp"
 
@@ -76,7 +77,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     const auto depthValues = [&](const TileGrid& grid, int workers) {
       return simd ? std::size_t(parallelWorkers(grid.count(), workers)) * grid.largestTileArea() : frame.pixelCount();
     };
-    const auto depth = std::make_unique_for_overwrite<typename Format::Stored[]>(depthValues(tiles, threads));
+    const auto depth = uninitializedArray<typename Format::Stored>(depthValues(tiles, threads));
     std::vector<double> testedAt(recording ? frame.pixelCount() : 0);  // fragments tested per pixel, for the steps
     std::vector<DepthTest<Format>> tileResults(bins.size());
     parallelFor(bins.size(), threads, [&](std::size_t index, int worker) {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "renderer/geometry/clip.hpp"
+#include "renderer/util/memory.hpp"
 #include "renderer/util/parallel.hpp"
 
 namespace hsr {
@@ -120,9 +121,9 @@ void buildScreenTriangles(const PreparedScene& scene, const CameraTransform& vie
   // Left uninitialized: every element a triangle reads is written by the loop below, in
   // parallel. A vertex in front of the near plane is also projected here, once, however
   // many triangles share it (on a closed mesh, about six).
-  const auto vertices = std::make_unique_for_overwrite<ScreenVertex[]>(positions.size());
+  const auto vertices = uninitializedArray<ScreenVertex>(positions.size());
   // Their outcodes again, packed: what rejecting a triangle reads (below).
-  const auto outsideOf = std::make_unique_for_overwrite<std::uint32_t[]>(positions.size());
+  const auto outsideOf = uninitializedArray<std::uint32_t>(positions.size());
   const int workers = resolveThreadCount(threads);
   {
     PhaseTimer vertexTimer(stats, "geometry: vertices");

@@ -202,7 +202,8 @@ struct ExactTerms {
 };
 
 inline ExactTerms exactTerms(const Ray& ray, const dvec3& a, const dvec3& b, const dvec3& c) {
-  const auto [kx, ky, kz] = ShearedRay<double>::axesOf(ray.direction);
+  const std::array<int, 3> axes = ShearedRay<double>::axesOf(ray.direction);
+  const int kx = axes[0], ky = axes[1], kz = axes[2];
   const double dz = ray.direction[kz];
   struct Sheared {
     Exact x, y, z;  // d[kz] times the sheared x and y; z the corner's offset along kz

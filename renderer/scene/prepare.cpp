@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/util/error.hpp"
+#include "renderer/util/memory.hpp"
 #include "renderer/util/portable_math.hpp"
 
 namespace hsr {
@@ -130,7 +131,7 @@ const VertexTriangles& PreparedScene::trianglesAroundVertices(Stats& stats) cons
     PhaseTimer timer(stats, "vertex triangles");
     trianglesAroundVertices_ = buildVertexTriangles(positions_.size(), triangles_);
     faceStates_ = std::make_unique<std::atomic<std::uint8_t>[]>(triangles_.size());  // all kFaceAbsent
-    faceGeometries_ = std::make_unique_for_overwrite<FaceGeometry[]>(triangles_.size());  // written before it is read
+    faceGeometries_ = uninitializedArray<FaceGeometry>(triangles_.size());  // written before it is read
   });
   return trianglesAroundVertices_;
 }

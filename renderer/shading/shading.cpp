@@ -142,9 +142,7 @@ void PixelShader<Real>::setUpShownIn(const Frame& frame, int threads, Stats& sta
       const std::uint32_t id = frame.ids[pixel];
       if (id == previous || id == conventions::kBackgroundId) continue;
       previous = id;
-      std::atomic_ref<std::uint32_t> slot(slotOf_[id - 1]);
-      if (slot.load(std::memory_order_relaxed) == 0 && slot.exchange(1, std::memory_order_relaxed) == 0)
-        claimedIn[row].push_back(id - 1);
+      if (claimFlag(slotOf_[id - 1])) claimedIn[row].push_back(id - 1);
     }
   });
   std::vector<std::uint32_t> claimed;

@@ -7,8 +7,27 @@
 // for the next frame instead.
 #pragma once
 
+#include <cstddef>
+#include <memory>
+
 namespace hsr {
 
 void keepFreedMemoryForReuse();
+
+// An array of `count` values left uninitialized, for a buffer every value of which is
+// written before it is read (std::make_unique_for_overwrite, which not every standard
+// library has yet).
+template <typename T>
+std::unique_ptr<T[]> uninitializedArray(std::size_t count) {
+  return std::unique_ptr<T[]>(new T[count]);
+}
+
+// The bits of `from` read as a To (std::bit_cast, which not every standard library has
+// yet; the compilers' builtin under it is in GCC 11 and Clang 9 on).
+template <typename To, typename From>
+constexpr To bitCast(const From& from) noexcept {
+  static_assert(sizeof(To) == sizeof(From), "a bit cast keeps the size");
+  return __builtin_bit_cast(To, from);
+}
 
 }  // namespace hsr

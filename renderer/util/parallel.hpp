@@ -76,6 +76,7 @@ class ThreadPool {
       stopping_ = true;
     }
     jobReady_.notify_all();
+    for (std::thread& thread : threads_) thread.join();  // while the rest of the pool still lives
   }
 
  private:
@@ -124,7 +125,7 @@ class ThreadPool {
   std::atomic<int> unfinished_ = 0;
   std::atomic<std::uint64_t> generation_ = 0;  // one more for every job
   std::atomic<bool> stopping_ = false;
-  std::vector<std::jthread> threads_;  // declared last: joined first, while the rest still lives
+  std::vector<std::thread> threads_;  // joined by the destructor (std::jthread is not in every standard library yet)
 };
 
 // How many workers parallelFor(count, threads, ...) runs: its bodies see worker numbers
@@ -146,9 +147,22 @@ void parallelFor(std::size_t count, int threads, Body&& body) {
     for (std::size_t item = next++; item < count; item = next++) body(item, worker);
   };
   if (ThreadPool::shared().run(workers - 1, work)) return;
-  std::vector<std::jthread> pool;
+  std::vector<std::thread> pool;
+  struct JoinAll {  // also when work(0) throws: the others still use `work`
+    std::vector<std::thread>& threads;
+    ~JoinAll() {
+      for (std::thread& thread : threads) thread.join();
+    }
+  } joinAll{pool};
   for (int worker = 1; worker < workers; ++worker) pool.emplace_back(work, worker);
   work(0);
+}
+
+// Sets a plain flag from 0 to 1 atomically and says whether this call did: among threads
+// racing to claim the same item, exactly one wins (std::atomic_ref's load and exchange,
+// as GCC and clang give them, since not every standard library has atomic_ref yet).
+inline bool claimFlag(std::uint32_t& flag) {
+  return __atomic_load_n(&flag, __ATOMIC_RELAXED) == 0 && __atomic_exchange_n(&flag, 1u, __ATOMIC_RELAXED) == 0;
 }
 
 // Splits [0, count) into `parts` contiguous ranges, as even as possible.

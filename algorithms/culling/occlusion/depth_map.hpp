@@ -21,7 +21,6 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -30,6 +29,7 @@
 #include "renderer/geometry/camera.hpp"
 #include "renderer/geometry/clip.hpp"
 #include "renderer/rays/bvh.hpp"
+#include "renderer/util/memory.hpp"
 
 namespace hsr::culling::occlusion {
 
@@ -50,8 +50,8 @@ struct DepthMap {
 // library (the conservative rule takes two per texel it writes).
 inline float nextUp(float f) {
   if (f == 0) return std::numeric_limits<float>::denorm_min();
-  const auto bits = std::bit_cast<std::uint32_t>(f);
-  return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);  // a positive's magnitude grows, a negative's shrinks
+  const auto bits = bitCast<std::uint32_t>(f);
+  return bitCast<float>(f > 0 ? bits + 1 : bits - 1);  // a positive's magnitude grows, a negative's shrinks
 }
 
 // A double rounded to float in a chosen direction, and one ulp further: a key computed in

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -122,7 +121,7 @@ std::vector<std::uint32_t> nearestFirst(const std::vector<float>& keys) {
   std::vector<std::uint32_t> order(keys.size()), sorted(keys.size());
   std::vector<std::uint32_t> monotonic(keys.size());
   for (std::uint32_t i = 0; i < keys.size(); ++i) {
-    const auto bits = std::bit_cast<std::uint32_t>(keys[i]);
+    const auto bits = bitCast<std::uint32_t>(keys[i]);
     monotonic[i] = bits & 0x8000'0000u ? ~bits : bits | 0x8000'0000u;
     order[i] = i;
   }
