@@ -180,7 +180,7 @@ double HeightFunction::evaluate(double u, double v) const {
   if (name == "waves") return amplitude * portable::sin(u * frequency) * portable::cos(v * frequency);
   if (name == "spike") return amplitude / (1.0 + 100.0 * r * r);
   if (name == "step") return u * frequency >= 0 ? amplitude : 0.0;                 // a jump at u = 0
-  if (name == "cliff") return amplitude * std::tanh(u * frequency);               // steep but continuous
+  if (name == "cliff") return amplitude * portable::tanh(u * frequency);          // steep but continuous
   if (name == "dome") return r <= 1 ? amplitude * std::sqrt(1 - r * r) : kUndefined;  // undefined outside r = 1
   if (name == "holes")  // waves, undefined in patches
     return portable::sin(u * frequency) * portable::sin(v * frequency) > 0.5 ? kUndefined

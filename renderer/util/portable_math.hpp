@@ -1,5 +1,5 @@
 // The elementary functions the suite computes with (sine, cosine, tangent, arctangent,
-// exponential, logarithm, powers, hypotenuse), written here with +, -, *, / and sqrt
+// exponential, hyperbolic tangent, logarithm, powers, hypotenuse), written here with +, -, *, / and sqrt
 // alone, so that they give the same bits on every target. Each C library computes
 // std::sin and the rest its own way (glibc differs between x86-64 and arm64, where it
 // fuses multiply-adds; musl in WebAssembly differs from both): a vertex of a sphere, a
@@ -10,12 +10,13 @@
 //
 // Each reduces its argument exactly or nearly (Cody and Waite's split constants) and
 // sums a Taylor series far enough that the series' own error is below a hundredth of a
-// unit in the last place; what remains is the rounding of a dozen operations, about one
-// unit in the last place (tests/renderer/portable_math_test.cpp measures it against
-// glibc: the same double in most cases, never more than 2 units apart). Arguments are
-// doubles; sin, cos and tan reduce |x| below 2^20 (a million radians) to within a unit in
-// the last place of the result, and beyond that stay the same bits everywhere but lose
-// accuracy (no scene needs such angles).
+// unit in the last place; what remains is the rounding of a dozen operations
+// (tests/renderer/util/portable_math_test.cpp measures it against glibc: the same double
+// in most cases; sin, cos, exp, log and hypot within 2 units, tan, atan and tanh within
+// 3, and pow, which carries log's error times |y log x|, within 2.5 (1 + |y log x|)).
+// Arguments are doubles; sin, cos and tan reduce |x| below 2^20 (a million radians) to
+// within a unit in the last place of the result, and beyond that stay the same bits
+// everywhere but lose accuracy (no scene needs such angles).
 #pragma once
 
 #include <algorithm>
@@ -26,11 +27,12 @@
 namespace hsr::portable {
 namespace detail {
 
-// π/2 in three parts, the first two with trailing zeros, so that k times each is exact
-// for |k| < 2^20 (Cody and Waite).
+// π/2 in four parts, the first three of 33 bits, so that k times each is exact for
+// |k| < 2^20 (Cody and Waite; fdlibm's constants).
 inline constexpr double kHalfPi1 = 1.57079632673412561417e+00;  // the first 33 bits
-inline constexpr double kHalfPi2 = 6.07710050650619224932e-11;  // the next 33
-inline constexpr double kHalfPi3 = 2.02226624879595063154e-21;  // the rest, rounded
+inline constexpr double kHalfPi2 = 6.07710050630396597660e-11;  // the next 33
+inline constexpr double kHalfPi3 = 2.02226624871116645580e-21;  // the next 33
+inline constexpr double kHalfPi4 = 8.47842766036889956997e-32;  // the rest, rounded
 inline constexpr double kTwoOverPi = 6.36619772367581382433e-01;
 inline constexpr double kLn2High = 6.93147180369123816490e-01;  // ln 2 in two parts (Cody and Waite)
 inline constexpr double kLn2Low = 1.90821492927058770002e-10;
@@ -42,7 +44,7 @@ inline constexpr double kPi = 3.14159265358979311600e+00;
 inline double reduced(double x, int& quadrant) {
   const double k = std::nearbyint(x * kTwoOverPi);
   quadrant = static_cast<int>(static_cast<long long>(k) & 3);
-  return ((x - k * kHalfPi1) - k * kHalfPi2) - k * kHalfPi3;
+  return (((x - k * kHalfPi1) - k * kHalfPi2) - k * kHalfPi3) - k * kHalfPi4;
 }
 
 // The Taylor series of sin and cos on [-π/4, π/4]: r^19/19! there is below 1e-19.
@@ -61,6 +63,17 @@ inline double cosSeries(double r) {
                                    -1.0 / 3628800.0, 1.0 / 40320.0, -1.0 / 720.0, 1.0 / 24.0})
     sum = sum * r2 + coefficient;
   return 1.0 - 0.5 * r2 + r2 * r2 * sum;
+}
+
+// e^r - 1 for |r| <= ln 2 / 2, by the series of e^r to r^17/17! (below 1e-20), without
+// the 1, so that it keeps its relative accuracy as r goes to 0.
+inline double expMinusOneSeries(double r) {
+  double sum = 1.0 / 355687428096000.0;  // 1/17!
+  for (const double coefficient : {1.0 / 20922789888000.0, 1.0 / 1307674368000.0, 1.0 / 87178291200.0, 1.0 / 6227020800.0,
+                                   1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0,
+                                   1.0 / 720.0, 1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5})
+    sum = sum * r + coefficient;
+  return r + r * r * sum;
 }
 
 // atan(x) for |x| <= tan(π/16) (about 0.199): x - x^3/3 + x^5/5 ..., to x^29/29.
@@ -133,15 +146,26 @@ inline double exp(double x) {
   // x = k ln 2 + r with |r| <= ln2 / 2, then e^r by its series to r^17/17! (below 1e-20).
   const double k = std::nearbyint(x * detail::kInverseLn2);
   const double r = (x - k * detail::kLn2High) - k * detail::kLn2Low;
-  double sum = 1.0 / 355687428096000.0;  // 1/17!
-  for (const double coefficient : {1.0 / 20922789888000.0, 1.0 / 1307674368000.0, 1.0 / 87178291200.0, 1.0 / 6227020800.0,
-                                   1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0,
-                                   1.0 / 720.0, 1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5})
-    sum = sum * r + coefficient;
-  const double value = 1.0 + r + r * r * sum;
+  const double value = 1.0 + detail::expMinusOneSeries(r);
   // 2^k in two steps, so that neither overflows nor loses a subnormal result's bits twice.
   const int half = static_cast<int>(k) / 2;
   return std::ldexp(std::ldexp(value, half), static_cast<int>(k) - half);
+}
+
+// tanh x = (e^2x - 1) / (e^2x + 1). Near 0 from e^2x - 1's series (the difference
+// 1 - 2/(e^2x + 1) would cancel there); beyond 19, 1 (tanh 19 is 1 - 6e-17, which rounds
+// to 1).
+inline double tanh(double x) {
+  if (std::isnan(x)) return x;
+  const double a = std::abs(x);
+  double magnitude = 1;
+  if (a <= 0.5 * detail::kLn2High) {
+    const double m = detail::expMinusOneSeries(2 * a);
+    magnitude = m / (m + 2);
+  } else if (a < 19) {
+    magnitude = 1 - 2 / (exp(2 * a) + 1);
+  }
+  return std::copysign(magnitude, x);
 }
 
 inline double log(double x) {
