@@ -1,0 +1,163 @@
+// The browser edition in a real browser (Debian's chromium, headless, driven by
+// playwright-core): the site web/dist (scripts/web.sh) served by python3 -m http.server as
+// README says, then
+//   - the first render (counters at 640x360) drawn, then its error against the exact
+//     reference, each with the time it took from asking for the page (reported, not
+//     asserted: speed is for benchmarks, and this machine is shared);
+//   - the controls clicked through: another algorithm and its variant, a knob, a culling
+//     stage, each rendering without an error;
+//   - bad input (a broken TOML, an OBJ with a bad face, an absurd size): the one-line
+//     message the command line prints, and the page still rendering afterwards;
+//   - the same bits as native: every render's hashes (tests/identity) computed in the
+//     page, against tests/identity/expected.txt, the native build's;
+//   - screenshots of the page into out/web/.
+//   node tests/web/web_test.mjs [--full]     --full: every scene and 100 random scenes
+//                                            (default: the hard cases and 10 random scenes)
+import { spawn, spawnSync } from "node:child_process";
+import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { createServer } from "node:net";
+import { dirname, join } from "node:path";
+import { fileURLToPath } from "node:url";
+import { chromium } from "playwright-core";
+
+const root = join(dirname(fileURLToPath(import.meta.url)), "..", "..");
+const full = process.argv.includes("--full");
+const out = join(root, "out", "web");
+mkdirSync(out, { recursive: true });
+
+let failures = 0;
+const check = (condition, what) => {
+  console.log(`${condition ? "ok  " : "FAIL"} ${what}`);
+  if (!condition) failures += 1;
+};
+
+// A free port on the loopback interface, for the static server.
+const port = await new Promise((resolve) => {
+  const probe = createServer().listen(0, "127.0.0.1", () => {
+    const { port } = probe.address();
+    probe.close(() => resolve(port));
+  });
+});
+const server = spawn("python3", ["-m", "http.server", String(port), "--bind", "127.0.0.1", "-d", join(root, "web", "dist")], { stdio: "ignore" });
+await new Promise((resolve) => setTimeout(resolve, 800));
+
+const browser = await chromium.launch({
+  executablePath: "/usr/bin/chromium",
+  args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 1000 } });
+  const consoleErrors = [];
+  page.on("console", (message) => { if (message.type() === "error") consoleErrors.push(message.text()); });
+  page.on("pageerror", (error) => consoleErrors.push(error.message));
+  await page.goto(`http://127.0.0.1:${port}/`);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 60000 });
+  // The page's clock starts when the page was asked for (performance.timeOrigin).
+  const parts = await page.evaluate(() => window.hsrPage.started);
+  const seconds = (ms) => (ms / 1000).toFixed(2);
+  console.log(`first render of counters at 640x360: the module ready at ${seconds(parts.module)} s, the picture drawn at ` +
+              `${seconds(parts.firstPicture)} s, its comparison with the exact reference at ${seconds(parts.firstComparison)} s after the page was asked for`);
+  writeFileSync(join(out, "first-render-seconds.txt"), `${seconds(parts.firstPicture)} ${seconds(parts.firstComparison)}\n`);
+
+  const text = (selector) => page.$eval(selector, (node) => node.textContent);
+  // Whether a canvas holds more than one colour: something was drawn.
+  const drawn = (id) => page.$eval(`#${id}`, (canvas) => {
+    const { data } = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height);
+    for (let i = 4; i < data.length; i += 4) if (data[i] !== data[0] || data[i + 1] !== data[1] || data[i + 2] !== data[2]) return true;
+    return false;
+  });
+  const renderWith = async () => {
+    await page.click("#render");
+    await page.waitForFunction(() => !document.getElementById("render").disabled);
+    return { message: await text("#message"), status: await text("#status") };
+  };
+
+  check((await text("#status")).includes("zbuffer on counters.toml, 640×360"), "the first render: the z-buffer on counters at 640x360");
+  for (const canvas of ["color", "ids", "depth", "error"]) check(await drawn(canvas), `the ${canvas} image is drawn`);
+  check((await text("#metrics")).includes("pixel error"), "its error against the exact reference is shown");
+  check((await text("#counters")).includes("fragments tested"), "and its counters");
+  await page.screenshot({ path: join(out, "page.png") });
+  await page.click("#error");
+  const large = await page.$eval("#error", (canvas) => [canvas.closest("figure").classList.contains("large"), canvas.getBoundingClientRect().width, canvas.width]);
+  check(large[0] && Math.round(large[1]) === large[2], `a click shows the error image at its own size (${Math.round(large[1])} of ${large[2]} pixels wide)`);
+  await page.screenshot({ path: join(out, "error-large.png"), fullPage: true });
+  await page.click("#error");
+
+  // The controls: built from the registry, so every algorithm is there.
+  const algorithms = await page.$$eval("#algorithm option", (options) => options.map((o) => o.value));
+  check(["zbuffer", "ray_casting", "painter", "warnock", "watkins", "weiler_atherton", "abuffer", "roberts", "appel", "floating_horizon", "reference"].every((a) => algorithms.includes(a)),
+        `every algorithm of the registry is offered (${algorithms.length})`);
+  await page.selectOption("#algorithm", "painter");
+  await page.selectOption('[id="painter.variant"]', "newell");
+  await page.selectOption("#scene", "hard/cyclic_overlap.toml");
+  await page.fill("#size", "");
+  let result = await renderWith();
+  check(result.message === "" && result.status.includes("painter on hard/cyclic_overlap.toml"), "the painter's newell variant on the cyclic overlap");
+  check((await text("#counters")).includes("newell splits"), "with Newell's counters");
+  await page.screenshot({ path: join(out, "painter.png") });
+
+  await page.selectOption("#algorithm", "zbuffer");
+  await page.selectOption('[id="zbuffer.depth-format"]', "unorm16");
+  await page.selectOption("#scene", "hard/coplanar.toml");
+  result = await renderWith();
+  check(result.message === "" && Number((await text("#metrics")).match(/pixel error(\d+\.\d+)%/)?.[1]) > 0, "unorm16 on the coplanar case: a knob, and an error above zero");
+
+  await page.selectOption('[id="zbuffer.depth-format"]', "float32");
+  await page.selectOption("#scene", "city.toml");
+  await page.fill("#size", "480x270");
+  await page.check('[id="use.frustum"]');
+  await page.check('[id="use.occlusion"]');
+  result = await renderWith();
+  const counters = await text("#counters");
+  check(result.message === "" && counters.includes("frustum") && counters.includes("occlusion"), "culling stages (frustum, then occlusion) before the z-buffer");
+  await page.uncheck('[id="use.frustum"]');
+  await page.uncheck('[id="use.occlusion"]');
+
+  // Bad input: the command line's one line, and the page renders again afterwards.
+  const nativeMessage = (files, scene, extra = []) => {
+    const folder = join(out, "bad");
+    mkdirSync(folder, { recursive: true });
+    for (const [name, content] of Object.entries(files)) writeFileSync(join(folder, name), content);
+    const run = spawnSync(join(root, "build", "hsr"), ["render", join(folder, scene), "-o", join(folder, "x.png"), ...extra], { encoding: "utf8" });
+    return run.stderr.trim().replaceAll(`${folder}/`, "");
+  };
+  const badCases = [
+    { what: "a broken TOML", files: { "broken.toml": "[camera\neye = [0, 0, 5]\n" } },
+    { what: "an OBJ with a bad face", files: { "bad.toml": '[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n[[objects]]\nshape = "mesh"\nfile = "bad.obj"\n', "bad.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n" } },
+  ];
+  for (const bad of badCases) {
+    const names = Object.keys(bad.files);
+    await page.setInputFiles("#files", names.map((name) => ({ name, mimeType: "text/plain", buffer: Buffer.from(bad.files[name]) })));
+    await page.waitForFunction(() => document.getElementById("message").textContent !== "" && !document.getElementById("render").disabled);
+    const shown = await text("#message");
+    const native = nativeMessage(bad.files, names[0]);
+    check(shown.startsWith("hsr: error: ") && !shown.includes("\n"), `${bad.what}: one line (${shown})`);
+    check(native === "" || shown === native, `${bad.what}: the same line as the command line's (${native})`);
+  }
+  await page.selectOption("#scene", "counters.toml");
+  await page.fill("#size", "100000x100000");
+  result = await renderWith();
+  check(result.message.startsWith("hsr: error: --size 100000x100000: ") && result.message.includes("16384"), `an absurd size: ${result.message}`);
+  await page.fill("#size", "320x180");
+  result = await renderWith();
+  check(result.message === "" && result.status.includes("counters.toml, 320×180"), "and the page renders again afterwards");
+  await page.screenshot({ path: join(out, "after-bad-input.png") });
+
+  // The same bits as native.
+  const only = full ? "" : "hard/";
+  const randomScenes = full ? 100 : 10;
+  const identityStarted = Date.now();
+  const lines = (await page.evaluate(([o, r]) => window.hsrPage.identity(320, r, o), [only, randomScenes])).trim().split("\n");
+  const expected = readFileSync(join(root, "tests", "identity", "expected.txt"), "utf8").trim().split("\n")
+    .filter((line) => (line.startsWith("random/") ? Number(line.split(" ")[0].split("/")[1]) <= randomScenes : line.startsWith(only)));
+  const differing = lines.filter((line, i) => line !== expected[i]);
+  check(lines.length === expected.length && differing.length === 0,
+        `the same bits as native: ${lines.length} renders in the page (${only || "every scene"}, ${randomScenes} random scenes; ${((Date.now() - identityStarted) / 1000).toFixed(0)} s), ${differing.length} differing`);
+  for (const line of differing.slice(0, 10)) console.log(`  page:   ${line}\n  native: ${expected[lines.indexOf(line)]}`);
+  check(consoleErrors.length === 0, `no error in the console${consoleErrors.length ? ": " + consoleErrors.join("; ") : ""}`);
+} finally {
+  await browser.close();
+  server.kill();
+}
+console.log(failures === 0 ? "the browser edition: every check passed" : `${failures} checks failed`);
+process.exit(failures === 0 ? 0 : 1);

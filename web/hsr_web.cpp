@@ -1,0 +1,232 @@
+// The browser edition's bridge (scripts/web.sh builds it into WebAssembly): what the page
+// (web/app.js) asks of the suite, as functions it calls through embind. Everything runs in
+// the page; the page first writes the files a scene needs (the shipped scenes and models,
+// or a student's own TOML and OBJ files) into the module's in-memory file system.
+//
+//   registry()            the algorithms, their knobs and the culling stages, from the
+//                         same registry `hsr list` prints: the page builds its controls
+//                         from it, so a new algorithm or knob needs no change to the page
+//   render(request)       one render: the images (colour, ids, depth) as views of the
+//                         module's memory, and the counters and times as JSON
+//   compare()             that render against the exact reference: the metrics hsr
+//                         compare prints, as JSON, and the error heat map
+//   identity(width, N)    every render's line of hashes (tests/identity): the same bits
+//                         as native, checked in the page
+//
+// Bad input (a broken TOML, an OBJ with a bad face, an absurd size) comes back as the one
+// line the command line prints ("hsr: error: ..."), and the module stays usable.
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "algorithms/culling/culling.hpp"
+#include "algorithms/registry.hpp"
+#include "identity/identity.hpp"
+#include "pipeline/pipeline.hpp"
+#include "renderer/reference/metrics.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/scene/scene.hpp"
+#include "renderer/util/error.hpp"
+#include "renderer/util/markup.hpp"
+
+namespace hsr::web {
+namespace {
+
+std::string number(double value) {
+  if (!std::isfinite(value)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+std::string knobsJson(const std::vector<KnobSpec>& knobs) {
+  std::string json = "[";
+  for (const KnobSpec& knob : knobs) {
+    json += std::string(json.size() > 1 ? "," : "") + "{\"name\":" + jsonString(knob.name) + ",\"help\":" + jsonString(knob.help) +
+            ",\"default\":" + jsonString(knob.defaultValue) + ",\"file\":" + (knob.file ? "true" : "false") + ",\"choices\":[";
+    for (std::size_t c = 0; c < knob.choices.size(); ++c) json += (c ? "," : "") + jsonString(knob.choices[c]);
+    json += "],\"choiceHelp\":[";
+    for (std::size_t c = 0; c < knob.choiceHelp.size(); ++c) json += (c ? "," : "") + jsonString(knob.choiceHelp[c]);
+    json += "],\"variants\":[";
+    for (std::size_t v = 0; v < knob.variants.size(); ++v) json += (v ? "," : "") + jsonString(knob.variants[v]);
+    json += "]";
+    if (knob.range)
+      json += ",\"range\":{\"minimum\":" + number(knob.range->minimum) + ",\"maximum\":" + number(knob.range->maximum) +
+              ",\"integer\":" + (knob.range->integer ? "true" : "false") + ",\"percent\":" + (knob.range->percent ? "true" : "false") + "}";
+    json += "}";
+  }
+  return json + "]";
+}
+
+std::string registry() {
+  std::string json = "{\"algorithms\":[";
+  bool first = true;
+  for (const AlgorithmEntry& algorithm : algorithms()) {
+    json += std::string(first ? "" : ",") + "{\"name\":" + jsonString(algorithm.name) + ",\"kind\":" + jsonString(algorithmKindName(algorithm.kind)) +
+            ",\"summary\":" + jsonString(algorithm.summary) + ",\"takesCulling\":" + (algorithm.takesTriangleSubsets ? "true" : "false") +
+            ",\"knobs\":" + knobsJson(algorithm.knobs) + "}";
+    first = false;
+  }
+  json += "],\"stages\":[";
+  first = true;
+  for (const culling::StageEntry& stage : culling::stages()) {
+    json += std::string(first ? "" : ",") + "{\"name\":" + jsonString(stage.name) + ",\"summary\":" + jsonString(stage.summary) +
+            ",\"needsCells\":" + (stage.needsCells ? "true" : "false") + ",\"knobs\":" + knobsJson(stage.knobs) + "}";
+    first = false;
+  }
+  return json + "]}";
+}
+
+// What the last render left for the page: its images (views of these stay valid until
+// the next render), and what comparing it with the exact reference needs.
+struct Shown {
+  std::unique_ptr<const Scene> scene;  // the prepared scene points into it
+  std::unique_ptr<PreparedScene> prepared;
+  const AlgorithmEntry* algorithm = nullptr;
+  pipeline::Configuration configuration;
+  Frame frame;
+  LineSet drawing;
+  std::vector<std::uint8_t> error;  // RGBA: the reference dimmed, wrong pixels red, ambiguous blue
+};
+Shown& shown() {
+  static Shown last;
+  return last;
+}
+
+std::string messageJson(const std::string& what) { return "{\"message\":" + jsonString("hsr: error: " + what) + "}"; }
+const char* const kOutOfMemory = "out of memory; expected a smaller --size or scene (the browser gives a page at most 2 GiB)";
+
+// request: "scene", "algorithm", "knobs" (NAME=VALUE;...), "cull" (as --cull), "size"
+// (WxH or empty). The render alone, so that the page shows it at once; compare() then
+// measures it against the exact reference.
+std::string render(const emscripten::val& request) {
+  const auto text = [&](const char* key) { return request[key].isUndefined() ? std::string() : request[key].as<std::string>(); };
+  Shown& last = shown();
+  last = Shown();
+  try {
+    const AlgorithmEntry& algorithm = findAlgorithm(text("algorithm"));
+    KnobSettings settings;
+    std::istringstream knobs(text("knobs"));
+    for (std::string setting; std::getline(knobs, setting, ';');)
+      if (!setting.empty()) settings.push_back(parseKnobSetting(setting, "--knob"));
+    pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
+    if (!text("cull").empty()) {
+      if (!algorithm.takesTriangleSubsets) throw InputError("--cull: " + algorithm.name + " does not draw from a culled set of triangles");
+      configuration.culling = culling::parsePipeline(text("cull"), "--cull");
+    }
+    auto scene = std::make_unique<const Scene>(loadScene(text("scene")));
+    auto prepared = std::make_unique<PreparedScene>(*scene);
+    if (const std::string size = text("size"); !size.empty()) {
+      int width = 0, height = 0;
+      char x = 0;
+      std::istringstream read(size);
+      if (!(read >> width >> x >> height) || x != 'x' || !read.eof()) throw InputError("--size " + size + ": expected WIDTHxHEIGHT");
+      checkImageSize(width, height, "--size " + size);
+      prepared->setSize(width, height);
+    }
+    if (const std::string refusal = pipeline::refusal(*prepared, configuration); !refusal.empty())
+      throw InputError(text("scene") + ": " + algorithm.name + " cannot render it: " + refusal);
+
+    Stats stats;
+    const auto start = std::chrono::steady_clock::now();
+    pipeline::Rendered rendered = pipeline::render(*prepared, configuration, 1, stats);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double visibility = 0, effects = 0;
+    std::string passes = "[";
+    for (const pipeline::PassTime& pass : pipeline::passTimes(stats)) {
+      (pass.visibility ? visibility : effects) += pass.seconds;
+      passes += std::string(passes.size() > 1 ? "," : "") + "{\"pass\":" + jsonString(pass.pass) + ",\"ms\":" + number(pass.seconds * 1e3) + "}";
+    }
+    passes += "]";
+    std::string json = "{\"width\":" + std::to_string(rendered.frame.width) + ",\"height\":" + std::to_string(rendered.frame.height) +
+                       ",\"kind\":" + jsonString(algorithmKindName(algorithm.kind)) + ",\"ms\":" + number(seconds * 1e3) +
+                       ",\"visibilityMs\":" + number(visibility * 1e3) + ",\"effectsMs\":" + number(effects * 1e3) + ",\"passes\":" + passes +
+                       ",\"partial\":" + jsonString(algorithm.kind == AlgorithmKind::line ? rendered.drawing.partial : rendered.frame.partial);
+    json += ",\"counters\":{";
+    bool first = true;
+    for (const std::string& name : stats.counterNames()) {
+      json += std::string(first ? "" : ",") + jsonString(name) + ":" + std::to_string(stats.counter(name));
+      first = false;
+    }
+    json += "}";
+
+    last.scene = std::move(scene);
+    last.prepared = std::move(prepared);
+    last.algorithm = &algorithm;
+    last.configuration = std::move(configuration);
+    last.frame = std::move(rendered.frame);
+    last.drawing = std::move(rendered.drawing);
+    return json + "}";
+  } catch (const InputError& error) {
+    return messageJson(error.what());
+  } catch (const std::bad_alloc&) {
+    last = Shown();
+    return messageJson(kOutOfMemory);
+  }
+}
+
+// The last render against the exact reference: the metrics hsr compare prints (a line
+// algorithm's against the exact line reference) and the error heat map (errorPixels).
+std::string compare() {
+  Shown& last = shown();
+  if (!last.algorithm) return messageJson("nothing rendered to compare");
+  try {
+    Stats stats;
+    if (last.algorithm->kind == AlgorithmKind::line) {
+      const LineJudgement judged = last.algorithm->judgeLines(*last.prepared, last.configuration.knobs, last.drawing, 1, stats);
+      last.error = judged.errorMap;
+      return "{\"lineError\":{\"error\":" + number(judged.error.error) + ",\"visibleLength\":" + number(judged.error.visibleLength) +
+             ",\"wronglyDrawn\":" + number(judged.error.wronglyDrawn) + ",\"wronglyHidden\":" + number(judged.error.wronglyHidden) + "}}";
+    }
+    if (last.algorithm->kind == AlgorithmKind::reference) return "{}";  // the reference itself: nothing to compare
+    const ReferenceImage truth = traceReference(*last.prepared, 1, stats);
+    const SurfaceError error = surfaceError(last.frame, truth);
+    last.error = errorHeatMap(last.frame, truth);
+    return "{\"error\":{\"pixelError\":" + number(error.pixelError) + ",\"wrongPixels\":" + std::to_string(error.wrongPixels) +
+           ",\"comparedPixels\":" + std::to_string(error.comparedPixels) + ",\"ambiguousPixels\":" + std::to_string(error.ambiguousPixels) +
+           ",\"depthErrorMean\":" + number(error.depthErrorMean) + ",\"depthErrorMax\":" + number(error.depthErrorMax) +
+           ",\"exactFallbacks\":" + std::to_string(truth.exactFallbacks) + "}}";
+  } catch (const InputError& error) {
+    return messageJson(error.what());
+  } catch (const std::bad_alloc&) {
+    return messageJson(kOutOfMemory);
+  }
+}
+
+// The last render's images, as views of the module's memory (valid until the next render).
+emscripten::val colorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.color.size(), shown().frame.color.data())); }
+emscripten::val idPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.ids.size(), shown().frame.ids.data())); }
+emscripten::val depthPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.depth.size(), shown().frame.depth.data())); }
+emscripten::val errorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().error.size(), shown().error.data())); }
+
+// The identity lines of every shipped scene under /hsr/scenes (which the page fills).
+std::string identity(int width, int randomScenes, const std::string& only) {
+  std::string lines;
+  identity::Options options;
+  options.width = width;
+  options.randomScenes = randomScenes;
+  options.only = only;
+  identity::renderLines("/hsr/scenes", options, [&](const std::string& line) { lines += line + "\n"; });
+  return lines;
+}
+
+}  // namespace
+}  // namespace hsr::web
+
+EMSCRIPTEN_BINDINGS(hsr) {
+  emscripten::function("registry", &hsr::web::registry);
+  emscripten::function("render", &hsr::web::render);
+  emscripten::function("compare", &hsr::web::compare);
+  emscripten::function("colorPixels", &hsr::web::colorPixels);
+  emscripten::function("idPixels", &hsr::web::idPixels);
+  emscripten::function("depthPixels", &hsr::web::depthPixels);
+  emscripten::function("errorPixels", &hsr::web::errorPixels);
+  emscripten::function("identity", &hsr::web::identity);
+}
