@@ -75,6 +75,7 @@ try {
   check((await text("#status")).includes("zbuffer on counters.toml, 640×360"), "the first render: the z-buffer on counters at 640x360");
   for (const canvas of ["color", "ids", "depth", "error"]) check(await drawn(canvas), `the ${canvas} image is drawn`);
   check((await text("#metrics")).includes("pixel error"), "its error against the exact reference is shown");
+  check((await text("#differences")).includes("one thread"), "the page says what differs from the command line (one thread, the textbook loops)");
   check((await text("#counters")).includes("fragments tested"), "and its counters");
   await page.screenshot({ path: join(out, "page.png") });
   await page.click("#error");
