@@ -2,25 +2,34 @@
 # The same bits on another target: builds the core and hsr_identity (tests/identity) for
 # TARGET, runs it there, and compares every line (each render's hashes of its ids, depth
 # and colour, or a drawing's) with this machine's x86-64 build of the same program.
-#   bash scripts/cross.sh arm64           every shipped scene and hard case at the goldens'
-#                                         width (320) and 100 random scenes, under qemu-user
-#   bash scripts/cross.sh arm64 --quick   the same at 48 pixels wide (what CI runs)
-# arm64: Debian's g++-aarch64-linux-gnu and qemu-user, installed here when missing. The
-# core needs no compiled library but the standard one (CMakeLists.txt, HSR_CORE_ONLY), so
-# no arm64 package besides the compiler's own is needed. Exit status 0 when every line is
-# the same, 1 otherwise (the differing lines printed).
+#   bash scripts/cross.sh arm64             every shipped scene and hard case at the goldens'
+#                                           width (320) and 100 random scenes, under qemu-user
+#   bash scripts/cross.sh arm64 --quick     the same at 48 pixels wide (what CI runs)
+#   bash scripts/cross.sh windows [--quick] the same for 64-bit Windows, under wine
+# arm64: Debian's g++-aarch64-linux-gnu and qemu-user; windows: Debian's MinGW-w64 (POSIX
+# threads) and wine; installed here when missing. The core needs no compiled library but
+# the standard one (CMakeLists.txt, HSR_CORE_ONLY), so no package of the target's
+# besides the compiler's own is needed. Exit status 0 when every line is the same, 1
+# otherwise (the differing lines printed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-target=${1:?usage: scripts/cross.sh arm64 [--quick]}
+target=${1:?usage: scripts/cross.sh arm64|windows [--quick]}
 width=320
 [ "${2:-}" = --quick ] && width=48
 
+program=hsr_identity
 case $target in
   arm64)
     toolchain=cmake/toolchains/aarch64-linux-gnu.cmake
     run=(qemu-aarch64 -L /usr/aarch64-linux-gnu)
     ;;
-  *) echo "cross.sh: unknown target '$target'; expected arm64" >&2; exit 2 ;;
+  windows)
+    toolchain=cmake/toolchains/x86_64-w64-mingw32.cmake
+    run=(/usr/lib/wine/wine64)  # Debian's wine64 package; its "wine" launcher is another package
+    program=hsr_identity.exe
+    export WINEDEBUG=-all WINEPREFIX="$PWD/build-windows/wine"  # a prefix of its own, quiet
+    ;;
+  *) echo "cross.sh: unknown target '$target'; expected arm64 or windows" >&2; exit 2 ;;
 esac
 bash scripts/setup.sh tests "$target"
 
@@ -37,7 +46,7 @@ started=$SECONDS
 ./build/tests/identity/hsr_identity "${arguments[@]}" >"$out/x86-64.txt"
 native=$(( SECONDS - started ))
 started=$SECONDS
-"${run[@]}" "build-$target/tests/identity/hsr_identity" "${arguments[@]}" >"$out/$target.txt"
+"${run[@]}" "build-$target/tests/identity/$program" "${arguments[@]}" | tr -d '\r' >"$out/$target.txt"
 echo "x86-64: ${native} s; $target (${run[0]}): $(( SECONDS - started )) s"
 renders=$(wc -l <"$out/x86-64.txt")
 if diff "$out/x86-64.txt" "$out/$target.txt" >"$out/$target.diff"; then

@@ -3,7 +3,10 @@
 #   scripts/setup.sh                what building and running the hsr program needs (the demo)
 #   scripts/setup.sh tests          that, and what the tests, the benchmarks and the figures need
 #   scripts/setup.sh tests arm64    that, and the arm64 cross-compiler and qemu-user (scripts/cross.sh)
+#   scripts/setup.sh tests windows  that, and MinGW-w64 and wine (scripts/cross.sh windows)
 #   scripts/setup.sh web            that, and emscripten and Node.js (scripts/web.sh)
+#   scripts/setup.sh npm            npm, for the browser test (scripts/web_test.sh asks for it
+#                                   only where Node.js came without it)
 # Idempotent: a machine that already has every package runs no apt-get at all.
 # Runs as root (as on a fresh Debian 12 machine); otherwise through sudo when there is one.
 set -euo pipefail
@@ -38,7 +41,9 @@ tests=(
 )
 
 arm64=(g++-aarch64-linux-gnu qemu-user)
+windows=(g++-mingw-w64-x86-64-posix wine64)
 web=(emscripten binaryen nodejs node-acorn)
+npm=(npm)  # the browser test's playwright-core, where Node.js came without npm (Debian's does)
 
 packages=("${program[@]}")
 for set in "$@"; do
@@ -46,8 +51,10 @@ for set in "$@"; do
     program) ;;
     tests) packages+=("${tests[@]}") ;;
     arm64) packages+=("${arm64[@]}") ;;
+    windows) packages+=("${windows[@]}") ;;
     web) packages+=("${web[@]}") ;;
-    *) echo "setup: unknown set '$set'; expected program, tests, arm64 or web" >&2; exit 2 ;;
+    npm) packages+=("${npm[@]}") ;;
+    *) echo "setup: unknown set '$set'; expected program, tests, arm64, windows, web or npm" >&2; exit 2 ;;
   esac
 done
 
