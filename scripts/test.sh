@@ -3,12 +3,26 @@
 # label, two jobs at a time); then the unit and hard-case tests again under
 # AddressSanitizer and UndefinedBehaviorSanitizer with floating-point exceptions trapped
 # and the standard library's assertions on (scripts/sanitize.sh); then each fuzz target
-# for 10 seconds under both sanitizers (scripts/fuzz.sh). The debug preset
-# (scripts/debug.sh: GCC at -Og, the same traps) is not run here: the sanitizer build
-# traps the same exceptions, and a third build of everything took CI past 25 minutes.
+# for 10 seconds under both sanitizers (scripts/fuzz.sh); then the other targets: the
+# browser edition built into WebAssembly and tested in headless chromium, the same bits as
+# native on the hard cases and 10 random scenes (scripts/web_test.sh), and an arm64 build
+# under qemu-user against this machine's on every render at 48 pixels wide
+# (scripts/cross.sh arm64 --quick). The debug preset (scripts/debug.sh: GCC at -Og, the
+# same traps) is not run here: the sanitizer build traps the same exceptions, and a
+# third build of everything took CI past 25 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+started=$SECONDS
+lap() { echo "test.sh: $1 done, $(( (SECONDS - started) / 60 )) min $(( (SECONDS - started) % 60 )) s in"; }
 bash scripts/build.sh release -DHSR_WERROR=ON
+lap "release build"
 ctest --preset release
+lap "release tests"
 bash scripts/sanitize.sh -DHSR_WERROR=ON
+lap "sanitizer build and tests"
 bash scripts/fuzz.sh 10
+lap "fuzzing"
+bash scripts/web_test.sh
+lap "browser edition"
+bash scripts/cross.sh arm64 --quick
+lap "arm64"
