@@ -209,4 +209,8 @@ cp "$study/effects.png" images/figures/effects/passes.png
 ./build/hsr study shadow-map --out "$study" > /dev/null
 cp "$study/shadow_map.png" images/figures/effects/shadow_map.png
 rm -r "$study"
+# The browser edition's page after its first render, as its test leaves it (README "In the
+# browser"): the site built, served and clicked through in headless chromium.
+bash scripts/web_test.sh > /dev/null
+cp out/web/page.png images/figures/web.png
 echo "figures are in images/figures/"

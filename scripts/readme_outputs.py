@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""The command outputs and run times README.md quotes, kept true to the program.
+"""The command outputs and run times README.md and docs/*.md quote, kept true to the program.
 
 A fenced block right after a line `<!-- output of: COMMAND -->` holds what COMMAND prints
 (stdout; run from the repository's root). A time written right after
 `<!-- time of: COMMAND -->` ("0.50 s") is how long COMMAND takes, start to finish: the
-median of three runs (one run when it takes over 20 s).
+median of three runs (one run when it takes over 20 s). The markdown files read are
+README.md and every docs/*.md; each message names the file and line.
 
 Without arguments this rewrites every block and time from fresh runs (scripts/figures.sh
 calls it). With --check it only compares the blocks, times masked (any "N ms" matches any
@@ -26,17 +27,22 @@ TIME = re.compile(r" *\d+(\.\d+)? ms")
 TIMED = re.compile(r"<!-- time of: (.+?) -->\d+(\.\d+)? s")
 
 
-def blocks(lines):
+def documents():
+    """The markdown files whose quoted outputs and times are kept: README.md, then docs/*.md."""
+    return [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
+
+
+def blocks(lines, name):
     """(command, first line of the block's body, line after its closing fence) per marker."""
     for i, line in enumerate(lines):
         match = MARKER.match(line)
         if not match:
             continue
         if i + 1 >= len(lines) or not lines[i + 1].startswith("```"):
-            sys.exit(f"README.md:{i + 1}: an output marker must be followed by a fenced block")
+            sys.exit(f"{name}:{i + 1}: an output marker must be followed by a fenced block")
         end = next((j for j in range(i + 2, len(lines)) if lines[j].startswith("```")), None)
         if end is None:
-            sys.exit(f"README.md:{i + 2}: the fenced block after the output marker is not closed")
+            sys.exit(f"{name}:{i + 2}: the fenced block after the output marker is not closed")
         yield match.group(1), i + 2, end
 
 
@@ -67,26 +73,30 @@ def main():
     parser.add_argument("--check", action="store_true", help="compare only; exit 1 on a drifted block")
     parser.add_argument("--hsr", default="./build/hsr", help="the hsr program to run")
     arguments = parser.parse_args()
-    readme = ROOT / "README.md"
-    lines = readme.read_text().split("\n")
     drifted = 0
-    # From the last block up, so that rewriting one leaves the earlier ones' positions.
-    for command, begin, end in reversed(list(blocks(lines))):
-        output = run(command, arguments.hsr)
-        if not arguments.check:
-            lines[begin:end] = output
+    for document in documents():
+        name = document.relative_to(ROOT).as_posix()
+        lines = document.read_text().split("\n")
+        # From the last block up, so that rewriting one leaves the earlier ones' positions.
+        for command, begin, end in reversed(list(blocks(lines, name))):
+            output = run(command, arguments.hsr)
+            if not arguments.check:
+                lines[begin:end] = output
+                continue
+            quoted = [TIME.sub(" # ms", line) for line in lines[begin:end]]
+            fresh = [TIME.sub(" # ms", line) for line in output]
+            if quoted != fresh:
+                drifted += 1
+                print(f"{name}:{begin}: the output of `{command}` has drifted:")
+                print("\n".join(difflib.unified_diff(quoted, fresh, name, "now", lineterm="")))
+        if arguments.check:
             continue
-        quoted = [TIME.sub(" # ms", line) for line in lines[begin:end]]
-        fresh = [TIME.sub(" # ms", line) for line in output]
-        if quoted != fresh:
-            drifted += 1
-            print(f"README.md:{begin}: the output of `{command}` has drifted:")
-            print("\n".join(difflib.unified_diff(quoted, fresh, "README.md", "now", lineterm="")))
+        text = "\n".join(lines)
+        text = TIMED.sub(lambda match: f"<!-- time of: {match.group(1)} -->{seconds(match.group(1), arguments.hsr)}", text)
+        if text != document.read_text():
+            document.write_text(text)
     if arguments.check:
         sys.exit(1 if drifted else 0)
-    text = "\n".join(lines)
-    text = TIMED.sub(lambda match: f"<!-- time of: {match.group(1)} -->{seconds(match.group(1), arguments.hsr)}", text)
-    readme.write_text(text)
 
 
 if __name__ == "__main__":
