@@ -141,8 +141,13 @@ class ExactNumber {
     constexpr double kLargest = std::numeric_limits<double>::max(), kInfinity = std::numeric_limits<double>::infinity();
     // A guess from the two values' leading bits, within a few units in the last place,
     // then stepped until the exact check q d <= n < next(q) d holds.
-    double q = std::ldexp(n.leadingFraction() / d.leadingFraction(), static_cast<int>(std::clamp(n.topBit() - d.topBit(), -4000L, 4000L)));
-    q = std::min(q, kLargest);
+    // From 2^1024 on the guess is the largest double, not ldexp's overflow (which the
+    // floating-point traps of the debug and sanitizer builds stop at).
+    const long exponent = n.topBit() - d.topBit();
+    const double ratio = n.leadingFraction() / d.leadingFraction();  // in (1/2, 2)
+    double q = kLargest;
+    if (exponent < 1024 || (exponent == 1024 && ratio < 1))
+      q = std::min(std::ldexp(ratio, static_cast<int>(std::max(exponent, -4000L))), kLargest);
     while (q > 0 && ExactNumber(q) * d > n) q = std::nextafter(q, 0.0);
     while (q < kLargest && ExactNumber(std::nextafter(q, kInfinity)) * d <= n) q = std::nextafter(q, kInfinity);
     // At the largest double: infinity when the quotient reaches 2^1024.

@@ -25,6 +25,18 @@ bool inSafeRange(double difference) {
 }
 bool inSafeRange(const dvec3& difference) { return inSafeRange(difference.x) && inSafeRange(difference.y) && inSafeRange(difference.z); }
 
+// Whether no difference of these points' coordinates can overflow (each at most 2^1020
+// in magnitude, so a difference is at most 2^1021): beyond that even b - a could be
+// infinite, and such inputs go straight to the exact stage, as the floating-point traps
+// of the debug and sanitizer builds demand of every step, used or not.
+bool differencesFit(std::initializer_list<dvec3> points) {
+  constexpr double kLargestCoordinate = 0x1p1020;
+  for (const dvec3& point : points)
+    for (int i = 0; i < 3; ++i)
+      if (!(std::abs(point[i]) <= kLargestCoordinate)) return false;
+  return true;
+}
+
 // The second stage, exact in double precision when the coordinate differences are
 // (always so when the points are close, or on a grid, as modelled coplanar faces often
 // are): a - b, if the subtraction rounded nothing.
@@ -80,18 +92,21 @@ class ExactSum {
 
 int ExactPredicates::orient2d(const dvec3& a, const dvec3& b, const dvec3& c) {
   ++evaluations;
-  const dvec3 u = b - a, v = c - a;
-  const bool safe = inSafeRange(dvec3(u.x, u.y, v.x)) && inSafeRange(v.y);
-  const double left = u.x * v.y, right = u.y * v.x;
-  const double det = left - right;
-  if (safe && std::abs(det) > kOrient2dBound * (std::abs(left) + std::abs(right))) return det > 0 ? 1 : -1;
-  double bx, by, cx, cy;
-  if (safe && exactDifference(b.x, a.x, bx) && exactDifference(b.y, a.y, by) && exactDifference(c.x, a.x, cx) &&
-      exactDifference(c.y, a.y, cy)) {
-    ExactSum sum;
-    sum.addProduct(bx, cy, 1);
-    sum.addProduct(-by, cx, 1);
-    return sum.sign();
+  if (differencesFit({a, b, c})) {
+    const dvec3 u = b - a, v = c - a;
+    if (inSafeRange(dvec3(u.x, u.y, v.x)) && inSafeRange(v.y)) {
+      const double left = u.x * v.y, right = u.y * v.x;
+      const double det = left - right;
+      if (std::abs(det) > kOrient2dBound * (std::abs(left) + std::abs(right))) return det > 0 ? 1 : -1;
+      double bx, by, cx, cy;
+      if (exactDifference(b.x, a.x, bx) && exactDifference(b.y, a.y, by) && exactDifference(c.x, a.x, cx) &&
+          exactDifference(c.y, a.y, cy)) {
+        ExactSum sum;
+        sum.addProduct(bx, cy, 1);
+        sum.addProduct(-by, cx, 1);
+        return sum.sign();
+      }
+    }
   }
   ++exactFallbacks;
   using Exact = ExactNumber<2>;  // a difference of products of two differences of doubles
@@ -132,16 +147,19 @@ int ExactPredicates::orient3dOfVectors(const dvec3& a, const dvec3& b, const dve
 double ExactPredicates::orient3dDeterminant(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint,
                                             double relativeBound) {
   ++evaluations;
-  const dvec3 u = b - a, v = c - a, w = dIsPoint ? d - a : d;
-  const double m0 = v.y * w.z, m1 = v.z * w.y, m2 = v.x * w.z, m3 = v.z * w.x, m4 = v.x * w.y, m5 = v.y * w.x;
-  const double det = u.x * (m0 - m1) - u.y * (m2 - m3) + u.z * (m4 - m5);
-  const double permanent = std::abs(u.x) * (std::abs(m0) + std::abs(m1)) + std::abs(u.y) * (std::abs(m2) + std::abs(m3)) +
-                           std::abs(u.z) * (std::abs(m4) + std::abs(m5));
-  const bool safe = inSafeRange(u) && inSafeRange(v) && inSafeRange(w);
-  if (safe && kOrient3dBound * permanent < relativeBound * std::abs(det)) return det;
+  const bool fits = differencesFit({a, b, c, d});
+  const dvec3 u = fits ? b - a : dvec3(0), v = fits ? c - a : dvec3(0), w = !fits ? dvec3(0) : dIsPoint ? d - a : d;
+  const bool safe = fits && inSafeRange(u) && inSafeRange(v) && inSafeRange(w);
+  if (safe) {
+    const double m0 = v.y * w.z, m1 = v.z * w.y, m2 = v.x * w.z, m3 = v.z * w.x, m4 = v.x * w.y, m5 = v.y * w.x;
+    const double det = u.x * (m0 - m1) - u.y * (m2 - m3) + u.z * (m4 - m5);
+    const double permanent = std::abs(u.x) * (std::abs(m0) + std::abs(m1)) + std::abs(u.y) * (std::abs(m2) + std::abs(m3)) +
+                             std::abs(u.z) * (std::abs(m4) + std::abs(m5));
+    if (kOrient3dBound * permanent < relativeBound * std::abs(det)) return det;
+  }
   dvec3 eu(0), ev(0), ew = d;
   bool exact = safe;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3 && exact; ++i) {
     exact &= exactDifference(b[i], a[i], eu[i]) && exactDifference(c[i], a[i], ev[i]);
     if (dIsPoint) exact &= exactDifference(d[i], a[i], ew[i]);
   }
