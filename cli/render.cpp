@@ -39,24 +39,6 @@ LineStyle lineStyleOf(const std::string& name, bool lineAlgorithm) {
   throw InputError("--line-style " + name + ": expected visible, hidden or qi");
 }
 
-// The algorithms that can draw a culled set of triangles: "zbuffer or painter".
-std::string cullableAlgorithms() {
-  std::string names;
-  for (const AlgorithmEntry& entry : algorithms())
-    if (entry.takesTriangleSubsets) names += (names.empty() ? "" : " or ") + entry.name;
-  return names;
-}
-
-// The culling stages asked for, checked against what the algorithm can take.
-culling::Pipeline cullingPipelineOf(const std::string& text, const AlgorithmEntry& algorithm) {
-  if (text.empty()) return {};
-  culling::Pipeline pipeline = culling::parsePipeline(text, "--cull");
-  if (!algorithm.takesTriangleSubsets)
-    throw InputError("--cull: " + algorithm.name + " does not draw from a culled set of triangles; expected --algo " +
-                     cullableAlgorithms());
-  return pipeline;
-}
-
 // Each knob with its values, default and help; `prefix` is how it is given ("--knob "
 // for an algorithm, ":" after a culling stage).
 void printKnobs(const std::vector<KnobSpec>& knobs, const std::string& prefix) {
@@ -212,7 +194,7 @@ int render(const RenderOptions& options) {
   const bool lines = algorithm.kind == AlgorithmKind::line;
   const std::filesystem::path output = options.output;
   const LineStyle style = lineStyleOf(options.lineStyle, lines);
-  configuration.culling = cullingPipelineOf(options.cull, algorithm);
+  configuration.culling = pipeline::cullingOf(options.cull, algorithm);
   const bool polygonSvg = output.extension() == ".svg" && algorithm.drawsPolygons;
   if (output.extension() == ".svg" && !lines && !polygonSvg)
     throw InputError("-o " + options.output + ": SVG is for line drawings and visible polygons, and " + algorithm.name +
@@ -226,7 +208,7 @@ int render(const RenderOptions& options) {
   if (!options.steps.empty()) stepsFolder.emplace(options.steps);
 
   const LoadedScene scene = studies::loadPrepared(options.scene, options.size);
-  studies::checkRenders(configuration, scene.name, *scene.prepared);
+  pipeline::checkRenders(configuration, scene.name, *scene.prepared);
   if (options.explain) printPlan(scene, configuration);
   std::optional<StepRecorder> steps;
   if (stepsFolder) steps.emplace(std::size_t(options.every), [&](const Step& step) { stepsFolder->writer().add(step); });
@@ -281,7 +263,7 @@ int list() {
     std::printf("  %-12s %-9s %s\n", algorithm.name.c_str(), algorithmKindName(algorithm.kind), algorithm.summary.c_str());
     printKnobs(algorithm.knobs, "--knob ");
   }
-  std::printf("culling stages (hsr render --cull STAGE[:VARIANT][:KNOB=VALUE...],...; before %s):\n", cullableAlgorithms().c_str());
+  std::printf("culling stages (hsr render --cull STAGE[:VARIANT][:KNOB=VALUE...],...; before %s):\n", pipeline::cullableAlgorithms().c_str());
   for (const auto& stage : culling::stages()) {
     std::printf("  %-12s %s\n", stage.name.c_str(), stage.summary.c_str());
     const KnobSpec& variants = stage.variantKnob();

@@ -13,6 +13,7 @@
 #include "renderer/shading/fog.hpp"
 #include "renderer/shading/outline.hpp"
 #include "renderer/shading/shading.hpp"
+#include "renderer/util/error.hpp"
 
 namespace hsr::pipeline {
 namespace {
@@ -294,6 +295,27 @@ std::string refusal(const PreparedScene& scene, const Configuration& configurati
       able += (able.empty() ? "" : " or ") + other.name;
   return "the scene declares transparency, which needs the surfaces behind a pixel blended back to front; " + displayName(algorithm) +
          " keeps only the nearest (use --algo " + able + ")";
+}
+
+std::string cullableAlgorithms() {
+  std::string names;
+  for (const AlgorithmEntry& entry : algorithms())
+    if (entry.takesTriangleSubsets) names += (names.empty() ? "" : " or ") + entry.name;
+  return names;
+}
+
+culling::Pipeline cullingOf(const std::string& text, const AlgorithmEntry& algorithm) {
+  if (text.empty()) return {};
+  culling::Pipeline stages = culling::parsePipeline(text, "--cull");
+  if (!algorithm.takesTriangleSubsets)
+    throw InputError("--cull: " + algorithm.name + " does not draw from a culled set of triangles; expected --algo " +
+                     cullableAlgorithms());
+  return stages;
+}
+
+void checkRenders(const Configuration& configuration, const std::string& sceneName, const PreparedScene& scene) {
+  if (const std::string reason = refusal(scene, configuration); !reason.empty())
+    throw InputError(sceneName + ": " + configuration.algorithm->name + " cannot render it: " + reason);
 }
 
 std::vector<PlannedPass> plan(const PreparedScene& scene, const Configuration& configuration) {

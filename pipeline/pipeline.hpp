@@ -42,6 +42,13 @@ Configuration configurationOf(MakeEntry make, const KnobTable<Knobs>& table, con
 // refusal (a budget, a shape it cannot handle), or transparency an algorithm cannot blend
 // (it answers only the nearest surface and cannot leave the transparent ones out).
 std::string refusal(const PreparedScene& scene, const Configuration& configuration);
+// The algorithms that can draw a culled set of triangles: "zbuffer or painter".
+std::string cullableAlgorithms();
+// The culling stages --cull asks for (empty: none), checked against what the algorithm
+// can take: InputError for a stage it cannot, naming the algorithms that can.
+culling::Pipeline cullingOf(const std::string& text, const AlgorithmEntry& algorithm);
+// Throws InputError ("SCENE: ALGORITHM cannot render it: why") when refusal() names a reason.
+void checkRenders(const Configuration& configuration, const std::string& sceneName, const PreparedScene& scene);
 
 // One pass as the plan shows it: whether it runs, and the scene fact that decides it.
 struct PlannedPass {

@@ -1,20 +1,10 @@
 #include "studies/common.hpp"
 
 #include <algorithm>
-#include <regex>
 
 #include "renderer/util/error.hpp"
 
 namespace hsr::studies {
-
-std::pair<int, int> parseSize(const std::string& text, const std::string& where) {
-  std::smatch match;
-  if (!std::regex_match(text, match, std::regex(R"((\d{1,9})x(\d{1,9}))")))
-    throw InputError(where + " " + text + ": expected WIDTHxHEIGHT, e.g. 1280x720");
-  const long long width = std::stoll(match[1]), height = std::stoll(match[2]);
-  checkImageSize(width, height, where + " " + text);
-  return {static_cast<int>(width), static_cast<int>(height)};
-}
 
 std::vector<std::string> splitList(const std::string& text, const std::string& where) {
   std::vector<std::string> items;
@@ -60,11 +50,6 @@ std::filesystem::path sceneFile(const std::string& given) {
     if (path == shipped || path == std::filesystem::path(shipped).replace_extension())
       return std::filesystem::path(HSR_SCENES_DIR) / shipped;
   throw InputError(given + ": cannot open the scene file (no such file), and no shipped scene has that name (hsr list names them)");
-}
-
-void checkRenders(const pipeline::Configuration& configuration, const std::string& sceneName, const PreparedScene& scene) {
-  if (const std::string refusal = pipeline::refusal(scene, configuration); !refusal.empty())
-    throw InputError(sceneName + ": " + configuration.algorithm->name + " cannot render it: " + refusal);
 }
 
 void makeFolder(const std::filesystem::path& folder, const std::string& where) {

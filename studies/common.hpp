@@ -17,9 +17,6 @@ namespace hsr::studies {
 
 constexpr int kBadInput = 2;
 
-// "WIDTHxHEIGHT" within the image limits; `where` names the option in the error.
-std::pair<int, int> parseSize(const std::string& text, const std::string& where);
-
 // Comma-separated values of a list option ("a,b,c"); empty items are an error.
 std::vector<std::string> splitList(const std::string& text, const std::string& where);
 
@@ -39,8 +36,6 @@ LoadedScene loadPrepared(const std::string& path, const std::string& size);
 // that is neither is an InputError saying both were tried.
 std::filesystem::path sceneFile(const std::string& given);
 
-// Throws InputError when the configuration cannot render the scene (pipeline::refusal).
-void checkRenders(const pipeline::Configuration& configuration, const std::string& sceneName, const PreparedScene& scene);
 
 // Creates the folder (and parents) or throws InputError naming it.
 void makeFolder(const std::filesystem::path& folder, const std::string& where);

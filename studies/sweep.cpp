@@ -147,7 +147,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
         }))
       continue;
     scene.prepared->setSize(planned.size.first, planned.size.second);
-    checkRenders(planned.configuration, scene.name + " (" + planned.label + ")", *scene.prepared);
+    pipeline::checkRenders(planned.configuration, scene.name + " (" + planned.label + ")", *scene.prepared);
     plan.push_back(std::move(planned));
   }
   makeFolder(options.out, "--out");
@@ -324,7 +324,7 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
       std::printf("stopping at %s %s: %s\n", options.scale.c_str(), value.c_str(), refusal.c_str());
       break;
     }
-    checkRenders(configuration, scene.name + " (" + options.scale + " " + value + ")", *prepared);
+    pipeline::checkRenders(configuration, scene.name + " (" + options.scale + " " + value + ")", *prepared);
     progress.update(rows.size(), options.scale + " " + value);
     Stats ignored;  // a line algorithm is judged by the line reference of its own edges instead
     const ReferenceImage truth = algorithm.kind == AlgorithmKind::line ? ReferenceImage() : renderReference(*prepared, options.threads, ignored);

@@ -117,22 +117,14 @@ std::string render(const emscripten::val& request) {
     for (std::string setting; std::getline(knobs, setting, ';');)
       if (!setting.empty()) settings.push_back(parseKnobSetting(setting, "--knob"));
     pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
-    if (!text("cull").empty()) {
-      if (!algorithm.takesTriangleSubsets) throw InputError("--cull: " + algorithm.name + " does not draw from a culled set of triangles");
-      configuration.culling = culling::parsePipeline(text("cull"), "--cull");
-    }
+    configuration.culling = pipeline::cullingOf(text("cull"), algorithm);
     auto scene = std::make_unique<const Scene>(loadScene(text("scene")));
     auto prepared = std::make_unique<PreparedScene>(*scene);
     if (const std::string size = text("size"); !size.empty()) {
-      int width = 0, height = 0;
-      char x = 0;
-      std::istringstream read(size);
-      if (!(read >> width >> x >> height) || x != 'x' || !read.eof()) throw InputError("--size " + size + ": expected WIDTHxHEIGHT");
-      checkImageSize(width, height, "--size " + size);
+      const auto [width, height] = parseSize(size, "--size");
       prepared->setSize(width, height);
     }
-    if (const std::string refusal = pipeline::refusal(*prepared, configuration); !refusal.empty())
-      throw InputError(text("scene") + ": " + algorithm.name + " cannot render it: " + refusal);
+    pipeline::checkRenders(configuration, text("scene"), *prepared);
 
     Stats stats;
     const auto start = std::chrono::steady_clock::now();
@@ -167,7 +159,6 @@ std::string render(const emscripten::val& request) {
   } catch (const InputError& error) {
     return messageJson(error.what());
   } catch (const std::bad_alloc&) {
-    last = Shown();
     return messageJson(kOutOfMemory);
   }
 }

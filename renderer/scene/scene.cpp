@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -490,6 +491,15 @@ void checkImageSize(std::int64_t width, std::int64_t height, const std::string& 
     throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) +
                      " is out of range; expected 1 to " + std::to_string(kMaxImageSide) +
                      " pixels per side and at most 256 Mpixel");
+}
+
+std::pair<int, int> parseSize(const std::string& text, const std::string& where) {
+  std::smatch match;
+  if (!std::regex_match(text, match, std::regex(R"((\d{1,9})x(\d{1,9}))")))
+    throw InputError(where + " " + text + ": expected WIDTHxHEIGHT, e.g. 1280x720");
+  const long long width = std::stoll(match[1]), height = std::stoll(match[2]);
+  checkImageSize(width, height, where + " " + text);
+  return {static_cast<int>(width), static_cast<int>(height)};
 }
 
 Scene loadScene(const std::filesystem::path& file) { return parseScene(readInputFile(file, "scene"), file); }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/geometry/camera.hpp"
@@ -142,6 +143,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& file);
 
 // Throws InputError when width x height is outside the limits above; `where` names the source.
 void checkImageSize(std::int64_t width, std::int64_t height, const std::string& where);
+// "WIDTHxHEIGHT" within those limits; `where` names the option in the error.
+std::pair<int, int> parseSize(const std::string& text, const std::string& where);
 
 const char* shadingName(Shading shading);
 
