@@ -13,9 +13,9 @@
 #include <toml++/toml.h>
 
 #include "renderer/scene/obj.hpp"
+#include "renderer/scene/toml_characters.hpp"
 #include "renderer/scene/toml_reader.hpp"
 #include "renderer/util/error.hpp"
-#include "renderer/util/portable_math.hpp"
 #include "renderer/util/portable_math.hpp"
 
 namespace hsr {
@@ -505,6 +505,7 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& where)
 Scene loadScene(const std::filesystem::path& file) { return parseScene(readInputFile(file, "scene"), file); }
 
 Scene parseScene(const std::string& text, const std::filesystem::path& file) {
+  checkTomlCharacters(text, file.string());
   toml::table root;
   try {
     root = toml::parse(text, file.string());

@@ -1,0 +1,118 @@
+#include "renderer/scene/toml_characters.hpp"
+
+#include "renderer/util/error.hpp"
+
+namespace hsr {
+namespace {
+
+bool isAscii(char c) { return static_cast<unsigned char>(c) < 0x80; }
+bool isSpaceOrLineBreak(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+// Whether a quote after this character opens a string: where a key or a value starts (a
+// line's start, after '=', '[', ',', '{', or a dotted key's '.'). Anywhere else the quote
+// is inside a malformed value such as `4E"x`, which toml++ reads on to the next space,
+// comma or bracket, testing every character for whitespace, the quote and what follows it
+// included; so there the walk reads on too.
+bool opensString(char lastToken) {
+  return lastToken == '\n' || lastToken == '=' || lastToken == '[' || lastToken == ',' || lastToken == '{' || lastToken == '.';
+}
+
+// A walk over the text with TOML's lexical states: only where a string or a comment
+// starts and ends matters here, so everything else is read as "between tokens".
+class CharacterCheck {
+ public:
+  CharacterCheck(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+
+  void run() {
+    if (startsWith("\xEF\xBB\xBF")) at_ = 3;  // a byte-order mark, which toml++ skips (Windows editors write one)
+    char lastToken = '\n';  // the last character outside strings that was not a space or tab
+    while (at_ < text_.size()) {
+      const char c = text_[at_];
+      if (c == '#') {
+        skipComment();
+      } else if ((c == '"' || c == '\'') && opensString(lastToken)) {
+        skipString(c);
+        lastToken = c;
+      } else if (!isAscii(c)) {
+        fail("a non-ASCII character outside a string or comment; TOML allows one only between quotes or after #");
+      } else {
+        if (c != ' ' && c != '\t') lastToken = c;
+        advance();
+      }
+    }
+  }
+
+ private:
+  bool startsWith(std::string_view prefix) const { return text_.substr(at_).starts_with(prefix); }
+
+  // One byte on, keeping the line and column (in characters, as toml++ counts them).
+  void advance() {
+    const char c = text_[at_++];
+    if (c == '\n') {
+      ++line_;
+      column_ = 1;
+    } else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) {  // not a UTF-8 continuation byte
+      ++column_;
+    }
+  }
+
+  void skipComment() {
+    while (at_ < text_.size() && text_[at_] != '\n') advance();
+  }
+
+  // From an opening quote past the closing one. A basic string ("...") has escapes, a
+  // literal one ('...') has none; tripled quotes open a multi-line string, which may end
+  // in up to two more quotes that belong to it. An unclosed string stops at the line's
+  // end (a one-line string) or the text's: toml++ reports it.
+  void skipString(char quote) {
+    const std::string delimiter(3, quote);
+    const bool multiLine = startsWith(delimiter);
+    for (std::size_t k = 0; k < (multiLine ? 3u : 1u); ++k) advance();
+    while (at_ < text_.size()) {
+      const char c = text_[at_];
+      if (!multiLine && c == '\n') return;
+      if (multiLine ? startsWith(delimiter) : c == quote) {
+        while (at_ < text_.size() && text_[at_] == quote) advance();
+        return;
+      }
+      advance();
+      if (c == '\\' && quote == '"' && at_ < text_.size()) {
+        // In a multi-line string toml++ tests the character after a backslash for
+        // whitespace (a line-ending backslash), so it must be ASCII there; no escape
+        // starts with anything else.
+        if (multiLine && !isAscii(text_[at_]))
+          fail("a backslash followed by a non-ASCII character; TOML's escapes are \\b \\t \\n \\f \\r \\\" \\\\ "
+               "\\uXXXX and \\UXXXXXXXX");
+        if (multiLine && isSpaceOrLineBreak(text_[at_])) {
+          skipLineContinuation();
+        } else {
+          advance();  // the escaped character, which cannot close the string
+        }
+      }
+    }
+  }
+
+  // A line-ending backslash: toml++ skips the whitespace and line breaks after it, testing
+  // each character for whitespace, so the first one that is not must be ASCII.
+  void skipLineContinuation() {
+    while (at_ < text_.size() && isSpaceOrLineBreak(text_[at_])) advance();
+    if (at_ < text_.size() && !isAscii(text_[at_]))
+      fail("a line continued by a backslash starts with a non-ASCII character, which the TOML reader here "
+           "(toml++ 3.3) cannot take; move it onto the line before the backslash, or write it as \\uXXXX");
+  }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(file_ + ":" + std::to_string(line_) + ":" + std::to_string(column_) + ": not valid TOML: " + what);
+  }
+
+  std::string_view text_;
+  const std::string& file_;
+  std::size_t at_ = 0;
+  int line_ = 1, column_ = 1;
+};
+
+}  // namespace
+
+void checkTomlCharacters(std::string_view text, const std::string& file) { CharacterCheck(text, file).run(); }
+
+}  // namespace hsr
