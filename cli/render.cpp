@@ -166,21 +166,6 @@ class StepsFolder {
   bool made_ = false, written_ = false;
 };
 
-// What to say when a render runs out of memory: a size within the limits can still be
-// more than the machine has. The frame's own buffers are the part that grows with the
-// size for every algorithm; an algorithm's own (a depth buffer, fragment lists, a tree)
-// come on top.
-std::string outOfMemory(int width, int height, const std::string& algorithm) {
-  const double pixels = double(width) * double(height);
-  const double frameBytes = pixels * (sizeof(std::uint32_t) + sizeof(float) + 4);  // ids, depth, RGBA colour
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "out of memory rendering %dx%d with %s: the frame alone needs %.1f GiB (ids, depth and colour, 12 bytes a pixel), "
-                "and the algorithm's own buffers come on top; expected a smaller --size",
-                width, height, algorithm.c_str(), frameBytes / double(1u << 30));
-  return text;
-}
-
 }  // namespace
 
 int render(const RenderOptions& options) {
@@ -227,7 +212,7 @@ int render(const RenderOptions& options) {
     if (!options.depth.empty()) outputs.addDepthExr(options.depth, rendered.frame);
     if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
   } catch (const std::bad_alloc&) {
-    throw InputError(outOfMemory(scene.prepared->width(), scene.prepared->height(), algorithm.name));
+    throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), algorithm.name));
   }
   outputs.commit();
   const Frame& frame = rendered.frame;

@@ -1,6 +1,7 @@
 #include "pipeline/pipeline.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 
@@ -316,6 +317,19 @@ culling::Pipeline cullingOf(const std::string& text, const AlgorithmEntry& algor
 void checkRenders(const Configuration& configuration, const std::string& sceneName, const PreparedScene& scene) {
   if (const std::string reason = refusal(scene, configuration); !reason.empty())
     throw InputError(sceneName + ": " + configuration.algorithm->name + " cannot render it: " + reason);
+}
+
+// The frame's own buffers are the part that grows with the size for every algorithm; an
+// algorithm's own (a depth buffer, fragment lists, a tree) come on top.
+std::string outOfMemory(int width, int height, const std::string& algorithm) {
+  const double pixels = double(width) * double(height);
+  const double frameBytes = pixels * (sizeof(std::uint32_t) + sizeof(float) + 4);  // ids, depth, RGBA colour
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "out of memory rendering %dx%d with %s: the frame alone needs %.1f GiB (ids, depth and colour, 12 bytes a pixel), "
+                "and the algorithm's own buffers come on top; expected a smaller --size",
+                width, height, algorithm.c_str(), frameBytes / double(1u << 30));
+  return text;
 }
 
 std::vector<PlannedPass> plan(const PreparedScene& scene, const Configuration& configuration) {

@@ -49,6 +49,9 @@ std::string cullableAlgorithms();
 culling::Pipeline cullingOf(const std::string& text, const AlgorithmEntry& algorithm);
 // Throws InputError ("SCENE: ALGORITHM cannot render it: why") when refusal() names a reason.
 void checkRenders(const Configuration& configuration, const std::string& sceneName, const PreparedScene& scene);
+// What to say when a render runs out of memory: a size within the limits can still be
+// more than the machine (or a browser's page) has. Names the memory the frame alone needs.
+std::string outOfMemory(int width, int height, const std::string& algorithm);
 
 // One pass as the plan shows it: whether it runs, and the scene fact that decides it.
 struct PlannedPass {

@@ -101,7 +101,10 @@ Shown& shown() {
 }
 
 std::string messageJson(const std::string& what) { return "{\"message\":" + jsonString("hsr: error: " + what) + "}"; }
-const char* const kOutOfMemory = "out of memory; expected a smaller --size or scene (the browser gives a page at most 2 GiB)";
+// The command line's out-of-memory messages (cli/main.cpp, pipeline::outOfMemory), with
+// the browser's limit.
+const char* const kPageMemory = " (a browser gives a page at most 2 GiB)";
+std::string outOfMemoryJson() { return messageJson(std::string("out of memory; expected a smaller --size or scene") + kPageMemory); }
 
 // request: "scene", "algorithm", "knobs" (NAME=VALUE;...), "cull" (as --cull), "size"
 // (WxH or empty). The render alone, so that the page shows it at once; compare() then
@@ -128,7 +131,12 @@ std::string render(const emscripten::val& request) {
 
     Stats stats;
     const auto start = std::chrono::steady_clock::now();
-    pipeline::Rendered rendered = pipeline::render(*prepared, configuration, 1, stats);
+    pipeline::Rendered rendered;
+    try {
+      rendered = pipeline::render(*prepared, configuration, 1, stats);
+    } catch (const std::bad_alloc&) {
+      return messageJson(pipeline::outOfMemory(prepared->width(), prepared->height(), algorithm.name) + kPageMemory);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     double visibility = 0, effects = 0;
     std::string passes = "[";
@@ -159,7 +167,7 @@ std::string render(const emscripten::val& request) {
   } catch (const InputError& error) {
     return messageJson(error.what());
   } catch (const std::bad_alloc&) {
-    return messageJson(kOutOfMemory);
+    return outOfMemoryJson();
   }
 }
 
@@ -177,7 +185,12 @@ std::string compare() {
              ",\"wronglyDrawn\":" + number(judged.error.wronglyDrawn) + ",\"wronglyHidden\":" + number(judged.error.wronglyHidden) + "}}";
     }
     if (last.algorithm->kind == AlgorithmKind::reference) return "{}";  // the reference itself: nothing to compare
-    const ReferenceImage truth = traceReference(*last.prepared, 1, stats);
+    ReferenceImage truth;
+    try {
+      truth = traceReference(*last.prepared, 1, stats);
+    } catch (const std::bad_alloc&) {
+      return messageJson(pipeline::outOfMemory(last.prepared->width(), last.prepared->height(), "the exact reference") + kPageMemory);
+    }
     const SurfaceError error = surfaceError(last.frame, truth);
     last.error = errorHeatMap(last.frame, truth);
     return "{\"error\":{\"pixelError\":" + number(error.pixelError) + ",\"wrongPixels\":" + std::to_string(error.wrongPixels) +
@@ -187,7 +200,7 @@ std::string compare() {
   } catch (const InputError& error) {
     return messageJson(error.what());
   } catch (const std::bad_alloc&) {
-    return messageJson(kOutOfMemory);
+    return outOfMemoryJson();
   }
 }
 

@@ -124,6 +124,7 @@ try {
   };
   const badCases = [
     { what: "a broken TOML", files: { "broken.toml": "[camera\neye = [0, 0, 5]\n" } },
+    { what: "a non-ASCII character outside a string", files: { "accent.toml": "a = [1\u00a7]\n" } },
     { what: "an OBJ with a bad face", files: { "bad.toml": '[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n[[objects]]\nshape = "mesh"\nfile = "bad.obj"\n', "bad.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n" } },
   ];
   for (const bad of badCases) {
@@ -136,6 +137,10 @@ try {
     check(native === "" || shown === native, `${bad.what}: the same line as the command line's (${native})`);
   }
   await page.selectOption("#scene", "counters.toml");
+  await page.fill("#size", "16384x16384");
+  result = await renderWith();
+  check(/^hsr: error: out of memory rendering 16384x16384 with \w+: the frame alone needs 3\.0 GiB/.test(result.message) &&
+        result.message.endsWith("(a browser gives a page at most 2 GiB)"), `a size larger than a page's memory: ${result.message}`);
   await page.fill("#size", "100000x100000");
   result = await renderWith();
   check(result.message.startsWith("hsr: error: --size 100000x100000: ") && result.message.includes("16384"), `an absurd size: ${result.message}`);
