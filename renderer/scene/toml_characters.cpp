@@ -8,37 +8,57 @@ namespace {
 bool isAscii(char c) { return static_cast<unsigned char>(c) < 0x80; }
 bool isSpaceOrLineBreak(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
-// Whether a quote after this character opens a string: where a key or a value starts (a
-// line's start, after '=', '[', ',', '{', or a dotted key's '.'). Anywhere else the quote
-// is inside a malformed value such as `4E"x`, which toml++ reads on to the next space,
-// comma or bracket, testing every character for whitespace, the quote and what follows it
-// included; so there the walk reads on too.
-bool opensString(char lastToken) {
-  return lastToken == '\n' || lastToken == '=' || lastToken == '[' || lastToken == ',' || lastToken == '{' || lastToken == '.';
-}
+// toml++ reads a value that starts with anything but a quote or a bracket (a number, a
+// date, true, or a typo) on to the next of these, testing every character for
+// whitespace: in `4E"x` or `0.3{"x` the quote opens no string.
+bool endsBareValue(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' || c == '}' || c == '#'; }
 
-// A walk over the text with TOML's lexical states: only where a string or a comment
-// starts and ends matters here, so everything else is read as "between tokens".
+// A walk over the text with TOML's lexical states: where strings and comments start and
+// end, and where a value starts and a bare value runs on; everything else is read as
+// "between tokens".
 class CharacterCheck {
  public:
   CharacterCheck(std::string_view text, const std::string& file) : text_(text), file_(file) {}
 
   void run() {
     if (startsWith("\xEF\xBB\xBF")) at_ = 3;  // a byte-order mark, which toml++ skips (Windows editors write one)
-    char lastToken = '\n';  // the last character outside strings that was not a space or tab
     while (at_ < text_.size()) {
       const char c = text_[at_];
+      if (inBareValue_) {
+        if (!isAscii(c)) failOutside();
+        if (endsBareValue(c)) inBareValue_ = false;  // and the character is read below
+        else {
+          advance();
+          continue;
+        }
+      }
+      const bool valueStarts = lastToken_ == '=' || ((lastToken_ == '[' || lastToken_ == ',') && innermost() == 'a');
       if (c == '#') {
         skipComment();
-      } else if ((c == '"' || c == '\'') && opensString(lastToken)) {
-        skipString(c);
-        lastToken = c;
-      } else if (!isAscii(c)) {
-        fail("a non-ASCII character outside a string or comment; TOML allows one only between quotes or after #");
-      } else {
-        if (c != ' ' && c != '\t') lastToken = c;
-        advance();
+        continue;
       }
+      if (c == '"' || c == '\'') {
+        skipString(c);
+        lastToken_ = c;
+        continue;
+      }
+      if (!isAscii(c)) failOutside();
+      if (c == '[') {
+        // An array where a value starts; else a table header, whose second '[' ([[x]])
+        // is the same header.
+        if (valueStarts) brackets_ += 'a';
+        else if (!(innermost() == 'h' && lastToken_ == '[')) brackets_ += 'h';
+      } else if (c == '{') {
+        brackets_ += 't';
+      } else if ((c == ']' || c == '}') && !brackets_.empty()) {
+        brackets_.pop_back();
+      } else if (valueStarts && c != ' ' && c != '\t' && c != '\r' && c != '\n') {
+        inBareValue_ = true;
+      }
+      // A line break ends a key-value pair, except in an array, which may span lines.
+      const bool blank = c == ' ' || c == '\t' || ((c == '\n' || c == '\r') && innermost() == 'a');
+      if (!blank) lastToken_ = c;
+      advance();
     }
   }
 
@@ -105,8 +125,17 @@ class CharacterCheck {
     throw InputError(file_ + ":" + std::to_string(line_) + ":" + std::to_string(column_) + ": not valid TOML: " + what);
   }
 
+  [[noreturn]] void failOutside() const {
+    fail("a non-ASCII character outside a string or comment; TOML allows one only between quotes or after #");
+  }
+  // The innermost open bracket: 'a' an array, 't' an inline table, 'h' a table header.
+  char innermost() const { return brackets_.empty() ? ' ' : brackets_.back(); }
+
   std::string_view text_;
   const std::string& file_;
+  char lastToken_ = '\n';  // the last character outside strings that was not a space or tab
+  std::string brackets_;    // the brackets open, outermost first
+  bool inBareValue_ = false;
   std::size_t at_ = 0;
   int line_ = 1, column_ = 1;
 };

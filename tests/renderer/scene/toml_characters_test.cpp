@@ -58,8 +58,10 @@ TEST(TomlCharacters, EveryNonAsciiCharacterWhereTomlTestsForWhitespaceIsRefusedW
         {"a " + ch + "= 1\n", "s.toml:1:3: " + outside},
         {"a = 1" + ch + "\n", "s.toml:1:6: " + outside},
         // A quote inside a malformed value opens no string: toml++ reads on to the next
-        // space or comma (the fuzz target's second find).
+        // space or comma (the fuzz target's second and fourth finds).
         {"a = 4E\"" + ch + "\", 1\n", "s.toml:1:8: " + outside},
+        {"a = [1.6, 0.3{\"" + ch + "\"]\n", "s.toml:1:16: " + outside},
+        {"a = [\n  4E\"" + ch + "\"]\n", "s.toml:2:6: " + outside},
         // The fuzz target's third find, and toml++'s issue 190.
         {"s = \"\"\"\\" + ch + "\"\"\"\n", "s.toml:1:9: not valid TOML: a backslash followed by a non-ASCII character"},
         {"s = \"\"\"\\\n  " + ch + "\"\"\"\n", "s.toml:2:3: not valid TOML: a line continued by a backslash starts with a non-ASCII"}};
@@ -92,6 +94,12 @@ TEST(TomlCharacters, NonAsciiTextInStringsAndCommentsStillReads) {
       "a = \"\"\"\n" + cafe + "\n\"\" " + cjk + "\"\"\"\n",  // two quotes do not close a multi-line one
       "a = '''" + cafe + "''''\n",                            // nor do the extra quotes at its end open one
       "\"" + cafe + "\" = 1\n",
+      // Strings in every place the walk tells keys from values.
+      "a = [\n  \"" + cafe + "\",\n  '" + cjk + "' , # " + cafe + "\n  \"" + cjk + "\"\n]\n",
+      "t = { b.\"" + cafe + "\" = 1, \"c\" = \"" + cjk + "\" }\n",
+      "a = [[1, \"" + cafe + "\"], {x = \"" + cjk + "\"}]\n",
+      "a.b.\"" + cafe + "\" = 1979-05-27T07:32:00Z # " + cjk + "\n",
+      "[\"" + cafe + "\".x]\nk = 1\n[[\"" + cjk + "\"]]\n",
       "\xEF\xBB\xBF# a byte-order mark first, as Windows editors write\n"};
   for (const std::string& text : texts) {
     EXPECT_NO_THROW(checkTomlCharacters(text, "s.toml")) << text;
