@@ -132,6 +132,9 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   std::optional<Recording> steps;
   if (request.steps) steps.emplace(Recording{*request.steps, scene});
   const Recording* recording = steps ? &*steps : nullptr;
+  // The tracers read the triangles in the BVH's leaf order: the BVH is built on first
+  // use, on this render's threads.
+  if (knobs.variant != Variant::march) scene.triangleBvh(stats, request.threads);
   switch (knobs.variant) {
     case Variant::naive: {
       const NaiveTracer tracer(scene, stats);

@@ -49,8 +49,9 @@ class Bvh {
   static constexpr double kTraversalCost = 1.0, kIntersectionCost = 1.0;
 
   Bvh() = default;
-  // boxes[i] bounds primitive i; the node order() lists primitives leaf by leaf.
-  explicit Bvh(std::span<const Aabb> boxes);
+  // boxes[i] bounds primitive i; the node order() lists primitives leaf by leaf. Built on
+  // `threads` threads (0: all cores), with the same nodes and order for any count.
+  explicit Bvh(std::span<const Aabb> boxes, int threads = 1);
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }       // nodes()[0] is the root
 

@@ -229,7 +229,7 @@ class EdgeJudge {
 
 std::vector<EdgeVisibility> traceLineReference(const PreparedScene& scene, std::span<const FeatureEdge> edges, int threads,
                                                Stats& stats) {
-  const Bvh& bvh = scene.triangleBvh(stats);
+  const Bvh& bvh = scene.triangleBvh(stats, threads);
   PhaseTimer timer(stats, "line reference");
   const CameraTransform& camera = scene.camera();
   std::vector<dvec2> pixel(scene.positions().size());

@@ -187,6 +187,7 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
 }
 
 void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image) {
+  scene.triangleBvh(stats, threads);  // built on first use, on this render's threads
   const SurfaceReference reference(scene, stats, traversal);
   const CameraTransform& camera = scene.camera();
   PhaseTimer timer(stats, "reference");

@@ -120,8 +120,9 @@ class PreparedScene {
   int cornerNormals(std::uint32_t triangle, const VertexTriangles& around, std::array<dvec3, 3>& normals) const;
 
   // A BVH over the triangles (primitive i = global triangle i), built on first use
-  // (phase "bvh build", counter "bvh nodes built").
-  const Bvh& triangleBvh(Stats& stats) const;
+  // (phase "bvh build", counter "bvh nodes built"), on `threads` threads (0: all cores):
+  // the tree is the same for any count, so a render asks first with its own.
+  const Bvh& triangleBvh(Stats& stats, int threads = 1) const;
 
   // The triangles' corners in the BVH's leaf order (slot i holds triangleBvh().order()[i]),
   // so a ray tracer reads a leaf as one contiguous run; built with the BVH.

@@ -2,6 +2,7 @@
 // float box containing everything below it, and a bounded depth on any input.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
 #include "renderer/rays/bvh.hpp"
@@ -52,6 +53,26 @@ TEST(Bvh, EveryPrimitiveInOneLeafAndEveryBoxContainsItsChildren) {
     checkSubtree(bvh, boxes, 0, seen);
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(count));
     EXPECT_LE(bvh.depth(), Bvh::kMaxDepth);
+  }
+}
+
+// The parallel build makes the tree the one-thread build makes, node for node and in
+// the same places: large random inputs (the top decided in parallel, then subtrees),
+// many identical boxes (split by count, a sort, at the top), and inputs too small to
+// share (the root is the only subtree).
+TEST(Bvh, EveryThreadCountBuildsTheSameNodesInTheSamePlaces) {
+  std::vector<std::vector<Aabb>> inputs = {randomTriangleBoxes(200000, 11), randomTriangleBoxes(30000, 12),
+                                           std::vector<Aabb>(50000, Aabb{dvec3(0), dvec3(1)}), randomTriangleBoxes(500, 13)};
+  for (const std::vector<Aabb>& boxes : inputs) {
+    const Bvh one(boxes, 1);
+    for (const int threads : {2, 3, 4, 7}) {
+      const Bvh many(boxes, threads);
+      ASSERT_EQ(many.nodes().size(), one.nodes().size()) << boxes.size() << " boxes, " << threads << " threads";
+      EXPECT_EQ(std::memcmp(many.nodes().data(), one.nodes().data(), one.nodes().size() * sizeof(BvhNode)), 0)
+          << boxes.size() << " boxes, " << threads << " threads";
+      EXPECT_EQ(many.order(), one.order());
+      EXPECT_EQ(many.depth(), one.depth());
+    }
   }
 }
 
