@@ -12,9 +12,10 @@ cd "$(dirname "$0")/.."
 preset=${1:-release}
 [ $# -gt 0 ] && shift
 bash scripts/setup.sh tests
-# The demo switched the tests and benchmarks off in build/'s cache; switch them back on
-# (the debug and sanitize presets leave the benchmarks out themselves).
+# The demo switched the tests and benchmarks off in build/'s cache, and scripts/test.sh
+# the benchmarks and the standalone headers; switch them back on (the debug and sanitize
+# presets leave those out themselves).
 everything=(-DHSR_BUILD_TESTS=ON)
-[ "$preset" = release ] && everything+=(-DHSR_BUILD_BENCH=ON)
+[ "$preset" = release ] && everything+=(-DHSR_BUILD_BENCH=ON -DHSR_STANDALONE_HEADERS=ON)
 cmake --preset "$preset" "${everything[@]}" "$@" >/dev/null
 cmake --build --preset "$preset" -j"$(nproc)"
