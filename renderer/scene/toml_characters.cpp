@@ -1,5 +1,7 @@
 #include "renderer/scene/toml_characters.hpp"
 
+#include <algorithm>
+
 #include "renderer/util/error.hpp"
 
 namespace hsr {
@@ -26,6 +28,16 @@ class CharacterCheck {
       const char c = text_[at_];
       if (inBareValue_) {
         if (!isAscii(c)) failOutside();
+        if (c == ' ' && continuesAsDateTime()) {
+          // toml++ reads a date, a space and a digit as one date-time (1979-05-27
+          // 07:32:00): it takes the space, the digit and the character after it whatever
+          // they are, and reads on to the next terminator.
+          for (int k = 0; k < 3 && at_ < text_.size(); ++k) {
+            if (!isAscii(text_[at_])) failOutside();
+            advance();
+          }
+          continue;
+        }
         if (endsBareValue(c)) inBareValue_ = false;  // and the character is read below
         else {
           advance();
@@ -54,6 +66,7 @@ class CharacterCheck {
         brackets_.pop_back();
       } else if (valueStarts && c != ' ' && c != '\t' && c != '\r' && c != '\n') {
         inBareValue_ = true;
+        bareValueStart_ = at_;
       }
       // A line break ends a key-value pair, except in an array, which may span lines.
       const bool blank = c == ' ' || c == '\t' || ((c == '\n' || c == '\r') && innermost() == 'a');
@@ -105,9 +118,9 @@ class CharacterCheck {
                "\\uXXXX and \\UXXXXXXXX");
         if (multiLine && isSpaceOrLineBreak(text_[at_])) {
           skipLineContinuation();
-        } else {
+        } else if (multiLine || text_[at_] != '\n') {
           advance();  // the escaped character, which cannot close the string
-        }
+        }  // (a one-line string's backslash at the end of its line escapes nothing: toml++ stops there)
       }
     }
   }
@@ -125,6 +138,17 @@ class CharacterCheck {
     throw InputError(file_ + ":" + std::to_string(line_) + ":" + std::to_string(column_) + ": not valid TOML: " + what);
   }
 
+  // Whether the bare value so far has a date's shape (ten digits and dashes, dashes at 4
+  // and 7) and a digit follows the space here: toml++'s test for a date-time written
+  // with a space instead of a T.
+  bool continuesAsDateTime() const {
+    const std::string_view value = text_.substr(bareValueStart_, at_ - bareValueStart_);
+    const auto isDigit = [](char c) { return c >= '0' && c <= '9'; };
+    return value.size() == 10 && value[4] == '-' && value[7] == '-' &&
+           std::all_of(value.begin(), value.end(), [&](char c) { return isDigit(c) || c == '-'; }) && at_ + 1 < text_.size() &&
+           isDigit(text_[at_ + 1]);
+  }
+
   [[noreturn]] void failOutside() const {
     fail("a non-ASCII character outside a string or comment; TOML allows one only between quotes or after #");
   }
@@ -136,6 +160,7 @@ class CharacterCheck {
   char lastToken_ = '\n';  // the last character outside strings that was not a space or tab
   std::string brackets_;    // the brackets open, outermost first
   bool inBareValue_ = false;
+  std::size_t bareValueStart_ = 0;
   std::size_t at_ = 0;
   int line_ = 1, column_ = 1;
 };

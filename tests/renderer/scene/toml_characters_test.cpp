@@ -62,6 +62,11 @@ TEST(TomlCharacters, EveryNonAsciiCharacterWhereTomlTestsForWhitespaceIsRefusedW
         {"a = 4E\"" + ch + "\", 1\n", "s.toml:1:8: " + outside},
         {"a = [1.6, 0.3{\"" + ch + "\"]\n", "s.toml:1:16: " + outside},
         {"a = [\n  4E\"" + ch + "\"]\n", "s.toml:2:6: " + outside},
+        // A date, a space and a digit: toml++ reads on as a date-time, past a quote, a
+        // '#' or a comma right after the digit (found by a review).
+        {"d = 1979-05-27 07\"" + ch + "\"\n", "s.toml:1:19: " + outside},
+        {"d = 1979-05-27 0#" + ch + "\n", "s.toml:1:18: " + outside},
+        {"d = [1979-05-27 0,\"" + ch + "\"]\n", "s.toml:1:20: " + outside},
         // The fuzz target's third find, and toml++'s issue 190.
         {"s = \"\"\"\\" + ch + "\"\"\"\n", "s.toml:1:9: not valid TOML: a backslash followed by a non-ASCII character"},
         {"s = \"\"\"\\\n  " + ch + "\"\"\"\n", "s.toml:2:3: not valid TOML: a line continued by a backslash starts with a non-ASCII"}};
@@ -84,6 +89,14 @@ TEST(TomlCharacters, OnlyTheCharactersTomlTestsAreRefusedInMultiLineStrings) {
   }
 }
 
+// A backslash at the end of a one-line string's line escapes nothing: the string (and
+// toml++) stop there, and the next line is read as keys again.
+TEST(TomlCharacters, AOneLineStringEndsAtItsLineEvenAfterABackslash) {
+  const std::string message = messageOf("a = \"x\\\nb = \"caf\xC3\xA9\"\n" + kCamera);
+  EXPECT_EQ(message.rfind("s.toml:1:", 0), 0u) << message;
+  EXPECT_EQ(message.find("non-ASCII"), std::string::npos) << message;
+}
+
 TEST(TomlCharacters, NonAsciiTextInStringsAndCommentsStillReads) {
   const std::string cafe = "caf\xC3\xA9", cjk = "\xE3\x80\x80\xE6\xBC\xA2";  // café, U+3000 U+6F22
   const std::string texts[] = {
@@ -94,6 +107,8 @@ TEST(TomlCharacters, NonAsciiTextInStringsAndCommentsStillReads) {
       "a = \"\"\"\n" + cafe + "\n\"\" " + cjk + "\"\"\"\n",  // two quotes do not close a multi-line one
       "a = '''" + cafe + "''''\n",                            // nor do the extra quotes at its end open one
       "\"" + cafe + "\" = 1\n",
+      // Dates, and a date-time written with a space, before a comment or a string.
+      "d = 1979-05-27 07:32:00Z # " + cafe + "\ne = 1979-05-27 # " + cjk + "\nf = [1979-05-27, \"" + cafe + "\"]\n",
       // Strings in every place the walk tells keys from values.
       "a = [\n  \"" + cafe + "\",\n  '" + cjk + "' , # " + cafe + "\n  \"" + cjk + "\"\n]\n",
       "t = { b.\"" + cafe + "\" = 1, \"c\" = \"" + cjk + "\" }\n",
