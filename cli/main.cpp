@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "pipeline/pipeline.hpp"
 #include "renderer/util/error.hpp"
 #include "renderer/util/memory.hpp"
 #include "studies/common.hpp"
@@ -170,7 +171,7 @@ int main(int argc, char** argv) {
     return hsr::studies::kBadInput;
   } catch (const std::bad_alloc&) {
     // Not a bug but a size or scene larger than this machine's memory: say so, as bad input.
-    std::fprintf(stderr, "hsr: error: out of memory; expected a smaller --size or scene\n");
+    std::fprintf(stderr, "hsr: error: %s\n", hsr::pipeline::kOutOfMemory);
     return hsr::studies::kBadInput;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "hsr: error: %s\n", error.what());

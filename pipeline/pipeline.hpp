@@ -52,6 +52,8 @@ void checkRenders(const Configuration& configuration, const std::string& sceneNa
 // What to say when a render runs out of memory: a size within the limits can still be
 // more than the machine (or a browser's page) has. Names the memory the frame alone needs.
 std::string outOfMemory(int width, int height, const std::string& algorithm);
+// The same where the size is not known (loading a scene, preparing it).
+inline constexpr const char* kOutOfMemory = "out of memory; expected a smaller --size or scene";
 
 // One pass as the plan shows it: whether it runs, and the scene fact that decides it.
 struct PlannedPass {

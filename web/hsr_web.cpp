@@ -104,7 +104,7 @@ std::string messageJson(const std::string& what) { return "{\"message\":" + json
 // The command line's out-of-memory messages (cli/main.cpp, pipeline::outOfMemory), with
 // the browser's limit.
 const char* const kPageMemory = " (a browser gives a page at most 2 GiB)";
-std::string outOfMemoryJson() { return messageJson(std::string("out of memory; expected a smaller --size or scene") + kPageMemory); }
+std::string outOfMemoryJson() { return messageJson(std::string(pipeline::kOutOfMemory) + kPageMemory); }
 
 // request: "scene", "algorithm", "knobs" (NAME=VALUE;...), "cull" (as --cull), "size"
 // (WxH or empty). The render alone, so that the page shows it at once; compare() then

@@ -52,10 +52,7 @@ class Builder {
   // page faults), and faults on two threads take half the time.
   Builder(std::span<const Aabb> boxes, std::vector<std::uint32_t>& order, int threads)
       : boxes_(boxes), centroids_(uninitializedArray<dvec3>(boxes.size())), order_(order) {
-    constexpr std::size_t kPart = 16384;
-    parallelFor((boxes.size() + kPart - 1) / kPart, threads, [&](std::size_t part, int) {
-      for (std::size_t i = part * kPart; i < std::min(boxes.size(), (part + 1) * kPart); ++i) centroids_[i] = boxes[i].center();
-    });
+    parallelForEach(boxes.size(), kPrimitivesPerPart, threads, [&](std::size_t i) { centroids_[i] = boxes[i].center(); });
   }
 
   // What is decided at a node: its bounds, and either a leaf or where its primitives
@@ -402,8 +399,8 @@ Bvh::Bvh(std::span<const Aabb> boxes, int threads) {
   nodes_.reserve(2 * boxes.size());
   Builder builder(boxes, order_, threads);
   const auto primitives = static_cast<std::uint32_t>(boxes.size());
-  if (resolveThreadCount(threads) > 1) {
-    depth_ = ParallelBuild(builder, primitives, resolveThreadCount(threads)).run(primitives, nodes_);
+  if (const int workers = resolveThreadCount(threads); workers > 1) {
+    depth_ = ParallelBuild(builder, primitives, workers).run(primitives, nodes_);
   } else {
     nodes_.resize(1);
     depth_ = builder.build(nodes_, 0, 0, primitives, 1);

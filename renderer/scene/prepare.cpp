@@ -192,22 +192,17 @@ int PreparedScene::cornerNormals(std::uint32_t triangle, const VertexTriangles& 
 const Bvh& PreparedScene::triangleBvh(Stats& stats, int threads) const {
   std::call_once(bvhBuilt_, [&] {
     PhaseTimer timer(stats, "bvh build");
-    // Each triangle's box, and after the build its corners in leaf order, in parts on the
-    // threads: every item writes only its own slot.
-    const auto forEachTriangle = [&](auto&& body) {
-      constexpr std::size_t kPart = 16384;
-      parallelFor((triangles_.size() + kPart - 1) / kPart, threads, [&](std::size_t part, int) {
-        for (std::size_t i = part * kPart; i < std::min(triangles_.size(), (part + 1) * kPart); ++i) body(i);
-      });
-    };
+    // Each triangle's box, and after the build its corners in leaf order, on the threads:
+    // every item writes only its own slot.
+    constexpr std::size_t kChunk = 16384;
     std::vector<Aabb> boxes(triangles_.size());
-    forEachTriangle([&](std::size_t i) {
+    parallelForEach(triangles_.size(), kChunk, threads, [&](std::size_t i) {
       for (std::uint32_t v : triangles_[i]) boxes[i].grow(positions_[v]);
     });
     triangleBvh_ = Bvh(boxes, threads);
     stats.add("bvh nodes built", static_cast<std::int64_t>(triangleBvh_.nodes().size()));
     leafTriangles_.resize(triangles_.size());
-    forEachTriangle([&](std::size_t slot) {
+    parallelForEach(triangles_.size(), kChunk, threads, [&](std::size_t slot) {
       const std::uint32_t triangle = triangleBvh_.order()[slot];
       const Triangle& t = triangles_[triangle];
       leafTriangles_[slot] = {positions_[t[0]], positions_[t[1]], positions_[t[2]], triangle + 1};

@@ -13,7 +13,7 @@ bool isSpaceOrLineBreak(char c) { return c == ' ' || c == '\t' || c == '\r' || c
 // toml++ reads a value that starts with anything but a quote or a bracket (a number, a
 // date, true, or a typo) on to the next of these, testing every character for
 // whitespace: in `4E"x` or `0.3{"x` the quote opens no string.
-bool endsBareValue(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' || c == '}' || c == '#'; }
+bool endsBareValue(char c) { return isSpaceOrLineBreak(c) || c == ',' || c == ']' || c == '}' || c == '#'; }
 
 // A walk over the text with TOML's lexical states: where strings and comments start and
 // end, and where a value starts and a bare value runs on; everything else is read as
@@ -64,7 +64,7 @@ class CharacterCheck {
         brackets_ += 't';
       } else if ((c == ']' || c == '}') && !brackets_.empty()) {
         brackets_.pop_back();
-      } else if (valueStarts && c != ' ' && c != '\t' && c != '\r' && c != '\n') {
+      } else if (valueStarts && !isSpaceOrLineBreak(c)) {
         inBareValue_ = true;
         bareValueStart_ = at_;
       }

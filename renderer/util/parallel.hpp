@@ -158,6 +158,16 @@ void parallelFor(std::size_t count, int threads, Body&& body) {
   work(0);
 }
 
+// Calls body(index) for index in [0, count), the indices claimed `chunk` at a time: for
+// loops whose items are too small to be claimed one by one. As with parallelFor, each
+// item must write only its own output.
+template <typename Body>
+void parallelForEach(std::size_t count, std::size_t chunk, int threads, Body&& body) {
+  parallelFor((count + chunk - 1) / chunk, threads, [&](std::size_t part, int) {
+    for (std::size_t index = part * chunk; index < std::min(count, (part + 1) * chunk); ++index) body(index);
+  });
+}
+
 // Sets a plain flag from 0 to 1 atomically and says whether this call did: among threads
 // racing to claim the same item, exactly one wins (std::atomic_ref's load and exchange,
 // as GCC and clang give them, since not every standard library has atomic_ref yet).
