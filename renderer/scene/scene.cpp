@@ -13,7 +13,7 @@
 #include <toml++/toml.h>
 
 #include "renderer/scene/obj.hpp"
-#include "renderer/scene/toml_characters.hpp"
+#include "renderer/scene/toml_text.hpp"
 #include "renderer/scene/toml_reader.hpp"
 #include "renderer/util/error.hpp"
 #include "renderer/util/portable_math.hpp"
@@ -505,15 +505,7 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& where)
 Scene loadScene(const std::filesystem::path& file) { return parseScene(readInputFile(file, "scene"), file); }
 
 Scene parseScene(const std::string& text, const std::filesystem::path& file) {
-  checkTomlCharacters(text, file.string());
-  toml::table root;
-  try {
-    root = toml::parse(text, file.string());
-  } catch (const toml::parse_error& error) {
-    throw InputError(file.string() + ":" + std::to_string(error.source().begin.line) + ":" +
-                     std::to_string(error.source().begin.column) + ": not valid TOML: " +
-                     std::string(error.description()));
-  }
+  const toml::table root = parseTomlText(text, file.string());
 
   Scene scene;
   scene.file = file;

@@ -95,6 +95,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Found by the scene fuzz target: toml++ converted the float to an integer with undefined behaviour.
         Case{"integer-given-a-huge-float", write("float-height.toml", "[image]\nheight = 4e80\n" + kCamera + "[[objects]]\nshape = \"box\"\n") + " -o OUT",
              "float-height.toml:2:10: image.height: expected an integer in [1, 16384], got 4e+80"},
+        // Found by the scene fuzz target: toml++ 3.3 tested the character for whitespace with undefined behaviour.
+        Case{"non-ascii-outside-quotes", write("accent.toml", kCamera + "d = 1979-$5-27 07\"\xC2\xA7\"\n") + " -o OUT",
+             "accent.toml:4:5: not valid TOML: Error while parsing value: could not determine value type"},
         Case{"steps-folder-in-a-missing-folder", kCube + " -o OUT --steps /no/such/folder/steps",
              "--steps /no/such/folder/steps: the folder it would go in (/no/such/folder) does not exist"},
         Case{"steps-folder-is-a-file", kCube + " -o OUT --steps " + kCube, "exists and is not a folder"},
