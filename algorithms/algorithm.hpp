@@ -27,6 +27,7 @@
 #include "renderer/scene/prepare.hpp"
 #include "renderer/scene/visible_set.hpp"
 #include "renderer/steps/steps.hpp"
+#include "renderer/steps/why.hpp"
 #include "renderer/util/stats.hpp"
 
 namespace hsr {
@@ -47,6 +48,7 @@ struct VisibilityRequest {
   int threads;                   // 0 = all cores; the answer is the same bits for any count
   Stats& stats;
   StepRecorder* steps = nullptr;  // where the algorithm records its steps; null: not asked (renderer/steps/steps.hpp)
+  PixelWitness* why = nullptr;    // hsr why's pixels, where it records their histories; null: not asked (renderer/steps/why.hpp)
 };
 
 // A surface algorithm's answer, written into a frame of the view's size (which a caller
@@ -101,6 +103,8 @@ struct AlgorithmEntry {
   // It can leave triangles out (request.triangles): culling stages may run before it,
   // and the transparency pass can ask it for the opaque surfaces alone.
   bool takesTriangleSubsets = false;
+  // It records the history of the pixels hsr why asks about (VisibilityRequest::why).
+  bool answersWhy = false;
   // It decides with a depth buffer: the format its knobs chose (what a tie is a tie of:
   // hsr render's note on depth ties, and its advice).
   std::function<DepthFormat(const KnobValues&)> depthFormat;

@@ -1,4 +1,4 @@
-// The hsr subcommands of the command line itself: render, list, diff and pvs (compare, sweep
+// The hsr subcommands of the command line itself: render, why, list, diff and pvs (compare, sweep
 // and study are the studies', studies/studies.hpp). Each validates all of its input
 // before doing any work, throws InputError for bad input (main prints it as one line and
 // exits 2), and writes its output files only when all of them are complete.
@@ -26,6 +26,20 @@ struct RenderOptions {
 };
 int render(const RenderOptions& options);
 int list();
+
+// hsr why: how an algorithm decided some pixels, beside the exact reference's answer
+// (pipeline/why.hpp), as text or JSON on stdout.
+struct WhyOptions {
+  std::string scene;
+  std::string algorithm = "zbuffer";
+  std::string variant, depthFormat, size;
+  std::vector<std::string> knobs;
+  std::string cull;
+  std::vector<std::string> pixels;  // "X,Y" each
+  bool json = false;
+  int threads = 0;
+};
+int why(const WhyOptions& options);
 
 struct DiffOptions {
   std::string first, second;

@@ -73,6 +73,19 @@ int main(int argc, char** argv) {
   renderCommand->add_flag("--explain", render.explain,
                           "print the passes the scene's effects call for and why, then what was decided and the time of each pass");
 
+  hsr::cli::WhyOptions why;
+  CLI::App* whyCommand = app.add_subcommand("why", "how an algorithm decided a pixel, step by step, beside the exact reference's answer");
+  whyCommand->add_option("scene", why.scene, "scene file (TOML)")->required();
+  whyCommand->add_option("--pixel", why.pixels, "X,Y: a column and a row from the top left (repeatable)")->required();
+  whyCommand->add_option("--algo", why.algorithm, "algorithm (see `hsr list`)")->capture_default_str();
+  whyCommand->add_option("--variant", why.variant, "shorthand for --knob variant=V");
+  whyCommand->add_option("--depth-format", why.depthFormat, "shorthand for --knob depth-format=F");
+  whyCommand->add_option("--knob", why.knobs, "NAME=VALUE, any knob `hsr list` shows (repeatable)");
+  whyCommand->add_option("--cull", why.cull, "culling stages run before the algorithm, in order: STAGE[:VARIANT],...");
+  whyCommand->add_option("--size", why.size, "WIDTHxHEIGHT, overrides the scene's image size");
+  whyCommand->add_flag("--json", why.json, "print the answer as JSON");
+  threadsOption(whyCommand, why.threads);
+
   hsr::studies::CompareOptions compare;
   CLI::App* compareCommand = app.add_subcommand(
       "compare", "every algorithm against the exact reference: time, error, memory, counters, contact sheet");
@@ -160,6 +173,7 @@ int main(int argc, char** argv) {
   };
   try {
     if (*renderCommand) return hsr::cli::render(render);
+    if (*whyCommand) return hsr::cli::why(why);
     if (*compareCommand) return reported(hsr::studies::compare(compare), compare.out, "hsr compare");
     if (*sweepCommand) return reported(hsr::studies::sweep(sweep), sweep.out, "hsr sweep");
     if (*studyCommand) return reported(hsr::studies::study(study), hsr::studies::studyFolder(study), "hsr study " + study.name);

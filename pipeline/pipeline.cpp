@@ -39,6 +39,7 @@ struct Context {
   LineSet drawing = {};
   std::optional<ShadowMaps> shadowMaps = {};
   std::optional<PixelShader<float>> shader = {};  // built by the first pass that shades
+  PixelWitness* why = nullptr;                     // hsr why's pixels; null unless asked
 
   PixelShader<float>& pixelShader() {
     if (!shader) shader.emplace(scene, camera, shadowMaps ? &*shadowMaps : nullptr);
@@ -117,8 +118,9 @@ void runVisibility(Context& context) {
         context.visibility.frame = Frame(scene.width(), scene.height());
       context.visibility.polygons.clear();  // what only some algorithms answer, never left from another's
       context.visibility.coverage.reset();
-      algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats, context.steps},
+      algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats, context.steps, context.why},
                            context.configuration.knobs, context.visibility);
+      if (context.why) context.stats.add("why: events recorded", context.why->events());
       return;
     }
   }
@@ -351,9 +353,11 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 }
 
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
-                            Visibility& visibility, const culling::PreviousFrame* previous) {
+                            Visibility& visibility, const culling::PreviousFrame* previous, PixelWitness* why) {
   HSR_CHECK(configuration.algorithm->kind == AlgorithmKind::surface);
+  HSR_CHECK(!why || configuration.algorithm->answersWhy);
   Context context{scene, scene.camera(), configuration, threads, stats, previous, nullptr, std::nullopt, visibility};
+  context.why = why;
   runPasses(context, kVisibilityPasses);
   return context.kept ? std::move(*context.kept) : VisibleSet::everything(scene);
 }

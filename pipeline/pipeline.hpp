@@ -84,9 +84,11 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 // The culling and visibility passes alone, into `visibility` (its frame reused when it
 // has the scene's size): what the studies time when they compare visibility methods,
 // which the shading passes would only add the same cost to. Returns what the culling
-// stages kept (every triangle when there are none).
+// stages kept (every triangle when there are none). `why`: the pixels hsr why asks about,
+// whose histories an algorithm that answers why (AlgorithmEntry::answersWhy) records, and
+// the counter "why: events recorded"; null: none asked, and no provenance work done.
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
-                            Visibility& visibility, const culling::PreviousFrame* previous = nullptr);
+                            Visibility& visibility, const culling::PreviousFrame* previous = nullptr, PixelWitness* why = nullptr);
 
 // The time of each pass that ran, in pipeline order, from a render's Stats.
 struct PassTime {

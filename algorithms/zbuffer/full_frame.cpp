@@ -68,7 +68,8 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     const DepthEncoding encoding = depthEncoding(format, geometry.camera);
     // The fast path runs float formats with the depth test on, on an x86 CPU with AVX2.
     constexpr bool kFastPathBuilt = kX86 && (std::is_same_v<Format, Float32Depth> || std::is_same_v<Format, ReversedFloat32Depth>);
-    const bool simd = kFastPathBuilt && options.path == Path::simd && cpuHasAvx2();
+    // hsr why's pixels are drawn by the textbook loop, where each fragment is tested alone.
+    const bool simd = kFastPathBuilt && options.path == Path::simd && cpuHasAvx2() && !options.witness;
     // The textbook's depth buffer covers the whole frame. The fast path draws each tile
     // in a buffer of its own, one per worker, which stays in the cache while the tile is
     // drawn (a tiling GPU keeps its tile in on-chip memory for the same reason): the same
@@ -83,7 +84,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     parallelFor(bins.size(), threads, [&](std::size_t index, int worker) {
       const TileGrid::Rect area = tiles.rect(index);
       using TileDepth = DepthBuffer<typename Format::Stored>;
-      DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other tiles
+      DepthTest<Format> test{encoding, options.witness, &geometry.camera};  // on this thread's stack: no cache line shared with other tiles
       const Tile<Format> tile{area, geometry, bins[index],
                               simd ? TileDepth{&depth[std::size_t(worker) * tiles.largestTileArea()], std::size_t(area.x1 - area.x0), area.x0, area.y0}
                                    : TileDepth{depth.get(), std::size_t(frame.width), 0, 0},

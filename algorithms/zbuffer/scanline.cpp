@@ -32,7 +32,7 @@ void recordRow(const Recording& recording, const CameraTransform& view, const Fr
 }  // namespace
 
 void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                    bool depthTest, const Recording* recording) {
+                    bool depthTest, const Recording* recording, PixelWitness* witness) {
   PhaseTimer timer(stats, "rasterization");
   const auto& triangles = geometry.triangles;
 
@@ -49,7 +49,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
     parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t band, int) {
       const auto [first, last] = partRange(static_cast<std::size_t>(frame.height), static_cast<std::size_t>(workers), band);
       std::vector<typename Format::Stored> depthRow(static_cast<std::size_t>(frame.width));
-      DepthTest<Format> test{encoding};  // on this thread's stack: no cache line shared with other bands
+      DepthTest<Format> test{encoding, witness, &geometry.camera};  // on this thread's stack: no cache line shared with other bands
       // Step 2: the active list starts with the triangles that began above the band and reach into it.
       ActiveTriangles activeList(triangles, startingAt, first);
       for (std::size_t y = first; y < last; ++y) {

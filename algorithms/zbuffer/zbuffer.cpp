@@ -23,9 +23,10 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   if (request.steps) recording.emplace(Recording{*request.steps, request.scene});
   const Recording* steps = recording ? &*recording : nullptr;
   if (knobs.variant == Variant::full)
-    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, {knobs.depthTest, knobs.path, steps});
+    renderFullFrame(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats,
+                    {knobs.depthTest, knobs.path, steps, request.why});
   else
-    renderScanline(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps);
+    renderScanline(geometry, knobs.depthFormat, request.threads, visibility.frame, request.stats, knobs.depthTest, steps, request.why);
 }
 
 AlgorithmEntry entry() {
@@ -36,6 +37,7 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"screen triangles", "fragments tested", "fragments written", "fragments skipped by block depth"};
   entry.studyConfigurations = {{}, {{"path", "scalar"}}, {{"variant", "scanline"}}, {{"depth-format", "unorm24"}}, {{"depth-format", "unorm16"}}};
   entry.takesTriangleSubsets = true;
+  entry.answersWhy = true;
   entry.depthFormat = [](const KnobValues& knobs) { return knobs.as<Knobs>().depthFormat; };
   setVisibility(entry, visibility);
   return entry;

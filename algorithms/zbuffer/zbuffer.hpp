@@ -8,8 +8,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <span>
+#include <string>
+#include <type_traits>
 
 #include "algorithms/algorithm.hpp"
 #include "algorithms/knobs.hpp"
@@ -18,6 +21,7 @@
 #include "renderer/raster/screen_triangles.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/steps/steps.hpp"
+#include "renderer/steps/why.hpp"
 #include "renderer/util/conventions.hpp"
 #include "renderer/util/stats.hpp"
 
@@ -65,7 +69,8 @@ inline const KnobTable<Knobs>& knobTable() {
 // The visibility pass: the geometry stage, then the chosen variant, into visibility.frame
 // (ids and depth). threads: 0 = all cores; the same bits for every count. Stats:
 // "fragments tested", "fragments written", "depth ties" (DepthTest), "depth buffer
-// bytes", and the geometry stage's.
+// bytes", and the geometry stage's. With request.why, every fragment tested at a pixel
+// asked about is recorded there (DepthTest), and the full frame runs the textbook loop.
 void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility);
 
 // The registry's entry (algorithms/algorithm.hpp).
@@ -86,11 +91,12 @@ struct FullFrameOptions {
   bool depthTest = true;
   Path path = Path::simd;
   const Recording* recording = nullptr;
+  PixelWitness* witness = nullptr;  // hsr why's pixels (DepthTest), drawn by the textbook loop
 };
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
                      const FullFrameOptions& options = {});
 void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
-                    bool depthTest = true, const Recording* recording = nullptr);
+                    bool depthTest = true, const Recording* recording = nullptr, PixelWitness* witness = nullptr);
 
 // A step's picture: the surfaces the ids show so far beside the depth buffer, the
 // triangles just drawn outlined in red.
@@ -119,6 +125,10 @@ template <typename Format>
 struct WithoutDepthTest : Format {
   static bool nearer(typename Format::Stored, typename Format::Stored) { return true; }
 };
+template <typename Format>
+inline constexpr bool kTestsDepth = true;
+template <typename Format>
+inline constexpr bool kTestsDepth<WithoutDepthTest<Format>> = false;
 
 // withDepthFormat, with the test switched off when depthTest is false.
 template <typename Visitor>
@@ -137,23 +147,61 @@ void withDepthTest(DepthFormat format, bool depthTest, Visitor&& visit) {
 // depth the pixel holds is a pixel the format cannot order, decided by submission order.
 template <typename Format>
 struct DepthTest {
+  using Stored = typename Format::Stored;
   DepthEncoding encoding;
   DepthCounts counts;
   std::int64_t activeTriangles = 0;
+  // hsr why: the pixels asked about, and the camera their depths are decoded with; null
+  // when nothing is asked, and then the test does no more than the textbook's.
+  PixelWitness* witness = nullptr;
+  const CameraTransform* witnessCamera = nullptr;
 
   DepthTest() = default;
-  explicit DepthTest(const DepthEncoding& encoding_) : encoding(encoding_) {}
+  explicit DepthTest(const DepthEncoding& encoding_, PixelWitness* witness_ = nullptr, const CameraTransform* camera_ = nullptr)
+      : encoding(encoding_), witness(witness_), witnessCamera(camera_) {}
 
-  void test(const ScreenTriangle& tri, int x, int y, typename Format::Stored& stored, std::uint32_t& id) {
+  void test(const ScreenTriangle& tri, int x, int y, Stored& stored, std::uint32_t& id) {
     ++counts.tested;
     const auto z = Format::store(encoding.z(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
+    if (witness) [[unlikely]] witnessFragment(tri, x, y, z, stored, id);
     if (!Format::nearer(z, stored)) {
-      counts.ties += z == stored && id != conventions::kBackgroundId && id != tri.triangle + 1;
+      counts.ties += isTie(tri, z, stored, id);
       return;
     }
     stored = z;
     id = tri.triangle + 1;
     ++counts.written;
+  }
+
+  // A fragment of another triangle at exactly the depth the pixel holds.
+  static bool isTie(const ScreenTriangle& tri, Stored z, Stored stored, std::uint32_t id) {
+    return z == stored && id != conventions::kBackgroundId && id != tri.triangle + 1;
+  }
+
+  // hsr why: the fragment, before the test decides it, in the history of its pixel if
+  // that is one asked about: its triangle, its depth as stored, what the pixel held and
+  // the outcome.
+  void witnessFragment(const ScreenTriangle& tri, int x, int y, Stored z, Stored stored, std::uint32_t id) const {
+    std::vector<PixelEvent>* history = witness->at(x, y);
+    if (!history) return;
+    const bool written = Format::nearer(z, stored);
+    const std::string held = id == conventions::kBackgroundId ? "the far end (cleared)" : "triangle " + std::to_string(id - 1) + "'s " + text(stored);
+    std::string outcome = !kTestsDepth<Format> ? "written (no depth test)"
+                          : written           ? "written: nearer than what the pixel held"
+                          : isTie(tri, z, stored, id) ? "tie: the same stored depth; the triangle drawn first keeps the pixel"
+                                                      : "lost the depth test";
+    history->push_back({tri.triangle + 1, std::move(outcome), "depth stored " + text(z) + ", the pixel held " + held,
+                        distance(tri.triangle + 1, z, *witnessCamera), written});
+  }
+
+  static std::string text(Stored value) {
+    if constexpr (std::is_floating_point_v<Stored>) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.9g", double(value));
+      return buffer;
+    } else {
+      return std::to_string(value);
+    }
   }
 
   // What the buffer stored, decoded back to a distance along the view axis

@@ -204,6 +204,13 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"depth-not-exr", kCube + " -o OUT --depth " + test::outputPath("depth.png").string(), "expected a file name ending in .exr"},
         Case{"threads-negative", kCube + " --threads -3 -o OUT", "--threads"},
         // hsr compare: everything is checked before the first render, so no folder appears.
+        Case{"why-pixel-outside-the-image", kCube + " --size 64x48 --pixel 64,10",
+             "--pixel 64,10: outside the 64x48 image; expected X in [0, 63] and Y in [0, 47]", "why"},
+        Case{"why-pixel-not-a-pair", kCube + " --pixel 3x4", "--pixel 3x4: expected X,Y", "why"},
+        Case{"why-pixel-twice", kCube + " --pixel 3,4 --pixel 3,4", "--pixel 3,4: given twice; expected each pixel once", "why"},
+        Case{"why-algorithm-not-followed", kCube + " --pixel 3,4 --algo warnock", "--algo warnock: hsr why follows the loops of zbuffer", "why"},
+        Case{"why-line-algorithm", kCube + " --pixel 3,4 --algo appel", "--algo appel: hsr why follows the loops of zbuffer", "why"},
+        Case{"why-no-pixel", kCube, "--pixel is required", "why"},
         Case{"compare-unknown-algorithm", kCube + " --algos zbufer --out OUT", "--algos zbufer: unknown algorithm", "compare"},
         Case{"compare-bad-knob", kCube + " --algos zbuffer:depth-format=float16 --out OUT",
              "--algos zbuffer: depth-format=float16: zbuffer depth-format must be one of", "compare"},

@@ -389,6 +389,37 @@ TEST(Render, DepthTiesAreCountedAndWarnedAboutWithAFinerFormat) {
   EXPECT_NE(coplanar.output.find("no format resolves finer than reversed-float32's"), std::string::npos) << coplanar.output;
 }
 
+// hsr why follows the z-buffer's fragments at a pixel. On far_layers the back layer's
+// fragment ties with the front's in float32 and loses the depth test in reversed float32;
+// with the depth test off it replaces the front, which the verdict names. On counters at
+// unorm16, a tie kept by drawing order loses the reference's triangle.
+TEST(Why, FollowsTheZbuffersFragmentsAndSaysWhatLostTheReferencesTriangle) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes;
+  const std::string farLayers = why + "hard/far_layers.toml --pixel 160,120 --size 320x240";
+  const test::CommandResult float32 = test::runCommand(farLayers);
+  ASSERT_EQ(float32.exitCode, 0) << float32.output;
+  for (const char* line : {"pixel (160, 120): 2 events, in the order the algorithm's loop met them",
+                           "1. triangle 0 of \"front\": written: nearer than what the pixel held",
+                           "depth stored 0.967974126, the pixel held the far end (cleared)",
+                           "2. triangle 2 of \"back\": tie: the same stored depth; the triangle drawn first keeps the pixel",
+                           "the exact reference: triangle 0 of \"front\" at distance 3.0308671", "=> agrees with the exact reference"})
+    EXPECT_NE(float32.output.find(line), std::string::npos) << line << "\n" << float32.output;
+  const test::CommandResult reversed = test::runCommand(farLayers + " --depth-format reversed-float32");
+  EXPECT_NE(reversed.output.find("2. triangle 2 of \"back\": lost the depth test"), std::string::npos) << reversed.output;
+  const test::CommandResult untested = test::runCommand(farLayers + " --knob depth-test=off");
+  EXPECT_NE(untested.output.find("=> differs: the reference shows triangle 0 of \"front\", which was shown (event 1) and then "
+                                 "replaced by triangle 2 of \"back\" (event 2: written (no depth test))"),
+            std::string::npos) << untested.output;
+  const std::string counters = why + "counters.toml --pixel 225,89 --size 320x180";
+  const test::CommandResult unorm16 = test::runCommand(counters + " --depth-format unorm16 --json");
+  ASSERT_EQ(unorm16.exitCode, 0) << unorm16.output;
+  EXPECT_EQ(unorm16.output.rfind("{\"scene\": ", 0), 0u) << unorm16.output;
+  for (const char* part : {"\"agrees\": false", "\"verdict\": \"differs: the reference shows triangle ", ") tie: the same stored depth"})
+    EXPECT_NE(unorm16.output.find(part), std::string::npos) << part << "\n" << unorm16.output;
+  const test::CommandResult finer = test::runCommand(counters + " --depth-format reversed-float32");
+  EXPECT_NE(finer.output.find("=> agrees with the exact reference"), std::string::npos) << finer.output;
+}
+
 TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
   const auto folder = freshFolder("study-effects");
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " study effects --frames 1 --size 160x100 --out " +

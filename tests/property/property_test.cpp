@@ -18,6 +18,7 @@
 #include "floating_point_traps.hpp"
 #include "lines/qi_support.hpp"
 #include "metamorphic.hpp"
+#include "pipeline/why.hpp"
 #include "property/random_scene.hpp"
 #include "renderer/reference/metrics.hpp"
 #include "renderer/reference/reference.hpp"
@@ -149,6 +150,52 @@ TEST(RandomScenes, AppelQuantitativeInvisibilityKeepsItsInvariants) {
     EXPECT_GT(drawings, std::int64_t(sceneCount) / 10) << "too few scenes Appel accepts to test anything";
   }
   std::printf("%ld drawings, %ld pieces' QI recounted\n", drawings, counted);
+}
+
+// hsr why (pipeline/why.hpp) asked about every pixel: each history ends on the pixel a
+// render without why shows (why changes nothing, and its account of the loop is the
+// loop's), every fragment tested is in some history, a render without why records
+// nothing, and the reference's answers carry the whole-image reference's ids, ambiguous
+// pixels and exact fall-backs.
+TEST(RandomScenes, WhyHistoriesEndOnTheImagesPixelAndTheReferenceAnswersAsTheWholeImage) {
+  const std::vector<KnobSettings> configurations = {{{"variant", "full"}, {"depth-format", "float32"}},
+                                                    {{"variant", "scanline"}, {"depth-format", "unorm16"}},
+                                                    {{"variant", "full"}, {"depth-test", "off"}}};
+  long pixels = 0, events = 0;
+  for (std::uint64_t seed = firstSeed; seed < firstSeed + sceneCount; ++seed) {
+    const Judged judged(seed);
+    const PreparedScene& scene = judged.prepared;
+    std::vector<PixelWitness::Pixel> every;
+    for (int y = 0; y < scene.height(); ++y)
+      for (int x = 0; x < scene.width(); ++x) every.push_back({x, y});
+    for (const KnobSettings& knobs : configurations) {
+      const pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm("zbuffer"), knobs);
+      const std::string where = configuration.knobs.described() + " on " + judged.where(seed);
+      Stats plainStats, whyStats;
+      const Frame plain = pipeline::render(scene, configuration, 1, plainStats).frame;
+      ASSERT_EQ(plainStats.counter("why: events recorded"), 0) << where;
+      const std::vector<pipeline::PixelAnswer> answers = pipeline::explainPixels(scene, configuration, every, 2, whyStats);
+      ASSERT_EQ(whyStats.counter("why: events recorded"), whyStats.counter("fragments tested")) << where;
+      std::int64_t ambiguous = 0, exact = 0;
+      for (const pipeline::PixelAnswer& answer : answers) {
+        const std::size_t at = std::size_t(answer.pixel.y) * std::size_t(scene.width()) + std::size_t(answer.pixel.x);
+        std::uint32_t last = conventions::kBackgroundId;
+        for (const PixelEvent& event : answer.history)
+          if (event.shown) last = event.id;
+        ASSERT_EQ(last, plain.ids[at]) << where << ", pixel " << answer.pixel.x << "," << answer.pixel.y;
+        ASSERT_EQ(answer.shown, plain.ids[at]) << where;
+        ASSERT_EQ(answer.reference.id, judged.truth.frame.ids[at]) << where;
+        ASSERT_EQ(answer.reference.ambiguous, judged.truth.ambiguous[at] != 0) << where;
+        ambiguous += answer.reference.ambiguous;
+        exact += answer.reference.usedExact;
+        events += long(answer.history.size());
+      }
+      ASSERT_EQ(ambiguous, judged.truth.ambiguousPixels) << where;
+      ASSERT_EQ(exact, judged.truth.exactFallbacks) << where;
+      pixels += long(answers.size());
+    }
+  }
+  std::printf("%ld pixels asked about, %ld events in their histories\n", pixels, events);
 }
 
 // The metamorphic property (tests/metamorphic.hpp) on every fourth scene (each costs six

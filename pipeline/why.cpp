@@ -1,0 +1,143 @@
+#include "pipeline/why.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "renderer/util/conventions.hpp"
+#include "renderer/util/markup.hpp"
+
+namespace hsr::pipeline {
+namespace {
+
+std::string number(double value, const char* format = "%.9g") {
+  char text[40];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+std::string triangleOf(const PreparedScene& scene, std::uint32_t id) {
+  return id == conventions::kBackgroundId ? "the background" : scene.triangleName(id - 1);
+}
+
+// Why the algorithm's answer differs from the reference's, from the history: the
+// reference's triangle lost there (the depth test, a tie kept by drawing order), or was
+// shown and then replaced, or was culled, or never reached the pixel (the rasterizer's
+// coverage rule, or clipping, left it out).
+std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
+  const std::string expected = triangleOf(scene, answer.reference.id);
+  if (answer.shown == answer.reference.id) return "agrees with the exact reference";
+  if (answer.reference.ambiguous)
+    return "a certified tie: two or more triangles are exactly nearest here, so any of them is right (the reference names " + expected + ")";
+  const std::string differs = "differs: the reference shows " + expected + ", ";
+  if (answer.culled) return differs + "which the culling stages removed before the algorithm ran";
+  const auto& history = answer.history;
+  std::size_t met = history.size();  // the reference's triangle's last event here
+  for (std::size_t i = 0; i < history.size(); ++i)
+    if (history[i].id == answer.reference.id) met = i;
+  if (met == history.size())
+    return differs + (answer.reference.id == conventions::kBackgroundId
+                          ? "where nothing lies between the near and far planes"
+                          : "which never reached this pixel (the rasterizer did not cover the pixel's center with it, or it was clipped)");
+  const auto event = [](std::size_t i) { return "event " + std::to_string(i + 1); };
+  if (!history[met].shown) return differs + "whose fragment (" + event(met) + ") " + history[met].outcome + ": " + history[met].detail;
+  std::size_t replaced = met + 1;
+  while (replaced < history.size() && !history[replaced].shown) ++replaced;
+  HSR_CHECK(replaced < history.size());  // something replaced it, or the pixel would show it
+  return differs + "which was shown (" + event(met) + ") and then replaced by " + triangleOf(scene, history[replaced].id) + " (" +
+         event(replaced) + ": " + history[replaced].outcome + ")";
+}
+
+std::string jsonNumber(double value) { return std::isfinite(value) ? number(value, "%.17g") : "null"; }
+std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgroundId ? "null" : std::to_string(id - 1); }
+
+}  // namespace
+
+std::string algorithmsAnsweringWhy() {
+  std::string names;
+  for (const AlgorithmEntry& entry : algorithms())
+    if (entry.answersWhy) names += (names.empty() ? "" : ", ") + entry.name;
+  return names;
+}
+
+std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configuration& configuration,
+                                       const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats) {
+  PixelWitness witness(pixels, scene.width());
+  Visibility visibility;
+  const VisibleSet kept = renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness);
+  Stats referenceStats;
+  const SurfaceReference reference(scene, referenceStats);
+  const CameraTransform& camera = scene.camera();
+  std::vector<PixelAnswer> answers;
+  for (std::size_t asked = 0; asked < witness.count(); ++asked) {
+    PixelAnswer answer;
+    answer.pixel = witness.pixel(asked);
+    answer.history = witness.history(asked);
+    const std::size_t at = std::size_t(answer.pixel.y) * std::size_t(scene.width()) + std::size_t(answer.pixel.x);
+    answer.shown = visibility.frame.ids[at];
+    answer.distance = visibility.frame.depth[at];
+    SurfaceReference::Counters counters;
+    answer.reference = reference.trace(
+        camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters);
+    answer.culled = answer.reference.id != conventions::kBackgroundId &&
+                    !std::binary_search(kept.triangles.begin(), kept.triangles.end(), answer.reference.id - 1);
+    answer.agrees = answer.shown == answer.reference.id || answer.reference.ambiguous;
+    answer.verdict = verdictOf(scene, answer);
+    answers.push_back(std::move(answer));
+  }
+  return answers;
+}
+
+std::string whyText(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
+                    const std::vector<PixelAnswer>& answers) {
+  std::string text = "hsr why: " + sceneName + " at " + std::to_string(scene.width()) + "x" + std::to_string(scene.height()) +
+                     " with " + configuration.algorithm->name + " (" + configuration.knobs.described() + ")" +
+                     (configuration.culling.empty() ? "" : " after culling") + "\n";
+  for (const PixelAnswer& answer : answers) {
+    const std::size_t count = answer.history.size();
+    text += "\npixel (" + std::to_string(answer.pixel.x) + ", " + std::to_string(answer.pixel.y) + "): " + std::to_string(count) +
+            (count == 1 ? " event" : " events") + ", in the order the algorithm's loop met them\n";
+    for (std::size_t i = 0; i < count; ++i) {
+      const PixelEvent& event = answer.history[i];
+      text += "  " + std::to_string(i + 1) + ". " + triangleOf(scene, event.id) + ": " + event.outcome + "\n     " + event.detail +
+              (std::isnan(event.distance) ? "" : "; distance " + number(event.distance)) + "\n";
+    }
+    text += "  shows " + triangleOf(scene, answer.shown) +
+            (answer.shown == conventions::kBackgroundId ? "" : " at distance " + number(answer.distance)) + "\n";
+    const ReferenceHit& hit = answer.reference;
+    text += "  the exact reference: " + triangleOf(scene, hit.id) +
+            (hit.id == conventions::kBackgroundId ? "" : " at distance " + number(hit.distance)) + ", decided " +
+            (hit.usedExact ? "with exact arithmetic (floating point could not)" : "in floating point within its error bounds") +
+            (hit.ambiguous ? "; a certified tie" : "") + "\n";
+    text += "  => " + answer.verdict + "\n";
+  }
+  return text;
+}
+
+std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
+                    const std::vector<PixelAnswer>& answers) {
+  std::string json = "{\"scene\": " + jsonString(sceneName) + ", \"algorithm\": " + jsonString(configuration.algorithm->name) +
+                     ", \"knobs\": " + jsonString(configuration.knobs.described()) + ", \"width\": " + std::to_string(scene.width()) +
+                     ", \"height\": " + std::to_string(scene.height()) + ", \"pixels\": [";
+  for (std::size_t p = 0; p < answers.size(); ++p) {
+    const PixelAnswer& answer = answers[p];
+    json += std::string(p ? ", " : "") + "\n  {\"x\": " + std::to_string(answer.pixel.x) + ", \"y\": " + std::to_string(answer.pixel.y) +
+            ", \"history\": [";
+    for (std::size_t i = 0; i < answer.history.size(); ++i) {
+      const PixelEvent& event = answer.history[i];
+      json += std::string(i ? ", " : "") + "\n    {\"triangle\": " + jsonTriangle(event.id) + ", \"name\": " + jsonString(triangleOf(scene, event.id)) +
+              ", \"outcome\": " + jsonString(event.outcome) + ", \"detail\": " + jsonString(event.detail) +
+              ", \"distance\": " + jsonNumber(event.distance) + ", \"shown\": " + (event.shown ? "true" : "false") + "}";
+    }
+    const ReferenceHit& hit = answer.reference;
+    json += "],\n   \"shows\": {\"triangle\": " + jsonTriangle(answer.shown) + ", \"name\": " + jsonString(triangleOf(scene, answer.shown)) +
+            ", \"distance\": " + jsonNumber(answer.distance) + "},\n   \"reference\": {\"triangle\": " + jsonTriangle(hit.id) +
+            ", \"name\": " + jsonString(triangleOf(scene, hit.id)) + ", \"distance\": " + jsonNumber(hit.distance) +
+            ", \"ambiguous\": " + (hit.ambiguous ? "true" : "false") + ", \"exact_fallback\": " + (hit.usedExact ? "true" : "false") +
+            "},\n   \"culled\": " + (answer.culled ? "true" : "false") + ", \"agrees\": " + (answer.agrees ? "true" : "false") +
+            ", \"verdict\": " + jsonString(answer.verdict) + "}";
+  }
+  return json + "\n]}\n";
+}
+
+}  // namespace hsr::pipeline

@@ -1,0 +1,52 @@
+// hsr why: how an algorithm decided a pixel, from its own loops, beside the exact
+// reference's certified answer for the same pixel, and why the two differ when they do.
+//
+// The algorithm runs once with a PixelWitness (renderer/steps/why.hpp) for the pixels
+// asked about: its loops record every event they meet there (for the z-buffer, every
+// fragment tested, with its stored depth, what the pixel held and the outcome). The
+// reference traces the ray through each pixel's center as the whole-image reference
+// does (renderer/reference/reference.hpp): the winner, its distance, whether exact
+// arithmetic decided it and whether the pixel is a certified tie.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pipeline/pipeline.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/steps/why.hpp"
+
+namespace hsr::pipeline {
+
+struct PixelAnswer {
+  PixelWitness::Pixel pixel;
+  std::vector<PixelEvent> history;  // in the order the algorithm's loops met the events
+  std::uint32_t shown = 0;          // the id the algorithm's frame holds there (0: background)
+  double distance = 0;              // and its depth (+infinity for the background)
+  ReferenceHit reference;           // the exact reference's certified answer
+  bool culled = false;              // the reference's triangle was removed by the culling stages
+  // Whether the algorithm is right here: it shows the reference's triangle, or the pixel
+  // is a certified tie (any of the tied triangles is right; the reference names the lowest).
+  bool agrees = false;
+  std::string verdict;              // one sentence: agreement, or what made the difference
+};
+
+// The algorithm (it must answer why: AlgorithmEntry::answersWhy) run once on the scene at
+// its size with the pixels watched (each inside the image, each once), and the reference
+// traced through each. Stats: the render's, with "why: events recorded".
+std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configuration& configuration,
+                                       const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats);
+
+// The answers as a person reads them, and as JSON (one object: the scene, the algorithm
+// and its knobs, the size, and per pixel the history, what it shows, the reference's
+// answer, agrees and the verdict; a triangle is its global index, null for none).
+std::string whyText(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
+                    const std::vector<PixelAnswer>& answers);
+std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
+                    const std::vector<PixelAnswer>& answers);
+
+// The algorithms that answer why, as a list for a message: "zbuffer".
+std::string algorithmsAnsweringWhy();
+
+}  // namespace hsr::pipeline

@@ -1,0 +1,61 @@
+// Why a pixel came out as it did (hsr why): the events an algorithm's own loops meet at
+// the pixels asked about, in the order they meet them, each with what the loop decided
+// and the numbers it decided by. As with steps, an algorithm is handed a PixelWitness
+// only when one is asked for (a null pointer otherwise, so a render without hsr why does
+// no provenance work at all), and it records from its own loops: never a second
+// implementation of the algorithm.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hsr {
+
+struct PixelEvent {
+  std::uint32_t id = 0;  // the triangle the event is about: global index + 1 (0: none)
+  std::string outcome;   // what the loop decided, in the textbook's words ("written", "lost the depth test")
+  std::string detail;    // the numbers it decided by, in the algorithm's own terms
+  // The event's depth as the algorithm stored it, decoded to a distance along the view
+  // axis (as Frame::depth measures it); NaN when the event has none.
+  double distance = std::numeric_limits<double>::quiet_NaN();
+  bool shown = false;  // after the event, the pixel shows its triangle
+};
+
+class PixelWitness {
+ public:
+  struct Pixel {
+    int x, y;
+  };
+  // The pixels asked about (inside an image `width` pixels wide), each once.
+  PixelWitness(std::vector<Pixel> pixels, int width);
+
+  // The history of pixel (x, y) when it is one asked about, else null. An algorithm's
+  // loops call this where they decide a pixel; a pixel is decided by one thread at a
+  // time, so the histories need no lock.
+  std::vector<PixelEvent>* at(int x, int y) {
+    const auto found = std::lower_bound(keys_.begin(), keys_.end(), key(x, y));
+    return found != keys_.end() && *found == key(x, y) ? &histories_[std::size_t(found - keys_.begin())] : nullptr;
+  }
+
+  std::size_t count() const { return pixels_.size(); }
+  const Pixel& pixel(std::size_t asked) const { return pixels_[asked]; }
+  // The asked-th pixel's history, in the order the algorithm met the events.
+  const std::vector<PixelEvent>& history(std::size_t asked) const;
+  // Every event recorded, at all pixels (the counter "why: events recorded").
+  std::int64_t events() const;
+
+ private:
+  std::uint64_t key(int x, int y) const { return std::uint64_t(y) * std::uint64_t(width_) + std::uint64_t(x); }
+  int width_;
+  std::vector<Pixel> pixels_;               // as asked
+  std::vector<std::uint64_t> keys_;         // the pixels' keys, ascending
+  std::vector<std::size_t> askedOrder_;     // keys_[i] is pixels_[askedOrder_[i]]
+  std::vector<std::vector<PixelEvent>> histories_;  // by keys_' order
+};
+
+}  // namespace hsr
