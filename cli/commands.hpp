@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/pipeline.hpp"
+
 namespace hsr::cli {
 
 struct RenderOptions {
@@ -25,6 +27,10 @@ struct RenderOptions {
   int every = 0;          // record every Nth repeated step; 0 = about 40 frames per run
 };
 int render(const RenderOptions& options);
+// The configuration render and why run: the algorithm with --variant, --depth-format and
+// --knob settings, after the --cull stages (InputError for any that is wrong).
+pipeline::Configuration configurationOf(const AlgorithmEntry& algorithm, const std::string& variant, const std::string& depthFormat,
+                                        const std::vector<std::string>& knobs, const std::string& cull);
 int list();
 
 // hsr why: how an algorithm decided some pixels, beside the exact reference's answer

@@ -168,18 +168,24 @@ class StepsFolder {
 
 }  // namespace
 
+pipeline::Configuration configurationOf(const AlgorithmEntry& algorithm, const std::string& variant, const std::string& depthFormat,
+                                        const std::vector<std::string>& knobs, const std::string& cull) {
+  KnobSettings settings;
+  if (!variant.empty()) settings.emplace_back("variant", variant);
+  if (!depthFormat.empty()) settings.emplace_back("depth-format", depthFormat);
+  for (const std::string& knob : knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
+  pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
+  configuration.culling = pipeline::cullingOf(cull, algorithm);
+  return configuration;
+}
+
 int render(const RenderOptions& options) {
   const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
-  KnobSettings settings;
-  if (!options.variant.empty()) settings.emplace_back("variant", options.variant);
-  if (!options.depthFormat.empty()) settings.emplace_back("depth-format", options.depthFormat);
-  for (const std::string& knob : options.knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
-  pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
+  const pipeline::Configuration configuration = configurationOf(algorithm, options.variant, options.depthFormat, options.knobs, options.cull);
 
   const bool lines = algorithm.kind == AlgorithmKind::line;
   const std::filesystem::path output = options.output;
   const LineStyle style = lineStyleOf(options.lineStyle, lines);
-  configuration.culling = pipeline::cullingOf(options.cull, algorithm);
   const bool polygonSvg = output.extension() == ".svg" && algorithm.drawsPolygons;
   if (output.extension() == ".svg" && !lines && !polygonSvg)
     throw InputError("-o " + options.output + ": SVG is for line drawings and visible polygons, and " + algorithm.name +

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <regex>
 
 #include "renderer/util/conventions.hpp"
+#include "renderer/util/error.hpp"
 #include "renderer/util/markup.hpp"
 
 namespace hsr::pipeline {
@@ -53,11 +55,23 @@ std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgrou
 
 }  // namespace
 
-std::string algorithmsAnsweringWhy() {
+void checkAnswersWhy(const AlgorithmEntry& algorithm) {
+  if (algorithm.answersWhy) return;
   std::string names;
   for (const AlgorithmEntry& entry : algorithms())
     if (entry.answersWhy) names += (names.empty() ? "" : ", ") + entry.name;
-  return names;
+  throw InputError("--algo " + algorithm.name + ": hsr why follows the loops of " + names + " so far; expected one of those");
+}
+
+PixelWitness::Pixel pixelOf(const std::string& text, int width, int height) {
+  std::smatch match;
+  if (!std::regex_match(text, match, std::regex(R"(\s*(\d{1,9})\s*,\s*(\d{1,9})\s*)")))
+    throw InputError("--pixel " + text + ": expected X,Y (a column and a row counted from the top left, e.g. 640,360)");
+  const long long x = std::stoll(match[1]), y = std::stoll(match[2]);
+  if (x >= width || y >= height)
+    throw InputError("--pixel " + text + ": outside the " + std::to_string(width) + "x" + std::to_string(height) + " image; expected X in [0, " +
+                     std::to_string(width - 1) + "] and Y in [0, " + std::to_string(height - 1) + "]");
+  return {int(x), int(y)};
 }
 
 std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configuration& configuration,

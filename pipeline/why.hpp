@@ -46,7 +46,11 @@ std::string whyText(const PreparedScene& scene, const std::string& sceneName, co
 std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
                     const std::vector<PixelAnswer>& answers);
 
-// The algorithms that answer why, as a list for a message: "zbuffer".
-std::string algorithmsAnsweringWhy();
+// InputError ("--algo NAME: hsr why follows the loops of zbuffer so far; ...") for an
+// algorithm that does not answer why.
+void checkAnswersWhy(const AlgorithmEntry& algorithm);
+// "X,Y" as a pixel of a width x height image, or InputError naming --pixel and what was
+// expected.
+PixelWitness::Pixel pixelOf(const std::string& text, int width, int height);
 
 }  // namespace hsr::pipeline

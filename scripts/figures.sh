@@ -213,4 +213,5 @@ rm -r "$study"
 # browser"): the site built, served and clicked through in headless chromium.
 bash scripts/web_test.sh > /dev/null
 cp out/web/page.png images/figures/web.png
+cp out/web/why.png images/figures/web-why.png  # a pixel asked why about (README "Asking why")
 echo "figures are in images/figures/"

@@ -243,6 +243,8 @@ async function render() {
     drawIds(width, height, hsr.module.idPixels());
     drawDepth(width, height, hsr.module.depthPixels());
     canvasOf("error", 1, 1);
+    $("whyBox").hidden = true;  // it answered for the render before
+    for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
     showMetrics(result, null);
     $("note").textContent = result.kind === "line" ? "A line drawing: its colour is the drawing, and it has no ids or depth." : "";
     hsr.lastPicture = performance.now();
@@ -268,6 +270,38 @@ async function render() {
   } finally {
     $("render").disabled = false;
   }
+}
+
+// ---- Why a pixel came out as it did: hsr why's answer for the last render's pixel.
+
+// The pixel of a canvas under a click, whatever size the canvas is shown at.
+function pixelUnder(canvas, event) {
+  const box = canvas.getBoundingClientRect();
+  const clamp = (value, size) => Math.min(Math.max(Math.floor(value), 0), size - 1);
+  return [clamp(((event.clientX - box.left) * canvas.width) / box.width, canvas.width),
+          clamp(((event.clientY - box.top) * canvas.height) / box.height, canvas.height)];
+}
+
+// Asks the module why pixel (x, y) came out as it did, and shows the answer; an algorithm
+// whose loops it does not follow gets the command line's line, in the box.
+function why(x, y) {
+  const result = JSON.parse(hsr.module.why(x, y));
+  for (const canvas of document.querySelectorAll(".images canvas")) {
+    const marker = canvas.nextElementSibling;  // the pixel asked about, ringed on every image
+    marker.style.left = `${(100 * (x + 0.5)) / canvas.width}%`;
+    marker.style.top = `${(100 * (y + 0.5)) / canvas.height}%`;
+    marker.hidden = canvas.width <= 1;
+  }
+  $("whyBox").hidden = false;
+  $("whyPixel").textContent = `(${x}, ${y})`;
+  if (result.message) {
+    $("why").textContent = asTheStudentNamesIt(result.message);
+    $("whyBox").className = "";
+    return result;
+  }
+  $("why").textContent = asTheStudentNamesIt(result.text);
+  $("whyBox").className = result.answer.pixels[0].agrees ? "agrees" : "differs";
+  return result;
 }
 
 // ---- The same bits as native: every render's line of hashes (tests/identity), which a
@@ -304,8 +338,13 @@ async function start() {
   $("scene").value = kFirstScene;
   $("size").value = "640x360";
   $("controls").addEventListener("submit", (event) => { event.preventDefault(); render(); });
-  // An image at its own size on a click (a wrong pixel is one pixel), and back.
-  for (const figure of document.querySelectorAll(".images figure")) figure.addEventListener("click", () => figure.classList.toggle("large"));
+  // A click asks why about the pixel under it; a double click shows the image at its own
+  // size (a wrong pixel is one pixel), and back.
+  for (const figure of document.querySelectorAll(".images figure")) {
+    const canvas = figure.querySelector("canvas");
+    canvas.addEventListener("click", (event) => { if (hsr.module && canvas.width > 1) why(...pixelUnder(canvas, event)); });
+    figure.addEventListener("dblclick", () => figure.classList.toggle("large"));
+  }
   $("files").addEventListener("change", async () => {
     try { await loadUserFiles([...$("files").files]); await render(); } catch (error) { $("message").textContent = `hsr: error: ${error.message}`; }
   });
@@ -323,5 +362,5 @@ async function start() {
   document.body.dataset.ready = "true";  // the page's first render is done (the tests wait for it)
 }
 
-window.hsrPage = { render, identity, state: hsr, started };
+window.hsrPage = { render, why, identity, state: hsr, started };
 start().catch((error) => { $("message").textContent = `hsr: error: the page could not start: ${error.message}`; });

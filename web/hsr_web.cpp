@@ -10,6 +10,8 @@
 //                         module's memory, and the counters and times as JSON
 //   compare()             that render against the exact reference: the metrics hsr
 //                         compare prints, as JSON, and the error heat map
+//   why(x, y)             how that render decided pixel (x, y), beside the exact
+//                         reference's answer: what hsr why prints, and its --json
 //   identity(width, N)    every render's line of hashes (tests/identity): the same bits
 //                         as native, checked in the page
 //
@@ -30,6 +32,7 @@
 #include "algorithms/registry.hpp"
 #include "identity/identity.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/why.hpp"
 #include "renderer/reference/metrics.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/scene/scene.hpp"
@@ -87,6 +90,7 @@ std::string registry() {
 // What the last render left for the page: its images (views of these stay valid until
 // the next render), and what comparing it with the exact reference needs.
 struct Shown {
+  std::string sceneName;               // as the page named it
   std::unique_ptr<const Scene> scene;  // the prepared scene points into it
   std::unique_ptr<PreparedScene> prepared;
   const AlgorithmEntry* algorithm = nullptr;
@@ -157,6 +161,7 @@ std::string render(const emscripten::val& request) {
     }
     json += "}";
 
+    last.sceneName = text("scene");
     last.scene = std::move(scene);
     last.prepared = std::move(prepared);
     last.algorithm = &algorithm;
@@ -204,6 +209,25 @@ std::string compare() {
   }
 }
 
+// The last render's pixel (x, y) asked about as hsr why asks (pipeline/why.hpp): {"text":
+// the lines hsr why prints, "answer": its --json}; or the command line's line of error.
+std::string why(int x, int y) {
+  Shown& last = shown();
+  if (!last.algorithm) return messageJson("nothing rendered to ask about");
+  try {
+    pipeline::checkAnswersWhy(*last.algorithm);
+    const PixelWitness::Pixel pixel = pipeline::pixelOf(std::to_string(x) + "," + std::to_string(y), last.prepared->width(), last.prepared->height());
+    Stats stats;
+    const std::vector<pipeline::PixelAnswer> answers = pipeline::explainPixels(*last.prepared, last.configuration, {pixel}, 1, stats);
+    return "{\"text\":" + jsonString(pipeline::whyText(*last.prepared, last.sceneName, last.configuration, answers)) +
+           ",\"answer\":" + pipeline::whyJson(*last.prepared, last.sceneName, last.configuration, answers) + "}";
+  } catch (const InputError& error) {
+    return messageJson(error.what());
+  } catch (const std::bad_alloc&) {
+    return outOfMemoryJson();
+  }
+}
+
 // The last render's images, as views of the module's memory (valid until the next render).
 emscripten::val colorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.color.size(), shown().frame.color.data())); }
 emscripten::val idPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.ids.size(), shown().frame.ids.data())); }
@@ -228,6 +252,7 @@ EMSCRIPTEN_BINDINGS(hsr) {
   emscripten::function("registry", &hsr::web::registry);
   emscripten::function("render", &hsr::web::render);
   emscripten::function("compare", &hsr::web::compare);
+  emscripten::function("why", &hsr::web::why);
   emscripten::function("colorPixels", &hsr::web::colorPixels);
   emscripten::function("idPixels", &hsr::web::idPixels);
   emscripten::function("depthPixels", &hsr::web::depthPixels);

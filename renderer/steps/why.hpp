@@ -54,7 +54,7 @@ class PixelWitness {
   int width_;
   std::vector<Pixel> pixels_;               // as asked
   std::vector<std::uint64_t> keys_;         // the pixels' keys, ascending
-  std::vector<std::size_t> askedOrder_;     // keys_[i] is pixels_[askedOrder_[i]]
+  std::vector<std::size_t> placeOfAsked_;   // pixels_[i]'s key is keys_[placeOfAsked_[i]]
   std::vector<std::vector<PixelEvent>> histories_;  // by keys_' order
 };
 

@@ -4,6 +4,7 @@
 //   - the first render (counters at 640x360) drawn, then its error against the exact
 //     reference, each with the time it took from asking for the page (reported, not
 //     asserted: speed is for benchmarks, and this machine is shared);
+//   - a pixel clicked: the page's answer to "why" is hsr why's, line for line;
 //   - the controls clicked through: another algorithm and its variant, a knob, a culling
 //     stage, each rendering without an error;
 //   - bad input (a broken TOML, an OBJ with a bad face, an absurd size): the one-line
@@ -78,11 +79,40 @@ try {
   check((await text("#differences")).includes("one thread"), "the page says what differs from the command line (one thread, the textbook loops)");
   check((await text("#counters")).includes("fragments tested"), "and its counters");
   await page.screenshot({ path: join(out, "page.png") });
-  await page.click("#error");
+  await page.dblclick("#error");
   const large = await page.$eval("#error", (canvas) => [canvas.closest("figure").classList.contains("large"), canvas.getBoundingClientRect().width, canvas.width]);
-  check(large[0] && Math.round(large[1]) === large[2], `a click shows the error image at its own size (${Math.round(large[1])} of ${large[2]} pixels wide)`);
+  check(large[0] && Math.round(large[1]) === large[2], `a double click shows the error image at its own size (${Math.round(large[1])} of ${large[2]} pixels wide)`);
   await page.screenshot({ path: join(out, "error-large.png"), fullPage: true });
-  await page.click("#error");
+  await page.dblclick("#error");
+
+  // Why: a click on a pixel of an image, shown at its own size or scaled down (where a
+  // CSS pixel spans several of the image's), answers for the pixel under the pointer as
+  // hsr why does on the command line, line for line but the scene's name.
+  const nativeWhy = (scene, pixel, extra = []) => {
+    const run = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", scene), "--pixel", pixel, ...extra], { encoding: "utf8" });
+    return run.stdout.split("\n").slice(1).join("\n").trim();
+  };
+  const clickPixel = async (canvas, x, y) => {
+    const scale = await page.$eval(`#${canvas}`, (c) => [c.getBoundingClientRect().width / c.width, c.getBoundingClientRect().height / c.height]);
+    await page.click(`#${canvas}`, { position: { x: (x + 0.5) * scale[0], y: (y + 0.5) * scale[1] } });
+    await page.waitForFunction(() => !document.getElementById("whyBox").hidden);
+    const [answeredX, answeredY] = (await text("#whyPixel")).match(/\d+/g).map(Number);
+    const within = Math.abs(answeredX - x) <= Math.ceil(1 / scale[0]) && Math.abs(answeredY - y) <= Math.ceil(1 / scale[1]);
+    return { shown: (await text("#why")).split("\n").slice(1).join("\n").trim(), pixel: `${answeredX},${answeredY}`, within, scale: scale[0] };
+  };
+  await page.dblclick("#color");  // at its own size: a CSS pixel is an image pixel
+  for (const [canvas, x, y] of [["color", 320, 180], ["color", 101, 250], ["depth", 500, 60]]) {
+    const answered = await clickPixel(canvas, x, y);
+    const native = nativeWhy("counters.toml", answered.pixel, ["--size", "640x360"]);
+    check(answered.shown === native && answered.within && answered.shown.includes("=> "),
+          `a click near pixel (${x}, ${y}) of the ${canvas} image shown at ${answered.scale.toFixed(2)}x answers for pixel (${answered.pixel}) as hsr why does`);
+    if (answered.shown !== native) console.log(`  page:\n${answered.shown}\n  hsr why:\n${native}`);
+  }
+  const exact = await clickPixel("color", 77, 33);
+  check(exact.pixel === "77,33", `at its own size, the click answers for the pixel under the pointer exactly (${exact.pixel})`);
+  await page.dblclick("#color");
+  await clickPixel("ids", 320, 180);
+  await page.locator("#results").screenshot({ path: join(out, "why.png") });
 
   // The controls: built from the registry, so every algorithm is there.
   const algorithms = await page.$$eval("#algorithm option", (options) => options.map((o) => o.value));
@@ -95,6 +125,10 @@ try {
   let result = await renderWith();
   check(result.message === "" && result.status.includes("painter on hard/cyclic_overlap.toml"), "the painter's newell variant on the cyclic overlap");
   check((await text("#counters")).includes("newell splits"), "with Newell's counters");
+  check(await page.$eval("#whyBox", (box) => box.hidden), "a new render puts away the last render's answer to why");
+  await clickPixel("color", 10, 10);
+  check((await text("#why")).startsWith("hsr: error: --algo painter: hsr why follows the loops of zbuffer") && (await text("#message")) === "",
+        `why for an algorithm whose loops it does not follow: the command line's line, in the box (${await text("#why")})`);
   await page.screenshot({ path: join(out, "painter.png") });
 
   await page.selectOption("#algorithm", "zbuffer");
