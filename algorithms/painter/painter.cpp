@@ -89,9 +89,24 @@ void recordPiece(const PreparedScene& scene, const PaintedPieces& painted, std::
   steps.record(caption + ")", std::move(picture));
 }
 
+// hsr why: a piece painted at a pixel asked about, over whatever the pixel showed.
+void witnessPainting(const PaintedPieces& painted, const PieceFragment& fragment, PixelWitness& why) {
+  std::vector<PixelEvent>* history = why.at(fragment.x, fragment.y);
+  if (!history) return;
+  const Piece& piece = painted.order.pieces[fragment.piece];
+  const std::string cut = piece.cutCount == 0 ? "its whole triangle"
+                                              : "the part of its triangle cut out by " + std::to_string(piece.cutCount) +
+                                                    (piece.cutCount == 1 ? " plane" : " planes");
+  history->push_back({fragment.triangle + 1, "painted over what the pixel showed",
+                      "piece " + std::to_string(fragment.piece + 1) + " of " + std::to_string(painted.order.pieces.size()) +
+                          " in the order, back to front (" + cut + ")",
+                      fragment.depth, true});
+}
+
 }  // namespace
 
-void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats, StepRecorder* steps) {
+void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats, StepRecorder* steps,
+           PixelWitness* why) {
   // With no depth test, a pixel shows whatever was drawn there last.
   PhaseTimer timer(stats, "painting");
   // Steps watch the whole image painted in order: one tile, on one thread.
@@ -113,6 +128,7 @@ void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads
         frame.ids[fragment.pixel] = fragment.triangle + 1;
         frame.depth[fragment.pixel] = fragment.depth;
         if (steps) piecePixels.push_back(fragment.pixel);
+        if (why) witnessPainting(painted, fragment, *why);
       },
       [&](std::size_t, std::uint32_t index) {
         if (!steps) return;
@@ -129,7 +145,7 @@ void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads
 void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility) {
   visibility.painted = order(request, knobs);
   // Step 3: paint the pieces in order, each over what is already there.
-  paint(request.scene, *visibility.painted, request.threads, visibility.frame, request.stats, request.steps);
+  paint(request.scene, *visibility.painted, request.threads, visibility.frame, request.stats, request.steps, request.why);
   visibility.frame.partial = visibility.painted->order.partial;
 }
 
@@ -141,6 +157,7 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"pieces painted", "fragments written", "newell pairs tested", "newell reorders", "newell splits",
                        "bsp nodes", "bsp depth", "bsp splits"};
   entry.studyConfigurations = {{}, {{"variant", "newell"}}, {{"variant", "sort"}}, {{"variant", "sort"}, {"key", "nearest"}}};
+  entry.answersWhy = true;
   setRefusal(entry, refusal);
   entry.takesTriangleSubsets = true;
   setVisibility(entry, visibility);

@@ -91,8 +91,9 @@ PaintedPieces order(const VisibilityRequest& request, const Knobs& knobs);
 
 // Step 3: the pieces painted in order into `frame` (ids and depth), each over what is
 // already there. Stats: "pieces painted", "fragments written", "cut tests"; phase "painting".
+// With `why`, every fragment painted at a pixel asked about is recorded there.
 void paint(const PreparedScene& scene, const PaintedPieces& painted, int threads, Frame& frame, Stats& stats,
-           StepRecorder* steps = nullptr);
+           StepRecorder* steps = nullptr, PixelWitness* why = nullptr);
 
 // The whole algorithm: the order, then step 3, painting it into visibility.frame (ids and
 // depth; the frame is labelled partial when the order is known to be wrong somewhere).

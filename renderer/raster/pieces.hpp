@@ -52,6 +52,7 @@ struct PaintedPieces {
 // One pixel of one piece.
 struct PieceFragment {
   std::uint32_t triangle;  // global triangle index
+  std::uint32_t piece;     // the piece's place in the order (PaintOrder::pieces)
   int x, y;
   std::size_t pixel;       // row-major index into the view's image
   float depth;             // view distance at the pixel center
@@ -122,7 +123,7 @@ std::int64_t paintInOrder(const PreparedScene& scene, const PaintedPieces& paint
           if (piece.cutCount != 0 && !insideCuts(x, y)) return;
           const float depth = static_cast<float>(
               camera.distanceFromScreenAffine(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
-          fragment(tile, PieceFragment{tri.triangle, x, y, std::size_t(y) * std::size_t(tiles.width) + std::size_t(x), depth});
+          fragment(tile, PieceFragment{tri.triangle, index, x, y, std::size_t(y) * std::size_t(tiles.width) + std::size_t(x), depth});
         });
       pieceDone(tile, index);
     }

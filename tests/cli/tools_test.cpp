@@ -420,6 +420,23 @@ TEST(Why, FollowsTheZbuffersFragmentsAndSaysWhatLostTheReferencesTriangle) {
   EXPECT_NE(finer.output.find("=> agrees with the exact reference"), std::string::npos) << finer.output;
 }
 
+// The painter on the cyclic overlap: the depth sort paints "third" (farther) over
+// "second", which the verdict names; Newell's order, with "third" cut, paints them right.
+TEST(Why, FollowsThePaintersPiecesAndSaysWhichPaintedOverTheReferencesTriangle) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/cyclic_overlap.toml --pixel 98,44 --algo painter --variant ";
+  const test::CommandResult sort = test::runCommand(why + "sort");
+  ASSERT_EQ(sort.exitCode, 0) << sort.output;
+  for (const char* line : {"1. triangle 2 of \"second\": painted over what the pixel showed",
+                           "piece 5 of 6 in the order, back to front (its whole triangle); distance 8.541",
+                           "=> differs: the reference shows triangle 2 of \"second\", which was shown (event 1) and then replaced by "
+                           "triangle 4 of \"third\" (event 2: painted over what the pixel showed)"})
+    EXPECT_NE(sort.output.find(line), std::string::npos) << line << "\n" << sort.output;
+  const test::CommandResult newell = test::runCommand(why + "newell");
+  for (const char* line : {"1. triangle 4 of \"third\": painted over what the pixel showed", "(the part of its triangle cut out by 1 plane)",
+                           "=> agrees with the exact reference"})
+    EXPECT_NE(newell.output.find(line), std::string::npos) << line << "\n" << newell.output;
+}
+
 TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
   const auto folder = freshFolder("study-effects");
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " study effects --frames 1 --size 160x100 --out " +

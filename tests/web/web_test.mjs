@@ -126,10 +126,16 @@ try {
   check(result.message === "" && result.status.includes("painter on hard/cyclic_overlap.toml"), "the painter's newell variant on the cyclic overlap");
   check((await text("#counters")).includes("newell splits"), "with Newell's counters");
   check(await page.$eval("#whyBox", (box) => box.hidden), "a new render puts away the last render's answer to why");
-  await clickPixel("color", 10, 10);
-  check((await text("#why")).startsWith("hsr: error: --algo painter: hsr why follows the loops of zbuffer") && (await text("#message")) === "",
-        `why for an algorithm whose loops it does not follow: the command line's line, in the box (${await text("#why")})`);
+  const painted = await clickPixel("color", 98, 44);
+  check(painted.shown === nativeWhy("hard/cyclic_overlap.toml", painted.pixel, ["--algo", "painter", "--variant", "newell"]) &&
+        painted.shown.includes("painted over what the pixel showed"), `the painter's answer to why, as hsr why's (pixel ${painted.pixel})`);
   await page.screenshot({ path: join(out, "painter.png") });
+
+  await page.selectOption("#algorithm", "warnock");
+  result = await renderWith();
+  await clickPixel("color", 10, 10);
+  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo warnock: hsr why follows the loops of zbuffer, painter") &&
+        (await text("#message")) === "", `why for an algorithm whose loops it does not follow: the command line's line, in the box (${await text("#why")})`);
 
   await page.selectOption("#algorithm", "zbuffer");
   await page.selectOption('[id="zbuffer.depth-format"]', "unorm16");
