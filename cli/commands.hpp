@@ -12,38 +12,36 @@
 
 namespace hsr::cli {
 
-struct RenderOptions {
+// What render and why both take: the scene at a size, and the algorithm with its knobs
+// after culling stages, on some threads.
+struct ConfiguredScene {
   std::string scene;
   std::string algorithm = "zbuffer";
   std::string variant, depthFormat, size;
   std::vector<std::string> knobs;
+  std::string cull;  // culling stages before the algorithm: "backface,frustum:sphere"
   int threads = 0;
+};
+// The configuration they run: the algorithm with the --variant, --depth-format and --knob
+// settings, after the --cull stages (InputError for any that is wrong).
+pipeline::Configuration configurationOf(const ConfiguredScene& options);
+
+struct RenderOptions : ConfiguredScene {
   std::string output, depth, ids;
   std::string lineStyle;  // line algorithms: visible | hidden | qi (default visible)
-  std::string cull;       // culling stages before the algorithm: "backface,frustum:sphere"
   bool stats = false;
   bool explain = false;   // print the pass plan before rendering, the decisions and time per pass after
   std::string steps;      // folder for the algorithm's steps (renderer/steps/steps.hpp); "" = none
   int every = 0;          // record every Nth repeated step; 0 = about 40 frames per run
 };
 int render(const RenderOptions& options);
-// The configuration render and why run: the algorithm with --variant, --depth-format and
-// --knob settings, after the --cull stages (InputError for any that is wrong).
-pipeline::Configuration configurationOf(const AlgorithmEntry& algorithm, const std::string& variant, const std::string& depthFormat,
-                                        const std::vector<std::string>& knobs, const std::string& cull);
 int list();
 
 // hsr why: how an algorithm decided some pixels, beside the exact reference's answer
 // (pipeline/why.hpp), as text or JSON on stdout.
-struct WhyOptions {
-  std::string scene;
-  std::string algorithm = "zbuffer";
-  std::string variant, depthFormat, size;
-  std::vector<std::string> knobs;
-  std::string cull;
+struct WhyOptions : ConfiguredScene {
   std::vector<std::string> pixels;  // "X,Y" each
   bool json = false;
-  int threads = 0;
 };
 int why(const WhyOptions& options);
 

@@ -49,20 +49,24 @@ int main(int argc, char** argv) {
     command->add_option("--threads", threads, "worker threads, 0 = all cores")->check(CLI::Range(0, 256))->capture_default_str();
   };
 
+  // What render and why both take (cli::ConfiguredScene).
+  const auto configuredSceneOptions = [&](CLI::App* command, hsr::cli::ConfiguredScene& options) {
+    command->add_option("scene", options.scene, "scene file (TOML)")->required();
+    command->add_option("--algo", options.algorithm, "algorithm (see `hsr list`)")->capture_default_str();
+    command->add_option("--variant", options.variant, "shorthand for --knob variant=V");
+    command->add_option("--depth-format", options.depthFormat, "shorthand for --knob depth-format=F");
+    command->add_option("--knob", options.knobs, "NAME=VALUE, any knob `hsr list` shows (repeatable)");
+    command->add_option("--cull", options.cull, "culling stages run before the algorithm, in order: STAGE[:VARIANT],... (see `hsr list`)");
+    command->add_option("--size", options.size, "WIDTHxHEIGHT, overrides the scene's image size");
+    threadsOption(command, options.threads);
+  };
+
   hsr::cli::RenderOptions render;
   CLI::App* renderCommand = app.add_subcommand("render", "render a scene with one algorithm");
-  renderCommand->add_option("scene", render.scene, "scene file (TOML)")->required();
-  renderCommand->add_option("--algo", render.algorithm, "algorithm (see `hsr list`)")->capture_default_str();
-  renderCommand->add_option("--variant", render.variant, "shorthand for --knob variant=V");
-  renderCommand->add_option("--depth-format", render.depthFormat, "shorthand for --knob depth-format=F");
-  renderCommand->add_option("--knob", render.knobs, "NAME=VALUE, any knob `hsr list` shows (repeatable)");
-  renderCommand->add_option("--size", render.size, "WIDTHxHEIGHT, overrides the scene's image size");
-  threadsOption(renderCommand, render.threads);
+  configuredSceneOptions(renderCommand, render);
   renderCommand->add_option("-o,--output", render.output, "color image (.png), or for a line algorithm a drawing (.svg)")->required();
   renderCommand->add_option("--line-style", render.lineStyle,
                             "line algorithms: visible (default), hidden (hidden parts dashed grey), qi (shade by quantitative invisibility)");
-  renderCommand->add_option("--cull", render.cull,
-                            "culling stages run before the algorithm, in order: STAGE[:VARIANT],... (see `hsr list`)");
   renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
   renderCommand->add_flag("--stats", render.stats, "print counters and phase times");
@@ -75,16 +79,9 @@ int main(int argc, char** argv) {
 
   hsr::cli::WhyOptions why;
   CLI::App* whyCommand = app.add_subcommand("why", "how an algorithm decided a pixel, step by step, beside the exact reference's answer");
-  whyCommand->add_option("scene", why.scene, "scene file (TOML)")->required();
+  configuredSceneOptions(whyCommand, why);
   whyCommand->add_option("--pixel", why.pixels, "X,Y: a column and a row from the top left (repeatable)")->required();
-  whyCommand->add_option("--algo", why.algorithm, "algorithm (see `hsr list`)")->capture_default_str();
-  whyCommand->add_option("--variant", why.variant, "shorthand for --knob variant=V");
-  whyCommand->add_option("--depth-format", why.depthFormat, "shorthand for --knob depth-format=F");
-  whyCommand->add_option("--knob", why.knobs, "NAME=VALUE, any knob `hsr list` shows (repeatable)");
-  whyCommand->add_option("--cull", why.cull, "culling stages run before the algorithm, in order: STAGE[:VARIANT],...");
-  whyCommand->add_option("--size", why.size, "WIDTHxHEIGHT, overrides the scene's image size");
   whyCommand->add_flag("--json", why.json, "print the answer as JSON");
-  threadsOption(whyCommand, why.threads);
 
   hsr::studies::CompareOptions compare;
   CLI::App* compareCommand = app.add_subcommand(

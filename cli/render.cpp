@@ -168,20 +168,20 @@ class StepsFolder {
 
 }  // namespace
 
-pipeline::Configuration configurationOf(const AlgorithmEntry& algorithm, const std::string& variant, const std::string& depthFormat,
-                                        const std::vector<std::string>& knobs, const std::string& cull) {
+pipeline::Configuration configurationOf(const ConfiguredScene& options) {
+  const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
   KnobSettings settings;
-  if (!variant.empty()) settings.emplace_back("variant", variant);
-  if (!depthFormat.empty()) settings.emplace_back("depth-format", depthFormat);
-  for (const std::string& knob : knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
+  if (!options.variant.empty()) settings.emplace_back("variant", options.variant);
+  if (!options.depthFormat.empty()) settings.emplace_back("depth-format", options.depthFormat);
+  for (const std::string& knob : options.knobs) settings.push_back(parseKnobSetting(knob, "--knob"));
   pipeline::Configuration configuration = pipeline::configurationOf(algorithm, settings);
-  configuration.culling = pipeline::cullingOf(cull, algorithm);
+  configuration.culling = pipeline::cullingOf(options.cull, algorithm);
   return configuration;
 }
 
 int render(const RenderOptions& options) {
-  const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
-  const pipeline::Configuration configuration = configurationOf(algorithm, options.variant, options.depthFormat, options.knobs, options.cull);
+  const pipeline::Configuration configuration = configurationOf(options);
+  const AlgorithmEntry& algorithm = *configuration.algorithm;
 
   const bool lines = algorithm.kind == AlgorithmKind::line;
   const std::filesystem::path output = options.output;

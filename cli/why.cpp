@@ -13,9 +13,8 @@
 namespace hsr::cli {
 
 int why(const WhyOptions& options) {
-  const AlgorithmEntry& algorithm = findAlgorithm(options.algorithm);
-  pipeline::checkAnswersWhy(algorithm);
-  const pipeline::Configuration configuration = configurationOf(algorithm, options.variant, options.depthFormat, options.knobs, options.cull);
+  pipeline::checkAnswersWhy(findAlgorithm(options.algorithm));
+  const pipeline::Configuration configuration = configurationOf(options);
 
   const studies::LoadedScene scene = studies::loadPrepared(options.scene, options.size);
   pipeline::checkRenders(configuration, scene.name, *scene.prepared);
@@ -31,7 +30,7 @@ int why(const WhyOptions& options) {
   try {
     answers = pipeline::explainPixels(*scene.prepared, configuration, pixels, options.threads, stats);
   } catch (const std::bad_alloc&) {
-    throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), algorithm.name));
+    throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), configuration.algorithm->name));
   }
   const std::string shown = options.json ? pipeline::whyJson(*scene.prepared, scene.name, configuration, answers)
                                          : pipeline::whyText(*scene.prepared, scene.name, configuration, answers);

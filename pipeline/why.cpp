@@ -12,9 +12,9 @@
 namespace hsr::pipeline {
 namespace {
 
-std::string number(double value, const char* format = "%.9g") {
+std::string number(double value) {
   char text[40];
-  std::snprintf(text, sizeof text, format, value);
+  std::snprintf(text, sizeof text, "%.9g", value);
   return text;
 }
 
@@ -50,7 +50,6 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
          event(replaced) + ": " + history[replaced].outcome + ")";
 }
 
-std::string jsonNumber(double value) { return std::isfinite(value) ? number(value, "%.17g") : "null"; }
 std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgroundId ? "null" : std::to_string(id - 1); }
 
 }  // namespace

@@ -21,7 +21,6 @@
 #include <emscripten/val.h>
 
 #include <chrono>
-#include <cstdio>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -42,13 +41,6 @@
 namespace hsr::web {
 namespace {
 
-std::string number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
-
 std::string knobsJson(const std::vector<KnobSpec>& knobs) {
   std::string json = "[";
   for (const KnobSpec& knob : knobs) {
@@ -61,7 +53,7 @@ std::string knobsJson(const std::vector<KnobSpec>& knobs) {
     for (std::size_t v = 0; v < knob.variants.size(); ++v) json += (v ? "," : "") + jsonString(knob.variants[v]);
     json += "]";
     if (knob.range)
-      json += ",\"range\":{\"minimum\":" + number(knob.range->minimum) + ",\"maximum\":" + number(knob.range->maximum) +
+      json += ",\"range\":{\"minimum\":" + jsonNumber(knob.range->minimum) + ",\"maximum\":" + jsonNumber(knob.range->maximum) +
               ",\"integer\":" + (knob.range->integer ? "true" : "false") + ",\"percent\":" + (knob.range->percent ? "true" : "false") + "}";
     json += "}";
   }
@@ -146,12 +138,12 @@ std::string render(const emscripten::val& request) {
     std::string passes = "[";
     for (const pipeline::PassTime& pass : pipeline::passTimes(stats)) {
       (pass.visibility ? visibility : effects) += pass.seconds;
-      passes += std::string(passes.size() > 1 ? "," : "") + "{\"pass\":" + jsonString(pass.pass) + ",\"ms\":" + number(pass.seconds * 1e3) + "}";
+      passes += std::string(passes.size() > 1 ? "," : "") + "{\"pass\":" + jsonString(pass.pass) + ",\"ms\":" + jsonNumber(pass.seconds * 1e3) + "}";
     }
     passes += "]";
     std::string json = "{\"width\":" + std::to_string(rendered.frame.width) + ",\"height\":" + std::to_string(rendered.frame.height) +
-                       ",\"kind\":" + jsonString(algorithmKindName(algorithm.kind)) + ",\"ms\":" + number(seconds * 1e3) +
-                       ",\"visibilityMs\":" + number(visibility * 1e3) + ",\"effectsMs\":" + number(effects * 1e3) + ",\"passes\":" + passes +
+                       ",\"kind\":" + jsonString(algorithmKindName(algorithm.kind)) + ",\"ms\":" + jsonNumber(seconds * 1e3) +
+                       ",\"visibilityMs\":" + jsonNumber(visibility * 1e3) + ",\"effectsMs\":" + jsonNumber(effects * 1e3) + ",\"passes\":" + passes +
                        ",\"partial\":" + jsonString(algorithm.kind == AlgorithmKind::line ? rendered.drawing.partial : rendered.frame.partial);
     json += ",\"counters\":{";
     bool first = true;
@@ -186,8 +178,8 @@ std::string compare() {
     if (last.algorithm->kind == AlgorithmKind::line) {
       const LineJudgement judged = last.algorithm->judgeLines(*last.prepared, last.configuration.knobs, last.drawing, 1, stats);
       last.error = judged.errorMap;
-      return "{\"lineError\":{\"error\":" + number(judged.error.error) + ",\"visibleLength\":" + number(judged.error.visibleLength) +
-             ",\"wronglyDrawn\":" + number(judged.error.wronglyDrawn) + ",\"wronglyHidden\":" + number(judged.error.wronglyHidden) + "}}";
+      return "{\"lineError\":{\"error\":" + jsonNumber(judged.error.error) + ",\"visibleLength\":" + jsonNumber(judged.error.visibleLength) +
+             ",\"wronglyDrawn\":" + jsonNumber(judged.error.wronglyDrawn) + ",\"wronglyHidden\":" + jsonNumber(judged.error.wronglyHidden) + "}}";
     }
     if (last.algorithm->kind == AlgorithmKind::reference) return "{}";  // the reference itself: nothing to compare
     ReferenceImage truth;
@@ -198,9 +190,9 @@ std::string compare() {
     }
     const SurfaceError error = surfaceError(last.frame, truth);
     last.error = errorHeatMap(last.frame, truth);
-    return "{\"error\":{\"pixelError\":" + number(error.pixelError) + ",\"wrongPixels\":" + std::to_string(error.wrongPixels) +
+    return "{\"error\":{\"pixelError\":" + jsonNumber(error.pixelError) + ",\"wrongPixels\":" + std::to_string(error.wrongPixels) +
            ",\"comparedPixels\":" + std::to_string(error.comparedPixels) + ",\"ambiguousPixels\":" + std::to_string(error.ambiguousPixels) +
-           ",\"depthErrorMean\":" + number(error.depthErrorMean) + ",\"depthErrorMax\":" + number(error.depthErrorMax) +
+           ",\"depthErrorMean\":" + jsonNumber(error.depthErrorMean) + ",\"depthErrorMax\":" + jsonNumber(error.depthErrorMax) +
            ",\"exactFallbacks\":" + std::to_string(truth.exactFallbacks) + "}}";
   } catch (const InputError& error) {
     return messageJson(error.what());

@@ -2,6 +2,7 @@
 // so that a name from a scene file ("<b>", "R&D", a quote) reads as written.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -38,6 +39,15 @@ inline std::string jsonString(const std::string& text) {
     }
   }
   return quoted + "\"";
+}
+
+// A number as JSON: all 17 significant digits, so that it reads back as the same double;
+// null for NaN and the infinities, which JSON cannot hold.
+inline std::string jsonNumber(double value) {
+  if (!std::isfinite(value)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
 }
 
 }  // namespace hsr
