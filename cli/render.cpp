@@ -149,15 +149,12 @@ class StepsFolder {
 
   StepsWriter& writer() { return writer_; }
 
-  void finish() {
-    writer_.finish();
+  void finish(const std::string& title) {
+    writer_.finish(title);
     written_ = true;
     std::error_code error;
-    for (std::size_t stale = writer_.count() + 1;; ++stale) {
-      char name[32];
-      std::snprintf(name, sizeof name, "step-%04zu.png", stale);
-      if (!std::filesystem::remove(folder_ / name, error)) break;
-    }
+    for (std::size_t stale = writer_.count();; ++stale)
+      if (!std::filesystem::remove(folder_ / stepPictureName(stale), error)) break;
   }
 
  private:
@@ -165,6 +162,19 @@ class StepsFolder {
   StepsWriter writer_;
   bool made_ = false, written_ = false;
 };
+
+// The steps page's title: the command that records the same steps again.
+std::string stepsTitle(const RenderOptions& options) {
+  std::string command = "hsr render " + options.scene + " --algo " + options.algorithm;
+  if (!options.variant.empty()) command += " --variant " + options.variant;
+  if (!options.depthFormat.empty()) command += " --depth-format " + options.depthFormat;
+  for (const std::string& knob : options.knobs) command += " --knob " + knob;
+  if (!options.cull.empty()) command += " --cull " + options.cull;
+  if (!options.size.empty()) command += " --size " + options.size;
+  if (!options.lineStyle.empty()) command += " --line-style " + options.lineStyle;
+  if (options.every > 0) command += " --every " + std::to_string(options.every);
+  return command;
+}
 
 }  // namespace
 
@@ -226,7 +236,7 @@ int render(const RenderOptions& options) {
     const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
     steps->record(lines ? "the finished drawing" : "the finished image, after the passes that follow visibility (hsr render --explain)",
                   Image{shown.width, shown.height, 4, shown.color});
-    stepsFolder->finish();
+    stepsFolder->finish(stepsTitle(options));
   }
   // Why the image or drawing may be wrong somewhere, as the algorithm says.
   const std::string& partial = lines ? rendered.drawing.partial : frame.partial;

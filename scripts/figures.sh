@@ -210,8 +210,10 @@ cp "$study/effects.png" images/figures/effects/passes.png
 cp "$study/shadow_map.png" images/figures/effects/shadow_map.png
 rm -r "$study"
 # The browser edition's page after its first render, as its test leaves it (README "In the
-# browser"): the site built, served and clicked through in headless chromium.
+# browser"): the site built, served and clicked through in headless chromium; and the
+# steps page as its test leaves it.
 bash scripts/web_test.sh > /dev/null
 cp out/web/page.png images/figures/web.png
 cp out/web/why.png images/figures/web-why.png  # a pixel asked why about (README "Asking why")
+cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Watching an algorithm work")
 echo "figures are in images/figures/"

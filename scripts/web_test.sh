@@ -3,7 +3,8 @@
 # npm package (playwright-core, which drives Debian's chromium; tests/web/package-lock.json
 # pins it) when missing, and runs tests/web/web_test.mjs: the site served as README says,
 # the first render timed, the controls clicked through, bad input against the command
-# line's messages (build/hsr must be built), and the same bits as native in the page.
+# line's messages (build/hsr must be built), and the same bits as native in the page; then
+# tests/web/steps_page_test.mjs: the steps page hsr render --steps writes, clicked through.
 #   bash scripts/web_test.sh           the hard cases and 10 random scenes (what CI runs)
 #   bash scripts/web_test.sh --full    every shipped scene and 100 random scenes
 set -euo pipefail
@@ -15,3 +16,4 @@ if [ ! -d tests/web/node_modules/playwright-core ]; then
   npm ci --prefix tests/web --no-audit --no-fund
 fi
 node tests/web/web_test.mjs "$@"
+node tests/web/steps_page_test.mjs

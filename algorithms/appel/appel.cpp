@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <source_location>
 
 #include "renderer/geometry/camera.hpp"
 #include "renderer/geometry/predicates.hpp"
@@ -186,12 +187,13 @@ class QuantitativeInvisibility {
   static constexpr int kUnknownQi = std::numeric_limits<int>::min();
 
   // A step (renderer/steps/steps.hpp): the pieces known so far, edge e just decided.
-  void recordStep(const std::vector<std::vector<LineSegment>>& pieces, std::uint32_t e, std::string caption) {
+  void recordStep(const std::vector<std::vector<LineSegment>>& pieces, std::uint32_t e, std::string caption,
+                  std::source_location where = std::source_location::current()) {
     if (!steps_->due(recorded_++, lines_.edges.size())) return;
     LineSet sofar;
     sofar.width = lines_.width, sofar.height = lines_.height, sofar.edges = lines_.edges;
     for (const auto& edgePieces : pieces) sofar.segments.insert(sofar.segments.end(), edgePieces.begin(), edgePieces.end());
-    steps_->record(std::move(caption), lineStepPicture(sofar, std::span(&e, 1), LineStyle::qi));
+    steps_->record(std::move(caption), lineStepPicture(sofar, std::span(&e, 1), LineStyle::qi), where);
   }
 
   StepRecorder* steps_;

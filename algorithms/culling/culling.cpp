@@ -1,6 +1,8 @@
 // The culling stages by name, and the pipeline that runs them in order.
 #include "algorithms/culling/culling.hpp"
 
+#include <source_location>
+
 #include "algorithms/culling/backface.hpp"
 #include "algorithms/culling/cells/portals.hpp"
 #include "algorithms/culling/cells/pvs.hpp"
@@ -108,7 +110,7 @@ namespace {
 
 // A stage's step: what it kept (grey) and what it removed (red), as wireframes.
 void recordStage(const PreparedScene& scene, const CameraTransform& camera, const StageChoice& choice, const VisibleSet& in,
-                 const VisibleSet& kept, StepRecorder& steps) {
+                 const VisibleSet& kept, StepRecorder& steps, std::source_location where = std::source_location::current()) {
   std::vector<std::uint32_t> removed;
   std::set_difference(in.triangles.begin(), in.triangles.end(), kept.triangles.begin(), kept.triangles.end(), std::back_inserter(removed));
   Image picture = blankPicture(scene.width(), scene.height());
@@ -118,7 +120,7 @@ void recordStage(const PreparedScene& scene, const CameraTransform& camera, cons
                        {kHighlight, "removed: " + std::to_string(removed.size())}});
   steps.record("culling stage " + choice.name() + ": kept " + std::to_string(kept.triangles.size()) + " of " +
                    std::to_string(in.triangles.size()) + " triangles, removed " + std::to_string(removed.size()),
-               std::move(picture));
+               std::move(picture), where);
 }
 
 }  // namespace

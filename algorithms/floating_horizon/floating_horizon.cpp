@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <optional>
+#include <source_location>
 #include <span>
 
 #include "algorithms/floating_horizon/curve_comparison.hpp"
@@ -249,7 +250,7 @@ class FloatingHorizon {
   }
 
   // A step: the drawing so far, the curve just drawn in green, the horizons it raised.
-  void recordCurve(std::uint32_t firstEdge) {
+  void recordCurve(std::uint32_t firstEdge, std::source_location where = std::source_location::current()) {
     std::vector<std::uint32_t> curveEdges(lines_.edges.size() - firstEdge);
     std::iota(curveEdges.begin(), curveEdges.end(), firstEdge);
     Image picture = lineStepPicture(lines_, curveEdges, LineStyle::hidden);
@@ -257,7 +258,7 @@ class FloatingHorizon {
     drawLegend(picture, {{kSecondHighlight, "upper horizon"}, {kThirdHighlight, "lower horizon"}, {kJustDecided, "curve just drawn"}});
     steps_->record("steps 3-5: curve " + std::to_string(curvesDrawn_ + 1) + " of " + std::to_string(curvesToDraw()) +
                        " tested against the horizons, then raising them (front to back)",
-                   std::move(picture));
+                   std::move(picture), where);
   }
 
   // The segment a-b as an edge of the drawing: its visible parts, and hidden ones between.

@@ -33,6 +33,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <source_location>
 
 #include "algorithms/painter/order.hpp"
 
@@ -355,7 +356,8 @@ class Newell {
 
   // A step (renderer/steps/steps.hpp): the candidate P in red and the polygon Q it may hide in
   // blue, over the outlines of every screen triangle.
-  void recordConflict(std::uint32_t p, std::uint32_t q, const std::string& caption) {
+  void recordConflict(std::uint32_t p, std::uint32_t q, const std::string& caption,
+                      std::source_location where = std::source_location::current()) {
     if (!steps_ || !steps_->due(conflictsRecorded_++)) return;
     const CameraTransform& camera = geometry_.camera;
     Image picture = blankPicture(camera.width(), camera.height());
@@ -368,7 +370,7 @@ class Newell {
     for (const auto& corners : planes_) outline({corners.begin(), corners.end()}, {205, 205, 205}, 1.0);
     outline(pool_[q].vertices, kSecondHighlight, 2.5);
     outline(pool_[p].vertices, kHighlight, 2.5);
-    steps_->record(caption, std::move(picture));
+    steps_->record(caption, std::move(picture), where);
   }
 
   void moveToFront(std::uint32_t q) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <source_location>
 #include <span>
 #include <string>
 
@@ -77,7 +78,8 @@ namespace {
 
 // A step: the image so far, the piece just painted tinted red and its triangle outlined.
 void recordPiece(const PreparedScene& scene, const PaintedPieces& painted, std::uint32_t index, const Frame& frame,
-                 std::span<const std::size_t> piecePixels, StepRecorder& steps) {
+                 std::span<const std::size_t> piecePixels, StepRecorder& steps,
+                 std::source_location where = std::source_location::current()) {
   const Piece& piece = painted.order.pieces[index];
   const std::uint32_t triangle = painted.geometry.triangles[piece.screenTriangle].triangle;
   Image picture = surfacePicture(scene, painted.geometry.camera, frame.ids, frame.width, frame.height);
@@ -86,7 +88,7 @@ void recordPiece(const PreparedScene& scene, const PaintedPieces& painted, std::
   std::string caption = "step 3: piece " + std::to_string(index + 1) + " of " + std::to_string(painted.order.pieces.size()) +
                         " painted over what is behind it (tinted red; outlined: its triangle, " + scene.triangleName(triangle);
   if (piece.cutCount > 0) caption += ", of which the piece is the part cut out by " + std::to_string(piece.cutCount) + (piece.cutCount == 1 ? " plane" : " planes");
-  steps.record(caption + ")", std::move(picture));
+  steps.record(caption + ")", std::move(picture), where);
 }
 
 // hsr why: a piece painted at a pixel asked about, over whatever the pixel showed.

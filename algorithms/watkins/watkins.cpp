@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <source_location>
 
 #include "renderer/raster/active_triangles.hpp"
 #include "renderer/raster/plane_depth.hpp"
@@ -180,7 +181,8 @@ class RowResolver {
 // A step: the rows finished so far (the rest blank), the row in blue, where it was cut
 // at crossings (red ticks) and at splits (orange ticks).
 void recordRow(const PreparedScene& scene, const CameraTransform& view, const Frame& frame, int y, std::size_t active,
-               const std::vector<std::pair<int, bool>>& marks, StepRecorder& steps) {
+               const std::vector<std::pair<int, bool>>& marks, StepRecorder& steps,
+               std::source_location where = std::source_location::current()) {
   std::vector<std::uint32_t> ids(frame.ids.begin(), frame.ids.begin() + std::ptrdiff_t(std::size_t(y + 1) * std::size_t(frame.width)));
   ids.resize(frame.pixelCount(), conventions::kBackgroundId);
   Image picture = surfacePicture(scene, view, ids, frame.width, frame.height);
@@ -194,7 +196,7 @@ void recordRow(const PreparedScene& scene, const CameraTransform& view, const Fr
   steps.record("row " + std::to_string(y) + ": " + std::to_string(active) + " active polygons; their edges cross the row at " +
                    std::to_string(marks.size() - splits) + " places (red); spans split where polygons cross: " + std::to_string(splits) +
                    " (orange)",
-               std::move(picture));
+               std::move(picture), where);
 }
 
 }  // namespace

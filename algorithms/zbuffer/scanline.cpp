@@ -3,6 +3,7 @@
 // span the current row, so each row touches only those (Watkins-style row coherence).
 #include <algorithm>
 #include <limits>
+#include <source_location>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/raster/active_triangles.hpp"
@@ -14,7 +15,8 @@ namespace {
 // A step: the rows finished so far (the rest shown empty), the active triangles outlined
 // in red, the row in blue.
 void recordRow(const Recording& recording, const CameraTransform& view, const Frame& frame, std::size_t y,
-               const std::vector<ScreenTriangle>& triangles, const std::vector<std::uint32_t>& active, std::size_t entering) {
+               const std::vector<ScreenTriangle>& triangles, const std::vector<std::uint32_t>& active, std::size_t entering,
+               std::source_location where = std::source_location::current()) {
   const std::size_t done = (y + 1) * std::size_t(frame.width);
   std::vector<std::uint32_t> ids(frame.ids.begin(), frame.ids.begin() + std::ptrdiff_t(done));
   std::vector<float> depth(frame.depth.begin(), frame.depth.begin() + std::ptrdiff_t(done));
@@ -26,7 +28,7 @@ void recordRow(const Recording& recording, const CameraTransform& view, const Fr
   drawSegment(picture, {0, double(y) + 0.5}, {double(frame.width), double(y) + 0.5}, kSecondHighlight, 1.0);
   recording.steps.record("step 4: row " + std::to_string(y) + " resolved with " + std::to_string(active.size()) +
                              " active triangles (red; " + std::to_string(entering) + " entered on this row)",
-                         std::move(picture));
+                         std::move(picture), where);
 }
 
 }  // namespace

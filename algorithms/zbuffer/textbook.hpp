@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <source_location>
 #include <span>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
@@ -51,10 +52,11 @@ struct Tile {
   }
 };
 
-// What watches the loop after each triangle: nothing, or --steps' pictures (full_frame.cpp).
+// What watches the loop after each triangle: nothing, or --steps' pictures (full_frame.cpp),
+// told where in the loop it was called from (the steps page shows those lines).
 class TileWatcher {
  public:
-  virtual void drawn(std::size_t index, const ScreenTriangle& tri) = 0;
+  virtual void drawn(std::size_t index, const ScreenTriangle& tri, std::source_location where = std::source_location::current()) = 0;
 
  protected:
   ~TileWatcher() = default;

@@ -9,6 +9,7 @@
 
 #include "renderer/image/image_library.hpp"
 #include "renderer/raster/raster.hpp"
+#include "renderer/steps/steps_page.hpp"
 #include "renderer/util/error.hpp"
 
 namespace hsr {
@@ -20,12 +21,12 @@ bool StepRecorder::due(std::size_t index, std::size_t count) const {
 
 bool StepRecorder::due(std::size_t index) const { return every_ > 0 ? (index + 1) % every_ == 0 : index < kFramesPerRun; }
 
-void StepRecorder::record(std::string caption, Image picture) {
+void StepRecorder::record(std::string caption, Image picture, std::source_location where) {
   const std::lock_guard lock(mutex_);
   if (sink_)
-    sink_(Step{std::move(caption), std::move(picture)});
+    sink_(Step{std::move(caption), std::move(picture), where});
   else
-    steps_.push_back({std::move(caption), std::move(picture)});
+    steps_.push_back({std::move(caption), std::move(picture), where});
 }
 
 namespace {
@@ -260,16 +261,26 @@ Image withCaption(const Image& picture, const std::string& caption) {
   return framed;
 }
 
-void StepsWriter::add(const Step& step) {
+std::string stepNumber(std::size_t index) {
   char number[32];
-  std::snprintf(number, sizeof number, "%04zu", frames_.size() + 1);
-  files_.addRgbaPng(folder_ / ("step-" + std::string(number) + ".png"), step.picture.width, step.picture.height, step.picture.pixels);
-  captions_ += std::string(number) + " " + step.caption + "\n";
+  std::snprintf(number, sizeof number, "%04zu", index + 1);
+  return number;
+}
+
+void StepsWriter::add(const Step& step) {
+  files_.addRgbaPng(folder_ / stepPictureName(frames_.size()), step.picture.width, step.picture.height, step.picture.pixels);
+  captions_.push_back(step.caption);
+  recordedAt_.push_back(step.where);
   frames_.push_back(withCaption(atMostWide(step.picture, kAnimationWidth), step.caption));
 }
 
-void StepsWriter::finish() {
-  files_.addText(folder_ / "captions.txt", captions_);
+void StepsWriter::finish(const std::string& title) {
+  std::string captions;
+  for (std::size_t s = 0; s < captions_.size(); ++s) captions += stepNumber(s) + " " + captions_[s] + "\n";
+  files_.addText(folder_ / "captions.txt", captions);
+  std::vector<PageStep> pageSteps;
+  for (std::size_t s = 0; s < captions_.size(); ++s) pageSteps.push_back({stepPictureName(s), captions_[s], sourceExcerpt(recordedAt_[s])});
+  files_.addText(folder_ / "steps.html", stepsPage(title, pageSteps));
   // An animation's frames share one size: each is padded with white to the largest.
   int width = 0, height = 0;
   for (const Image& frame : frames_) width = std::max(width, frame.width), height = std::max(height, frame.height);

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <mutex>
+#include <source_location>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,8 +27,9 @@
 namespace hsr {
 
 struct Step {
-  std::string caption;  // one line: the textbook step and what it did
-  Image picture;        // RGBA
+  std::string caption;         // one line: the textbook step and what it did
+  Image picture;               // RGBA
+  std::source_location where;  // the algorithm's line that recorded it (the steps page shows it)
 };
 
 class StepRecorder {
@@ -48,9 +50,12 @@ class StepRecorder {
   // Whether the index-th of an event whose count is not known ahead (a reorder, a split)
   // is recorded: every `every`th, or with every = 0 the first kFramesPerRun.
   bool due(std::size_t index) const;
-  // Records a step. Safe from any thread; the steps keep the order of the calls, so an
-  // algorithm records from one thread (between its parallel loops) where order matters.
-  void record(std::string caption, Image picture);
+  // Records a step, and where in the algorithm's code it was recorded: the line that
+  // calls record(), or the line an algorithm's helper was called from when the helper
+  // passes its own `where` on. Safe from any thread; the steps keep the order of the
+  // calls, so an algorithm records from one thread (between its parallel loops) where
+  // order matters.
+  void record(std::string caption, Image picture, std::source_location where = std::source_location::current());
   const std::vector<Step>& steps() const { return steps_; }  // the kept ones: none with a sink
 
  private:
@@ -98,25 +103,33 @@ Image graphvizPicture(const std::string& graph);
 // The picture with a white band above it holding the caption, for an animation frame.
 Image withCaption(const Image& picture, const std::string& caption);
 
+// The names of the index-th step's files (from 0): its number "0001" and its picture
+// "step-0001.png".
+std::string stepNumber(std::size_t index);
+inline std::string stepPictureName(std::size_t index) { return "step-" + stepNumber(index) + ".png"; }
+
 // Steps written to a folder as they are recorded (a StepRecorder's sink): step-0001.png,
-// step-0002.png... at once, under temporary names (OutputFiles), while only the caption
-// and a small animation frame are kept; finish() adds captions.txt (one line per frame,
-// "0001 caption") and steps.gif (the frames with their captions, at most 720 pixels wide,
-// padded to one size, at `framesPerSecond`) and renames every file into place. A run
-// that fails before finish() leaves nothing behind.
+// step-0002.png... at once, under temporary names (OutputFiles), while only the caption,
+// where it was recorded and a small animation frame are kept; finish() adds captions.txt
+// (one line per frame, "0001 caption"), steps.gif (the frames with their captions, at
+// most 720 pixels wide, padded to one size, at `framesPerSecond`) and steps.html (the
+// steps to go through by hand beside the code that recorded each: steps_page.hpp), and
+// renames every file into place. A run that fails before finish() leaves nothing behind.
 class StepsWriter {
  public:
   explicit StepsWriter(std::filesystem::path folder, int framesPerSecond = 4)
       : folder_(std::move(folder)), framesPerSecond_(framesPerSecond) {}
   void add(const Step& step);
   std::size_t count() const { return frames_.size(); }
-  void finish();
+  // `title` heads the steps page: what was run (the command that records these steps again).
+  void finish(const std::string& title);
 
  private:
   std::filesystem::path folder_;
   int framesPerSecond_;
   OutputFiles files_;
-  std::string captions_;
+  std::vector<std::string> captions_;
+  std::vector<std::source_location> recordedAt_;
   std::vector<Image> frames_;
 };
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <regex>
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
@@ -10,6 +11,7 @@
 #include "renderer/image/image_library.hpp"
 #include "renderer/lines/line_drawing.hpp"
 #include "renderer/steps/steps.hpp"
+#include "renderer/steps/steps_page.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -121,6 +123,13 @@ TEST_P(EveryAlgorithmsSteps, ChangeNoCounterAndNoPixelAndShowTheAlgorithmsOwnSte
     EXPECT_EQ(step.picture.pixels.size(), std::size_t(step.picture.width) * std::size_t(step.picture.height) * 4) << step.caption;
     const bool meantEmpty = step.caption.find("every texel empty") != std::string::npos;
     EXPECT_EQ(showsSomething(step.picture), !meantEmpty) << step.caption;
+    // The steps page shows the algorithm's own statement that recorded the step.
+    const SourceExcerpt source = sourceExcerpt(step.where);
+    EXPECT_EQ(source.file.rfind("algorithms/", 0), 0u) << source.file << " for " << step.caption;
+    std::string marked;
+    for (int line = source.line; line <= source.markedTo && line - source.firstLine < int(source.lines.size()); ++line)
+      marked += source.lines[std::size_t(line - source.firstLine)] + "\n";
+    EXPECT_TRUE(std::regex_search(marked, std::regex(R"(record\w*\(|->drawn\()"))) << source.file << ":" << source.line << "\n" << marked;
   }
 }
 
@@ -248,6 +257,14 @@ TEST(Steps, TheCommandWritesFramesCaptionsAndAnAnimationOfThem) {
   Image animation;
   ASSERT_EQ(imageLibrary().readImage((folder / "steps.gif").string(), animation), "");
   EXPECT_GT(animation.width, 2 * 96);  // the image beside its cost heat map
+  // The steps page lists each picture once, in order, under the command that records them again.
+  std::ifstream pageFile(folder / "steps.html");
+  const std::string page((std::istreambuf_iterator<char>(pageFile)), std::istreambuf_iterator<char>());
+  std::size_t listed = 0;
+  for (std::size_t at = page.find("\"picture\":\"step-"); at != std::string::npos; at = page.find("\"picture\":\"step-", at + 1)) ++listed;
+  EXPECT_EQ(listed, captions.size());
+  EXPECT_NE(page.find("<h1>hsr render " + test::sourcePath("scenes/cube.toml").string() + " --algo ray_casting --size 96x72 --every 8</h1>"),
+            std::string::npos);
   // A second run recording fewer frames leaves none of the first run's behind.
   ASSERT_EQ(test::runCommand(command + " --every 36").exitCode, 0);
   EXPECT_TRUE(std::filesystem::exists(folder / "step-0003.png"));

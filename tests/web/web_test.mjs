@@ -17,20 +17,15 @@
 import { spawn, spawnSync } from "node:child_process";
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { createServer } from "node:net";
-import { dirname, join } from "node:path";
-import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { Checks, launchBrowser, openPage, root } from "./browser.mjs";
 
-const root = join(dirname(fileURLToPath(import.meta.url)), "..", "..");
 const full = process.argv.includes("--full");
 const out = join(root, "out", "web");
 mkdirSync(out, { recursive: true });
 
-let failures = 0;
-const check = (condition, what) => {
-  console.log(`${condition ? "ok  " : "FAIL"} ${what}`);
-  if (!condition) failures += 1;
-};
+const checks = new Checks();
+const check = (condition, what) => checks.check(condition, what);
 
 // A free port on the loopback interface, for the static server.
 const port = await new Promise((resolve) => {
@@ -42,15 +37,9 @@ const port = await new Promise((resolve) => {
 const server = spawn("python3", ["-m", "http.server", String(port), "--bind", "127.0.0.1", "-d", join(root, "web", "dist")], { stdio: "ignore" });
 await new Promise((resolve) => setTimeout(resolve, 800));
 
-const browser = await chromium.launch({
-  executablePath: "/usr/bin/chromium",
-  args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const browser = await launchBrowser();
 try {
-  const page = await browser.newPage({ viewport: { width: 1400, height: 1000 } });
-  const consoleErrors = [];
-  page.on("console", (message) => { if (message.type() === "error") consoleErrors.push(message.text()); });
-  page.on("pageerror", (error) => consoleErrors.push(error.message));
+  const { page, consoleErrors } = await openPage(browser);
   await page.goto(`http://127.0.0.1:${port}/`);
   await page.waitForSelector("body[data-ready=true]", { timeout: 60000 });
   // The page's clock starts when the page was asked for (performance.timeOrigin).
@@ -205,5 +194,4 @@ try {
   await browser.close();
   server.kill();
 }
-console.log(failures === 0 ? "the browser edition: every check passed" : `${failures} checks failed`);
-process.exit(failures === 0 ? 0 : 1);
+checks.finish("the browser edition");

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <source_location>
 
 namespace hsr::culling::occlusion {
 namespace {
@@ -219,12 +220,13 @@ namespace {
 
 // A map as a step's picture: its depths (nearest white), each texel enlarged to whole
 // pixels so that a small map is seen at about the image's width.
-void recordMap(const DepthMap& map, int imageWidth, const std::string& caption, StepRecorder& steps) {
+void recordMap(const DepthMap& map, int imageWidth, const std::string& caption, StepRecorder& steps,
+               std::source_location where = std::source_location::current()) {
   const int scale = std::max(1, int(std::lround(double(imageWidth) / std::max(1, map.width))));
   std::vector<float> enlarged(std::size_t(map.width * scale) * std::size_t(map.height * scale));
   for (int y = 0; y < map.height * scale; ++y)
     for (int x = 0; x < map.width * scale; ++x) enlarged[std::size_t(y) * std::size_t(map.width * scale) + std::size_t(x)] = map.at(x / scale, y / scale);
-  steps.record(caption, depthPicture(enlarged, map.width * scale, map.height * scale));
+  steps.record(caption, depthPicture(enlarged, map.width * scale, map.height * scale), where);
 }
 
 }  // namespace

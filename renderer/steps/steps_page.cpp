@@ -1,0 +1,243 @@
+#include "renderer/steps/steps_page.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <tuple>
+
+#include "renderer/util/markup.hpp"
+
+namespace hsr {
+
+namespace {
+
+bool startsAtColumnZero(const std::string& line) { return !line.empty() && line[0] != ' ' && line[0] != '\t'; }
+
+// A line without its comment: up to the first // outside a string or character literal.
+std::string withoutComment(const std::string& line) {
+  char quote = 0;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    if (quote && line[i] == '\\') ++i;
+    else if (quote && line[i] == quote) quote = 0;
+    else if (!quote && (line[i] == '"' || line[i] == '\'')) quote = line[i];
+    else if (!quote && line.compare(i, 2, "//") == 0) return line.substr(0, i);
+  }
+  return line;
+}
+
+// Whether a statement cannot go on past this line: it holds no code, or its code ends a
+// statement, opens or closes a block, or is a label.
+bool endsStatement(const std::string& line) {
+  const std::string code = withoutComment(line);
+  const std::size_t last = code.find_last_not_of(" \t");
+  return last == std::string::npos || code[last] == ';' || code[last] == '{' || code[last] == '}' || code[last] == ':';
+}
+
+// JSON text placed in a <script> element: "</" would end the element, so it is written
+// "<\/", which JSON reads back as the same two characters.
+std::string safeInScript(const std::string& json) {
+  std::string safe;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    safe += json[i];
+    if (json[i] == '<' && i + 1 < json.size() && json[i + 1] == '/') safe += '\\';
+  }
+  return safe;
+}
+
+std::string excerptJson(const SourceExcerpt& source) {
+  std::string json = "{\"file\":" + jsonString(source.file) + ",\"function\":" + jsonString(source.function) +
+                     ",\"line\":" + std::to_string(source.line) + ",\"firstLine\":" + std::to_string(source.firstLine) +
+                     ",\"markedTo\":" + std::to_string(source.markedTo) + ",\"lines\":[";
+  for (std::size_t k = 0; k < source.lines.size(); ++k) {
+    if (k > 0) json += ',';
+    json += jsonString(source.lines[k]);
+  }
+  return json + "]}";
+}
+
+// The page's look and behaviour; the steps come in as JSON (#steps).
+constexpr const char* kStyle = R"(
+body { font: 15px/1.45 system-ui, sans-serif; margin: 0 1.2em 2em; color: #1d1d1f; }
+h1 { font-size: 1.15em; margin: .8em 0 .2em; font-weight: 600; }
+header p { margin: 0 0 .6em; color: #555; }
+nav { position: sticky; top: 0; background: #fff; padding: .5em 0; display: flex; gap: .4em; align-items: center;
+      flex-wrap: wrap; border-bottom: 1px solid #ddd; z-index: 1; }
+button { font: inherit; padding: .25em .7em; border: 1px solid #999; border-radius: 4px; background: #f6f6f6; cursor: pointer; }
+button:disabled { color: #aaa; border-color: #ddd; cursor: default; }
+#position { min-width: 8.5em; text-align: center; font-variant-numeric: tabular-nums; font-weight: 600; }
+#slider { flex: 1; min-width: 10em; }
+#caption { font-size: 1.05em; margin: .7em 0; min-height: 2.9em; }
+main { display: flex; gap: 1.2em; align-items: flex-start; flex-wrap: wrap; }
+figure { margin: 0; flex: 1 1 520px; min-width: 0; overflow-x: auto; }
+#picture { width: 100%; border: 1px solid #ccc; cursor: zoom-in; image-rendering: pixelated; }
+#picture.actual { width: auto; max-width: none !important; cursor: zoom-out; }
+#source { flex: 1 1 480px; min-width: 0; }
+#source h2 { font-size: .95em; font-weight: 600; margin: 0 0 .3em; }
+#source .function { color: #555; font-size: .85em; margin: 0 0 .4em; word-break: break-all; }
+pre { margin: 0; background: #fafafa; border: 1px solid #ddd; padding: .4em 0; overflow-x: auto; font-size: 12.5px; line-height: 1.4; }
+pre span { display: block; padding: 0 .6em 0 0; white-space: pre; }
+pre span::before { content: attr(data-line); display: inline-block; width: 3.2em; margin-right: .8em; text-align: right; color: #999; }
+pre span.marked { background: #ffe9a8; }
+.hint { color: #666; font-size: .85em; }
+)";
+
+constexpr const char* kScript = R"(
+const steps = JSON.parse(document.getElementById("steps").textContent);
+const sources = JSON.parse(document.getElementById("sources").textContent);
+const $ = (id) => document.getElementById(id);
+const slider = $("slider");
+slider.max = steps.length;
+let current = 0, playing = null;
+
+function showSource(source) {
+  $("sourceTitle").textContent = `recorded at ${source.file}:${source.line}`;
+  $("function").textContent = source.function ? `in ${source.function}` : "";
+  const code = $("code");
+  code.replaceChildren();
+  if (source.lines.length === 0) {
+    code.textContent = `(${source.file} is not beside this program: the lines cannot be shown)`;
+    return;
+  }
+  source.lines.forEach((text, k) => {
+    const line = document.createElement("span");
+    const number = source.firstLine + k;
+    line.dataset.line = number;
+    line.textContent = text;
+    if (number >= source.line && number <= source.markedTo) line.className = "marked";
+    code.append(line);
+  });
+}
+
+function show(index) {
+  current = Math.max(0, Math.min(steps.length - 1, index));
+  const step = steps[current];
+  $("picture").src = step.picture;
+  $("picture").alt = step.caption;
+  $("caption").textContent = step.caption;
+  $("position").textContent = `step ${current + 1} of ${steps.length}`;
+  slider.value = current + 1;
+  $("first").disabled = $("previous").disabled = current === 0;
+  $("next").disabled = $("last").disabled = current === steps.length - 1;
+  showSource(sources[step.source]);
+  history.replaceState(null, "", `#step=${current + 1}`);
+  // The next picture is fetched now, so that "next" shows it at once.
+  if (current + 1 < steps.length) new Image().src = steps[current + 1].picture;
+}
+
+function stop() {
+  clearInterval(playing);
+  playing = null;
+  $("play").textContent = "play";
+}
+
+function play() {
+  if (playing) return stop();
+  if (current === steps.length - 1) show(0);
+  $("play").textContent = "pause";
+  playing = setInterval(() => (current === steps.length - 1 ? stop() : show(current + 1)), 600);
+}
+
+$("first").onclick = () => { stop(); show(0); };
+$("previous").onclick = () => { stop(); show(current - 1); };
+$("next").onclick = () => { stop(); show(current + 1); };
+$("last").onclick = () => { stop(); show(steps.length - 1); };
+$("play").onclick = play;
+slider.oninput = () => { stop(); show(Number(slider.value) - 1); };
+// A small picture is shown up to twice its size, each pixel a square of pixels; a click
+// shows it at its actual size.
+$("picture").onload = () => { $("picture").style.maxWidth = `${2 * $("picture").naturalWidth}px`; };
+$("picture").onclick = () => $("picture").classList.toggle("actual");
+document.addEventListener("keydown", (event) => {
+  if (event.target === slider || event.altKey || event.ctrlKey || event.metaKey) return;
+  const moves = { ArrowLeft: current - 1, ArrowRight: current + 1, Home: 0, End: steps.length - 1 };
+  if (event.key in moves) { stop(); show(moves[event.key]); event.preventDefault(); }
+  else if (event.key === " ") { play(); event.preventDefault(); }
+});
+const asked = /^#step=(\d+)$/.exec(location.hash);
+show(asked ? Number(asked[1]) - 1 : 0);
+)";
+
+}  // namespace
+
+SourceExcerpt sourceExcerpt(const std::source_location& where, const std::filesystem::path& sourceRoot) {
+  SourceExcerpt excerpt;
+  excerpt.function = where.function_name();
+  excerpt.line = excerpt.firstLine = excerpt.markedTo = int(where.line());  // until the file is read
+  // A header may have been included through a build folder's view of the sources
+  // (cmake/layers.cmake), whose links lead back to the suite's own file.
+  std::error_code error;
+  std::filesystem::path path = std::filesystem::weakly_canonical(where.file_name(), error);
+  if (error) path = where.file_name();
+  const std::filesystem::path relative = path.lexically_relative(std::filesystem::weakly_canonical(HSR_SOURCE_DIR, error));
+  const bool inSuite = !relative.empty() && *relative.begin() != "..";
+  excerpt.file = (inSuite ? relative : path).generic_string();
+
+  std::ifstream in(inSuite ? (sourceRoot.empty() ? std::filesystem::path(HSR_SOURCE_DIR) : sourceRoot) / relative : path);
+  std::vector<std::string> lines;
+  for (std::string text; std::getline(in, text);) lines.push_back(text);
+  if (excerpt.line < 1 || excerpt.line > int(lines.size())) return excerpt;
+  const auto at = [&](int number) -> const std::string& { return lines[std::size_t(number - 1)]; };
+  // The compiler may name any line of a call that spans several: the recording statement
+  // starts after the line before it that ends one.
+  int call = excerpt.line;
+  while (call > 1 && !endsStatement(at(call - 1))) --call;
+  excerpt.line = call;
+  // Up: to the line that starts the enclosing function (it starts at column 0) or the
+  // line after the function before it closes.
+  int first = call;
+  while (first > 1 && call - first < kLinesBefore) {
+    const std::string& above = at(first - 1);
+    if (startsAtColumnZero(above) && (above[0] == '}' || above.rfind("//", 0) == 0 || above.rfind("namespace", 0) == 0)) break;
+    --first;
+    if (startsAtColumnZero(above)) break;
+  }
+  // Down: to the line that ends the recording statement, and two lines more.
+  int last = call;
+  while (last < int(lines.size()) && !endsStatement(at(last))) ++last;
+  excerpt.markedTo = last;
+  last = std::min(int(lines.size()), last + 2);
+  excerpt.firstLine = first;
+  excerpt.lines.assign(lines.begin() + (first - 1), lines.begin() + last);
+  return excerpt;
+}
+
+std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps) {
+  // One excerpt per recording place: a loop's steps share theirs.
+  std::map<std::tuple<std::string, int>, std::size_t> places;
+  std::string sources = "[", list = "[";
+  for (const PageStep& step : steps) {
+    const auto [place, isNew] = places.try_emplace({step.source.file, step.source.line}, places.size());
+    if (isNew && place->second > 0) sources += ',';
+    if (isNew) sources += excerptJson(step.source);
+    if (list.size() > 1) list += ',';
+    list += "{\"picture\":" + jsonString(step.picture) + ",\"caption\":" + jsonString(step.caption) +
+            ",\"source\":" + std::to_string(place->second) + "}";
+  }
+  sources += "]", list += "]";
+  return "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+         "<title>Steps: " + escapedMarkup(title) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n"
+         "<header>\n<h1>" + escapedMarkup(title) + "</h1>\n"
+         "<p>The algorithm's own state at its textbook steps, and the lines of its code that recorded each. "
+         "Also here: <a href=\"steps.gif\">the animation</a>, <a href=\"captions.txt\">the captions</a>. "
+         "<span class=\"hint\">Keys: &larr; &rarr; Home End, space to play; click the picture for its actual size and back.</span></p>\n"
+         "</header>\n"
+         "<nav aria-label=\"steps\">\n"
+         "<button id=\"first\" title=\"the first step (Home)\">first</button>\n"
+         "<button id=\"previous\" title=\"the step before (&larr;)\">previous</button>\n"
+         "<span id=\"position\" aria-live=\"polite\"></span>\n"
+         "<button id=\"next\" title=\"the step after (&rarr;)\">next</button>\n"
+         "<button id=\"last\" title=\"the last step (End)\">last</button>\n"
+         "<button id=\"play\" title=\"play from here (space)\">play</button>\n"
+         "<input id=\"slider\" type=\"range\" min=\"1\" value=\"1\" aria-label=\"step\">\n"
+         "</nav>\n"
+         "<p id=\"caption\"></p>\n"
+         "<main>\n<figure><img id=\"picture\" alt=\"\"></figure>\n"
+         "<section id=\"source\" aria-label=\"the code that recorded the step\">\n<h2 id=\"sourceTitle\"></h2>\n"
+         "<p class=\"function\" id=\"function\"></p>\n<pre id=\"code\"></pre>\n</section>\n</main>\n"
+         "<script type=\"application/json\" id=\"steps\">" + safeInScript(list) + "</script>\n"
+         "<script type=\"application/json\" id=\"sources\">" + safeInScript(sources) + "</script>\n"
+         "<script>" + kScript + "</script>\n</body>\n</html>\n";
+}
+
+}  // namespace hsr

@@ -1,0 +1,43 @@
+// The steps page (steps.html, written beside the step pictures by hsr render --steps):
+// a student goes through an algorithm's steps by hand, first / previous / next / last,
+// a slider, "step N of M", the caption, and beside each picture the lines of the
+// algorithm's code that recorded it, read from the file at the line the recording call
+// captured (std::source_location). One self-contained HTML file: it opens from the
+// folder with no server and nothing to install.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <source_location>
+#include <string>
+#include <vector>
+
+namespace hsr {
+
+// The lines of code around a recording call, as the page shows them.
+struct SourceExcerpt {
+  std::string file;      // relative to the suite's folder where it is in it: algorithms/zbuffer/full_frame.cpp
+  std::string function;  // the function the call is in, as the compiler names it
+  int line = 0;          // the recording statement's first line
+  int firstLine = 0;     // the line lines[0] is
+  int markedTo = 0;      // its last line (it may span several)
+  std::vector<std::string> lines;  // empty when the file cannot be read (the program moved away from its sources)
+};
+
+// From the top of the enclosing function (the last line before the call that starts at
+// column 0, at most kLinesBefore lines up) to the end of the recording statement and two
+// lines more. The suite's files are read from `sourceRoot`: the folder the program was
+// built from by default.
+SourceExcerpt sourceExcerpt(const std::source_location& where, const std::filesystem::path& sourceRoot = "");
+inline constexpr int kLinesBefore = 24;
+
+struct PageStep {
+  std::string picture;  // the picture's file name, beside the page
+  std::string caption;
+  SourceExcerpt source;
+};
+
+// The page: `title` heads it; the steps in order.
+std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps);
+
+}  // namespace hsr

@@ -1,0 +1,142 @@
+// The steps page (hsr render --steps DIR writes DIR/steps.html) in a real browser
+// (Debian's chromium, headless), opened from the folder as a student opens it:
+//   - first / previous / next / last, the slider, the keys and a link to a step each
+//     show the step asked for: "step N of M", its caption as captions.txt has it, its
+//     picture, the buttons that cannot go further disabled;
+//   - every step's code is the algorithm's own line that recorded it, marked;
+//   - play runs through the steps and pauses;
+//   - a scene whose names hold markup and a closing </script> shows them as text;
+//   - a screenshot into out/web/steps.png (README's figure).
+//   node tests/web/steps_page_test.mjs            (build/hsr must be built)
+import { spawnSync } from "node:child_process";
+import { copyFileSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { join } from "node:path";
+import { pathToFileURL } from "node:url";
+import { Checks, launchBrowser, openPage, root } from "./browser.mjs";
+
+const checks = new Checks();
+const check = (condition, what) => checks.check(condition, what);
+const out = join(root, "out", "web");
+mkdirSync(out, { recursive: true });
+
+// Steps recorded by the native program, run from the suite's folder as README's commands
+// are, into out/web/NAME/: the page's address and the captions.
+function recordSteps(name, args) {
+  const folder = join(out, name);
+  rmSync(folder, { recursive: true, force: true });
+  const run = spawnSync(join(root, "build", "hsr"), ["render", ...args, "-o", join(out, `${name}.png`), "--steps", folder], { encoding: "utf8", cwd: root });
+  if (run.status !== 0) throw new Error(`hsr render ${args.join(" ")} --steps failed: ${run.stderr}`);
+  const captions = readFileSync(join(folder, "captions.txt"), "utf8").trimEnd().split("\n").map((line) => line.slice(5));
+  return { url: pathToFileURL(join(folder, "steps.html")).href, captions };
+}
+
+// What the page shows now.
+const shown = (page) => page.evaluate(() => ({
+  position: document.getElementById("position").textContent,
+  caption: document.getElementById("caption").textContent,
+  picture: document.getElementById("picture").getAttribute("src"),
+  loaded: document.getElementById("picture").complete && document.getElementById("picture").naturalWidth > 0,
+  disabled: ["first", "previous", "next", "last"].filter((id) => document.getElementById(id).disabled),
+  sourceTitle: document.getElementById("sourceTitle").textContent,
+  marked: [...document.querySelectorAll("#code span.marked")].map((line) => ({ number: Number(line.dataset.line), text: line.textContent })),
+  hash: location.hash,
+}));
+
+// The page shows step `n` (from 1) of `captions`, as it should.
+async function expectStep(page, n, captions, how) {
+  await page.waitForFunction((m) => document.getElementById("picture").complete, n);
+  const now = await shown(page);
+  const m = captions.length;
+  const disabled = [...(n === 1 ? ["first", "previous"] : []), ...(n === m ? ["next", "last"] : [])];
+  check(now.position === `step ${n} of ${m}` && now.caption === captions[n - 1] && now.picture === `step-${String(n).padStart(4, "0")}.png` &&
+        now.loaded && now.hash === `#step=${n}` && JSON.stringify(now.disabled) === JSON.stringify(disabled),
+        `${how}: step ${n} of ${m} (${now.position}; "${now.caption.slice(0, 50)}"; ${now.picture}; disabled ${now.disabled.join(" ") || "none"})`);
+  return now;
+}
+
+const browser = await launchBrowser();
+try {
+  const { page, consoleErrors } = await openPage(browser);
+
+  // Newell's algorithm on the cyclic overlap: reorders and splits (newell.cpp), pieces
+  // painted (painter.cpp), the finished image (cli/render.cpp).
+  const newell = recordSteps("steps-newell", ["scenes/hard/cyclic_overlap.toml", "--algo", "painter", "--variant", "newell"]);
+  const m = newell.captions.length;
+  await page.goto(newell.url);
+  await expectStep(page, 1, newell.captions, "opened");
+  await page.click("#next");
+  await page.click("#next");
+  await expectStep(page, 3, newell.captions, "next twice");
+  await page.click("#previous");
+  await expectStep(page, 2, newell.captions, "previous");
+  const last = await (async () => { await page.click("#last"); return expectStep(page, m, newell.captions, "last"); })();
+  check(last.sourceTitle.startsWith("recorded at cli/render.cpp:"), `the finished image is recorded by the command: ${last.sourceTitle}`);
+  await page.click("#first");
+  await expectStep(page, 1, newell.captions, "first");
+  await page.keyboard.press("ArrowRight");
+  await expectStep(page, 2, newell.captions, "the right arrow key");
+  await page.keyboard.press("End");
+  await expectStep(page, m, newell.captions, "the End key");
+  await page.keyboard.press("ArrowRight");
+  await expectStep(page, m, newell.captions, "the right arrow key at the last step");
+  await page.keyboard.press("Home");
+  await expectStep(page, 1, newell.captions, "the Home key");
+  await page.$eval("#slider", (slider, value) => { slider.value = value; slider.dispatchEvent(new Event("input")); }, "7");
+  await expectStep(page, 7, newell.captions, "the slider at 7");
+  await page.goto(`${newell.url}#step=5`);
+  await page.reload();
+  await expectStep(page, 5, newell.captions, "a link to step 5");
+
+  // Every step's code: the algorithm's line that recorded it, marked, in the file it names.
+  const wrongSources = [];
+  const files = new Set();
+  await page.keyboard.press("Home");
+  for (let n = 1; n <= m; ++n) {
+    const now = await shown(page);
+    const place = /^recorded at ((?:algorithms|cli)\/[\w/]+\.(?:cpp|hpp)):(\d+)$/.exec(now.sourceTitle);
+    const markedText = now.marked.map((line) => line.text).join("\n");
+    files.add(place?.[1]);
+    if (!place || now.marked.length === 0 || now.marked[0].number !== Number(place[2]) || !/record\w*\(|->drawn\(/.test(markedText)) wrongSources.push(`${n}: ${now.sourceTitle}`);
+    await page.keyboard.press("ArrowRight");
+  }
+  check(wrongSources.length === 0, `every step's code is the recording call, marked (${wrongSources.join("; ") || [...files].join(", ")})`);
+  check(["algorithms/painter/newell.cpp", "algorithms/painter/painter.cpp", "cli/render.cpp"].every((file) => files.has(file)),
+        "the reorders and splits from newell.cpp, the pieces from painter.cpp, the finished image from cli/render.cpp");
+
+  // Play: on from the first step, then paused.
+  await page.keyboard.press("Home");
+  await page.click("#play");
+  await page.waitForTimeout(1500);
+  await page.click("#play");
+  const paused = await shown(page);
+  const at = Number(/^step (\d+) of/.exec(paused.position)[1]);
+  await page.waitForTimeout(1000);
+  check(at >= 2 && at < m && (await shown(page)).position === paused.position && (await page.textContent("#play")) === "play",
+        `play went on to step ${at}, and pause stayed there`);
+  await page.click("#picture");
+  check(await page.$eval("#picture", (picture) => picture.classList.contains("actual")), "a click on the picture shows it at its actual size");
+
+  // Names with markup: shown as written, the page still working.
+  const folder = join(out, "steps-markup-scene");
+  mkdirSync(folder, { recursive: true });
+  copyFileSync(join(root, "scenes", "hard", "cyclic_overlap.obj"), join(folder, "cyclic_overlap.obj"));
+  const name = `</script><img src=x onerror="document.title='broken'">`;
+  writeFileSync(join(folder, "scene.toml"), readFileSync(join(root, "scenes", "hard", "cyclic_overlap.toml"), "utf8")
+    .replace('name = "third"', `name = ${JSON.stringify(name)}`));
+  const markup = recordSteps("steps-markup", [join(folder, "scene.toml"), "--algo", "painter", "--variant", "newell"]);
+  await page.goto(markup.url);
+  const first = await expectStep(page, 1, markup.captions, "a scene whose names hold markup");
+  check(first.caption.includes(name) && (await page.title()).startsWith("Steps: hsr render") && (await page.$$("img")).length === 1,
+        "its names shown as text, nothing of them run or drawn");
+
+  // README's figure: the z-buffer on counters at its sixth step.
+  const zbuffer = recordSteps("steps-zbuffer", ["scenes/counters.toml", "--size", "320x180"]);
+  await page.goto(`${zbuffer.url}#step=6`);
+  await expectStep(page, 6, zbuffer.captions, "the z-buffer's steps");
+  await page.setViewportSize({ width: 1300, height: 480 });
+  await page.screenshot({ path: join(out, "steps.png") });
+  check(consoleErrors.length === 0, `no error in the console${consoleErrors.length ? ": " + consoleErrors.join("; ") : ""}`);
+} finally {
+  await browser.close();
+}
+checks.finish("the steps page");
