@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <source_location>
 
 #include "renderer/geometry/camera.hpp"
 #include "renderer/geometry/predicates.hpp"
@@ -188,7 +187,7 @@ class QuantitativeInvisibility {
 
   // A step (renderer/steps/steps.hpp): the pieces known so far, edge e just decided.
   void recordStep(const std::vector<std::vector<LineSegment>>& pieces, std::uint32_t e, std::string caption,
-                  std::source_location where = std::source_location::current()) {
+                  SourceLocation where = SourceLocation::current()) {
     if (!steps_->due(recorded_++, lines_.edges.size())) return;
     LineSet sofar;
     sofar.width = lines_.width, sofar.height = lines_.height, sofar.edges = lines_.edges;

@@ -1,8 +1,6 @@
 // The culling stages by name, and the pipeline that runs them in order.
 #include "algorithms/culling/culling.hpp"
 
-#include <source_location>
-
 #include "algorithms/culling/backface.hpp"
 #include "algorithms/culling/cells/portals.hpp"
 #include "algorithms/culling/cells/pvs.hpp"
@@ -110,7 +108,7 @@ namespace {
 
 // A stage's step: what it kept (grey) and what it removed (red), as wireframes.
 void recordStage(const PreparedScene& scene, const CameraTransform& camera, const StageChoice& choice, const VisibleSet& in,
-                 const VisibleSet& kept, StepRecorder& steps, std::source_location where = std::source_location::current()) {
+                 const VisibleSet& kept, StepRecorder& steps, SourceLocation where = SourceLocation::current()) {
   std::vector<std::uint32_t> removed;
   std::set_difference(in.triangles.begin(), in.triangles.end(), kept.triangles.begin(), kept.triangles.end(), std::back_inserter(removed));
   Image picture = blankPicture(scene.width(), scene.height());

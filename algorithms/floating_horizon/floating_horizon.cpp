@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numeric>
 #include <optional>
-#include <source_location>
 #include <span>
 
 #include "algorithms/floating_horizon/curve_comparison.hpp"
@@ -250,7 +249,7 @@ class FloatingHorizon {
   }
 
   // A step: the drawing so far, the curve just drawn in green, the horizons it raised.
-  void recordCurve(std::uint32_t firstEdge, std::source_location where = std::source_location::current()) {
+  void recordCurve(std::uint32_t firstEdge, SourceLocation where = SourceLocation::current()) {
     std::vector<std::uint32_t> curveEdges(lines_.edges.size() - firstEdge);
     std::iota(curveEdges.begin(), curveEdges.end(), firstEdge);
     Image picture = lineStepPicture(lines_, curveEdges, LineStyle::hidden);

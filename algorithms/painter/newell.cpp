@@ -33,7 +33,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <source_location>
 
 #include "algorithms/painter/order.hpp"
 
@@ -357,7 +356,7 @@ class Newell {
   // A step (renderer/steps/steps.hpp): the candidate P in red and the polygon Q it may hide in
   // blue, over the outlines of every screen triangle.
   void recordConflict(std::uint32_t p, std::uint32_t q, const std::string& caption,
-                      std::source_location where = std::source_location::current()) {
+                      SourceLocation where = SourceLocation::current()) {
     if (!steps_ || !steps_->due(conflictsRecorded_++)) return;
     const CameraTransform& camera = geometry_.camera;
     Image picture = blankPicture(camera.width(), camera.height());

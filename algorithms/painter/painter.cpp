@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <source_location>
 #include <span>
 #include <string>
 
@@ -79,7 +78,7 @@ namespace {
 // A step: the image so far, the piece just painted tinted red and its triangle outlined.
 void recordPiece(const PreparedScene& scene, const PaintedPieces& painted, std::uint32_t index, const Frame& frame,
                  std::span<const std::size_t> piecePixels, StepRecorder& steps,
-                 std::source_location where = std::source_location::current()) {
+                 SourceLocation where = SourceLocation::current()) {
   const Piece& piece = painted.order.pieces[index];
   const std::uint32_t triangle = painted.geometry.triangles[piece.screenTriangle].triangle;
   Image picture = surfacePicture(scene, painted.geometry.camera, frame.ids, frame.width, frame.height);

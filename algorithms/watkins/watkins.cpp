@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <source_location>
 
 #include "renderer/raster/active_triangles.hpp"
 #include "renderer/raster/plane_depth.hpp"
@@ -182,7 +181,7 @@ class RowResolver {
 // at crossings (red ticks) and at splits (orange ticks).
 void recordRow(const PreparedScene& scene, const CameraTransform& view, const Frame& frame, int y, std::size_t active,
                const std::vector<std::pair<int, bool>>& marks, StepRecorder& steps,
-               std::source_location where = std::source_location::current()) {
+               SourceLocation where = SourceLocation::current()) {
   std::vector<std::uint32_t> ids(frame.ids.begin(), frame.ids.begin() + std::ptrdiff_t(std::size_t(y + 1) * std::size_t(frame.width)));
   ids.resize(frame.pixelCount(), conventions::kBackgroundId);
   Image picture = surfacePicture(scene, view, ids, frame.width, frame.height);

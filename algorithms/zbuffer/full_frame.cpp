@@ -26,7 +26,7 @@ class StepsWatcher final : public TileWatcher {
   StepsWatcher(const Recording& recording, const Tile<Format>& tile, std::vector<double>& testedAt)
       : recording_(recording), tile_(tile), testedAt_(testedAt) {}
 
-  void drawn(std::size_t index, const ScreenTriangle& tri, std::source_location where) override {
+  void drawn(std::size_t index, const ScreenTriangle& tri, SourceLocation where) override {
     const Frame& frame = tile_.frame;
     for (int y = tri.minY; y <= tri.maxY; ++y) rasterizeSpan(tri, y, tri.minX, tri.maxX + 1, [&](int x) { ++testedAt_[tile_.pixel(x, y)]; });
     if (!recording_.steps.due(index, tile_.triangles.size())) return;

@@ -3,7 +3,6 @@
 // span the current row, so each row touches only those (Watkins-style row coherence).
 #include <algorithm>
 #include <limits>
-#include <source_location>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/raster/active_triangles.hpp"
@@ -16,7 +15,7 @@ namespace {
 // in red, the row in blue.
 void recordRow(const Recording& recording, const CameraTransform& view, const Frame& frame, std::size_t y,
                const std::vector<ScreenTriangle>& triangles, const std::vector<std::uint32_t>& active, std::size_t entering,
-               std::source_location where = std::source_location::current()) {
+               SourceLocation where = SourceLocation::current()) {
   const std::size_t done = (y + 1) * std::size_t(frame.width);
   std::vector<std::uint32_t> ids(frame.ids.begin(), frame.ids.begin() + std::ptrdiff_t(done));
   std::vector<float> depth(frame.depth.begin(), frame.depth.begin() + std::ptrdiff_t(done));

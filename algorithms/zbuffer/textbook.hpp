@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <source_location>
 #include <span>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
@@ -25,6 +24,7 @@
 #include "renderer/raster/screen_triangles.hpp"
 #include "renderer/raster/tiles.hpp"
 #include "renderer/util/conventions.hpp"
+#include "renderer/util/source_location.hpp"
 #include "renderer/util/simd.hpp"
 
 namespace hsr::zbuffer {
@@ -56,7 +56,7 @@ struct Tile {
 // told where in the loop it was called from (the steps page shows those lines).
 class TileWatcher {
  public:
-  virtual void drawn(std::size_t index, const ScreenTriangle& tri, std::source_location where = std::source_location::current()) = 0;
+  virtual void drawn(std::size_t index, const ScreenTriangle& tri, SourceLocation where = SourceLocation::current()) = 0;
 
  protected:
   ~TileWatcher() = default;

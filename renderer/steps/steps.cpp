@@ -21,7 +21,7 @@ bool StepRecorder::due(std::size_t index, std::size_t count) const {
 
 bool StepRecorder::due(std::size_t index) const { return every_ > 0 ? (index + 1) % every_ == 0 : index < kFramesPerRun; }
 
-void StepRecorder::record(std::string caption, Image picture, std::source_location where) {
+void StepRecorder::record(std::string caption, Image picture, SourceLocation where) {
   const std::lock_guard lock(mutex_);
   if (sink_)
     sink_(Step{std::move(caption), std::move(picture), where});

@@ -14,7 +14,6 @@
 #include <filesystem>
 #include <functional>
 #include <mutex>
-#include <source_location>
 #include <span>
 #include <string>
 #include <vector>
@@ -23,13 +22,14 @@
 #include "renderer/image/frame.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/util/math.hpp"
+#include "renderer/util/source_location.hpp"
 
 namespace hsr {
 
 struct Step {
   std::string caption;         // one line: the textbook step and what it did
   Image picture;               // RGBA
-  std::source_location where;  // the algorithm's line that recorded it (the steps page shows it)
+  SourceLocation where;  // the algorithm's line that recorded it (the steps page shows it)
 };
 
 class StepRecorder {
@@ -55,7 +55,7 @@ class StepRecorder {
   // passes its own `where` on. Safe from any thread; the steps keep the order of the
   // calls, so an algorithm records from one thread (between its parallel loops) where
   // order matters.
-  void record(std::string caption, Image picture, std::source_location where = std::source_location::current());
+  void record(std::string caption, Image picture, SourceLocation where = SourceLocation::current());
   const std::vector<Step>& steps() const { return steps_; }  // the kept ones: none with a sink
 
  private:
@@ -129,7 +129,7 @@ class StepsWriter {
   int framesPerSecond_;
   OutputFiles files_;
   std::vector<std::string> captions_;
-  std::vector<std::source_location> recordedAt_;
+  std::vector<SourceLocation> recordedAt_;
   std::vector<Image> frames_;
 };
 

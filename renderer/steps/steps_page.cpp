@@ -159,7 +159,7 @@ show(asked ? Number(asked[1]) - 1 : 0);
 
 }  // namespace
 
-SourceExcerpt sourceExcerpt(const std::source_location& where, const std::filesystem::path& sourceRoot) {
+SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::path& sourceRoot) {
   SourceExcerpt excerpt;
   excerpt.function = where.function_name();
   excerpt.line = excerpt.firstLine = excerpt.markedTo = int(where.line());  // until the file is read

@@ -2,15 +2,17 @@
 // a student goes through an algorithm's steps by hand, first / previous / next / last,
 // a slider, "step N of M", the caption, and beside each picture the lines of the
 // algorithm's code that recorded it, read from the file at the line the recording call
-// captured (std::source_location). One self-contained HTML file: it opens from the
-// folder with no server and nothing to install.
+// captured (std::source_location, or its stand-in: renderer/util/source_location.hpp).
+// One self-contained HTML file: it opens from the folder with no server and nothing to
+// install.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
-#include <source_location>
 #include <string>
 #include <vector>
+
+#include "renderer/util/source_location.hpp"
 
 namespace hsr {
 
@@ -28,7 +30,7 @@ struct SourceExcerpt {
 // column 0, at most kLinesBefore lines up) to the end of the recording statement and two
 // lines more. The suite's files are read from `sourceRoot`: the folder the program was
 // built from by default.
-SourceExcerpt sourceExcerpt(const std::source_location& where, const std::filesystem::path& sourceRoot = "");
+SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::path& sourceRoot = "");
 inline constexpr int kLinesBefore = 24;
 
 struct PageStep {

@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <source_location>
 
 namespace hsr::culling::occlusion {
 namespace {
@@ -221,7 +220,7 @@ namespace {
 // A map as a step's picture: its depths (nearest white), each texel enlarged to whole
 // pixels so that a small map is seen at about the image's width.
 void recordMap(const DepthMap& map, int imageWidth, const std::string& caption, StepRecorder& steps,
-               std::source_location where = std::source_location::current()) {
+               SourceLocation where = SourceLocation::current()) {
   const int scale = std::max(1, int(std::lround(double(imageWidth) / std::max(1, map.width))));
   std::vector<float> enlarged(std::size_t(map.width * scale) * std::size_t(map.height * scale));
   for (int y = 0; y < map.height * scale; ++y)

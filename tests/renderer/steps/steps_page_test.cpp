@@ -1,9 +1,8 @@
 // The steps page (renderer/steps/steps_page.hpp): the code shown beside a step is the
-// statement that recorded it, found from what std::source_location captured, and the
+// statement that recorded it, found from what SourceLocation captured, and the
 // page holds any caption as text.
 #include <gtest/gtest.h>
 
-#include <source_location>
 #include <string>
 
 #include "renderer/steps/steps_page.hpp"
@@ -14,9 +13,9 @@ namespace {
 
 // A recording call as algorithms write one: over several lines, its arguments holding
 // ";" and "//" in strings, a comment at the end of one line.
-std::source_location recordedHere(const std::string&, int, std::source_location where = std::source_location::current()) { return where; }
+SourceLocation recordedHere(const std::string&, int, SourceLocation where = SourceLocation::current()) { return where; }
 
-std::source_location aCallOverThreeLines() {
+SourceLocation aCallOverThreeLines() {
   const int unused = 0;  // a statement before it, ending with ";" then a comment
   return recordedHere("step 2; a caption with a semicolon // and slashes, "
                       "over two lines",  // a comment
@@ -24,13 +23,13 @@ std::source_location aCallOverThreeLines() {
 }
 
 TEST(StepsPage, TheExcerptMarksTheWholeRecordingStatementFromTheTopOfItsFunction) {
-  const std::source_location where = aCallOverThreeLines();
+  const SourceLocation where = aCallOverThreeLines();
   const SourceExcerpt excerpt = sourceExcerpt(where);
   EXPECT_EQ(excerpt.file, "tests/renderer/steps/steps_page_test.cpp");
   ASSERT_FALSE(excerpt.lines.empty());
   const auto lineAt = [&](int number) { return excerpt.lines.at(std::size_t(number - excerpt.firstLine)); };
   // From the function's first line to the end of the statement and two lines more.
-  EXPECT_EQ(lineAt(excerpt.firstLine), "std::source_location aCallOverThreeLines() {");
+  EXPECT_EQ(lineAt(excerpt.firstLine), "SourceLocation aCallOverThreeLines() {");
   EXPECT_EQ(lineAt(excerpt.line).find("return recordedHere("), 2u) << lineAt(excerpt.line);
   EXPECT_EQ(excerpt.markedTo, excerpt.line + 2);
   EXPECT_NE(lineAt(excerpt.markedTo).find("unused);"), std::string::npos);
@@ -70,14 +69,14 @@ TEST(StepsPage, ACallFarIntoALongFunctionShowsAtMostTheLinesBeforeIt) {
 }
 
 TEST(StepsPage, AFileThatIsNotThereIsNamedWithoutLines) {
-  const SourceExcerpt moved = sourceExcerpt(std::source_location::current(), test::outputPath("no-such-folder"));
+  const SourceExcerpt moved = sourceExcerpt(SourceLocation::current(), test::outputPath("no-such-folder"));
   EXPECT_TRUE(moved.lines.empty());
   EXPECT_NE(moved.file.find("steps_page_test.cpp"), std::string::npos);
   EXPECT_GT(moved.line, 0);
 }
 
 TEST(StepsPage, CaptionsAndCodeWithMarkupStayText) {
-  SourceExcerpt source = sourceExcerpt(std::source_location::current());
+  SourceExcerpt source = sourceExcerpt(SourceLocation::current());
   source.lines.push_back("  const char* s = \"</script><b>\";");
   const std::string page = stepsPage("hsr render a<b>.toml", {{"step-0001.png", "caption </script><script>alert(1)</script> & \"quotes\"", source}});
   // The one script of the page's own and its two JSON blocks, nothing more closed early.
