@@ -159,9 +159,9 @@ function drawRgba(id, width, height, rgba) {
   context.putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
 }
 
-// A visible triangle's id as a colour of its own (the background black).
-function drawIds(width, height, ids) {
-  const rgba = new Uint8ClampedArray(width * height * 4);
+// Visible triangles' ids as colours, each id a colour of its own (the background black).
+function idColours(ids) {
+  const rgba = new Uint8ClampedArray(ids.length * 4);
   for (let p = 0; p < ids.length; ++p) {
     const id = ids[p];
     if (id === 0) { rgba[4 * p + 3] = 255; continue; }
@@ -171,7 +171,42 @@ function drawIds(width, height, ids) {
     rgba[4 * p + 2] = 64 + ((h >>> 16) & 127);
     rgba[4 * p + 3] = 255;
   }
-  drawRgba("ids", width, height, rgba);
+  return rgba;
+}
+
+// ---- Mine against the reference, in one view: the error map, the render's visible
+// triangles, the reference's in the same colours (so that the two match wherever the
+// render is right), or the two in turn.
+const against = { width: 0, height: 0, views: {}, chosen: "difference", blinking: null };
+const againstCaptions = {
+  difference: "error against the exact reference: the reference dimmed, wrong pixels red, ambiguous blue",
+  mine: "mine: the visible triangles as this render decided them (colours as in ids)",
+  reference: "the exact reference's visible triangles, in the same colours",
+  blink: "mine and the reference in turn, twice a second: what changes is what differs",
+};
+
+function drawAgainst(view) {
+  $("against").dataset.showing = view;
+  drawRgba("error", against.width, against.height, against.views[view]);
+}
+
+// Shows the view chosen, or the difference where this render has no such view (a line
+// drawing has only its difference); the choice stays for the next render.
+function showAgainst(chosen) {
+  clearInterval(against.blinking);
+  against.blinking = null;
+  const has = (name) => (name === "blink" ? Boolean(against.views.mine && against.views.reference) : Boolean(against.views[name]));
+  against.chosen = chosen;
+  const view = has(chosen) ? chosen : "difference";
+  for (const button of document.querySelectorAll("#against .toggle button")) {
+    button.setAttribute("aria-pressed", String(button.dataset.view === view));
+    button.disabled = !has(button.dataset.view);
+  }
+  $("againstCaption").textContent = has(view) ? againstCaptions[view] : "";
+  if (!has(view)) return canvasOf("error", 1, 1);
+  if (view !== "blink") return drawAgainst(view);
+  drawAgainst("mine");
+  against.blinking = setInterval(() => drawAgainst($("against").dataset.showing === "mine" ? "reference" : "mine"), 500);
 }
 
 // Distance along the view axis, the nearest white and the farthest dark grey; the
@@ -223,6 +258,7 @@ const paint = () => new Promise((resolve) => setTimeout(resolve, 0));
 async function render() {
   $("message").textContent = "";
   $("status").textContent = "rendering…";
+  hsr.lastComparison = null;
   $("render").disabled = true;
   await paint();
   try {
@@ -240,9 +276,10 @@ async function render() {
     const { width, height } = result;
     const what = `${request.algorithm} on ${asTheStudentNamesIt(chosen)}, ${width}×${height}`;
     drawRgba("color", width, height, hsr.module.colorPixels());
-    drawIds(width, height, hsr.module.idPixels());
+    drawRgba("ids", width, height, idColours(hsr.module.idPixels()));
     drawDepth(width, height, hsr.module.depthPixels());
-    canvasOf("error", 1, 1);
+    Object.assign(against, { width, height, views: {} });
+    showAgainst(against.chosen);
     $("whyBox").hidden = true;  // it answered for the render before
     for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
     showMetrics(result, null);
@@ -256,7 +293,14 @@ async function render() {
         $("message").textContent = asTheStudentNamesIt(compared.message);
       } else {
         const error = hsr.module.errorPixels();
-        if (error.length) drawRgba("error", width, height, error);
+        const referenceIds = hsr.module.referenceIdPixels();
+        against.views = {
+          difference: error.length ? new Uint8ClampedArray(error) : null,
+          mine: referenceIds.length ? idColours(hsr.module.idPixels()) : null,
+          reference: referenceIds.length ? idColours(referenceIds) : null,
+        };
+        showAgainst(against.chosen);
+        hsr.lastComparison = compared;
         showMetrics(result, compared);
         Object.assign(result, compared);
       }
@@ -344,6 +388,10 @@ async function start() {
     const canvas = figure.querySelector("canvas");
     canvas.addEventListener("click", (event) => { if (hsr.module && canvas.width > 1) why(...pixelUnder(canvas, event)); });
     figure.addEventListener("dblclick", () => figure.classList.toggle("large"));
+  }
+  for (const button of document.querySelectorAll("#against .toggle button")) {
+    button.addEventListener("click", () => showAgainst(button.dataset.view));
+    button.addEventListener("dblclick", (event) => event.stopPropagation());  // not the figure's enlarging
   }
   $("files").addEventListener("change", async () => {
     try { await loadUserFiles([...$("files").files]); await render(); } catch (error) { $("message").textContent = `hsr: error: ${error.message}`; }

@@ -9,7 +9,8 @@
 //   render(request)       one render: the images (colour, ids, depth) as views of the
 //                         module's memory, and the counters and times as JSON
 //   compare()             that render against the exact reference: the metrics hsr
-//                         compare prints, as JSON, and the error heat map
+//                         compare prints, as JSON, the error heat map, and the
+//                         reference's ids (the page toggles between them and the render's)
 //   why(x, y)             how that render decided pixel (x, y), beside the exact
 //                         reference's answer: what hsr why prints, and its --json
 //   identity(width, N)    every render's line of hashes (tests/identity): the same bits
@@ -90,6 +91,7 @@ struct Shown {
   Frame frame;
   LineSet drawing;
   std::vector<std::uint8_t> error;  // RGBA: the reference dimmed, wrong pixels red, ambiguous blue
+  std::vector<std::uint32_t> referenceIds;  // the exact reference's visible triangle per pixel, as frame.ids
 };
 Shown& shown() {
   static Shown last;
@@ -190,6 +192,7 @@ std::string compare() {
     }
     const SurfaceError error = surfaceError(last.frame, truth);
     last.error = errorHeatMap(last.frame, truth);
+    last.referenceIds = std::move(truth.frame.ids);
     return "{\"error\":{\"pixelError\":" + jsonNumber(error.pixelError) + ",\"wrongPixels\":" + std::to_string(error.wrongPixels) +
            ",\"comparedPixels\":" + std::to_string(error.comparedPixels) + ",\"ambiguousPixels\":" + std::to_string(error.ambiguousPixels) +
            ",\"depthErrorMean\":" + jsonNumber(error.depthErrorMean) + ",\"depthErrorMax\":" + jsonNumber(error.depthErrorMax) +
@@ -225,6 +228,9 @@ emscripten::val colorPixels() { return emscripten::val(emscripten::typed_memory_
 emscripten::val idPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.ids.size(), shown().frame.ids.data())); }
 emscripten::val depthPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.depth.size(), shown().frame.depth.data())); }
 emscripten::val errorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().error.size(), shown().error.data())); }
+emscripten::val referenceIdPixels() {
+  return emscripten::val(emscripten::typed_memory_view(shown().referenceIds.size(), shown().referenceIds.data()));
+}
 
 // The identity lines of every shipped scene under /hsr/scenes (which the page fills).
 std::string identity(int width, int randomScenes, const std::string& only) {
@@ -249,5 +255,6 @@ EMSCRIPTEN_BINDINGS(hsr) {
   emscripten::function("idPixels", &hsr::web::idPixels);
   emscripten::function("depthPixels", &hsr::web::depthPixels);
   emscripten::function("errorPixels", &hsr::web::errorPixels);
+  emscripten::function("referenceIdPixels", &hsr::web::referenceIdPixels);
   emscripten::function("identity", &hsr::web::identity);
 }

@@ -132,6 +132,45 @@ try {
   result = await renderWith();
   check(result.message === "" && Number((await text("#metrics")).match(/pixel error(\d+\.\d+)%/)?.[1]) > 0, "unorm16 on the coplanar case: a knob, and an error above zero");
 
+  // Mine against the reference, in one view: the render's visible triangles, the
+  // reference's in the same colours, the error map, and the two in turn.
+  const differingPixels = (a, b) => page.evaluate(([a, b]) => {
+    const data = (id) => { const c = document.getElementById(id); return c.getContext("2d").getImageData(0, 0, c.width, c.height).data; };
+    const first = data(a), second = b === "errorPixels" ? window.hsrPage.state.module.errorPixels() : data(b);
+    if (first.length !== second.length) return -1;
+    let differing = 0;
+    for (let p = 0; p < first.length; p += 4) differing += first[p] !== second[p] || first[p + 1] !== second[p + 1] || first[p + 2] !== second[p + 2];
+    return differing;
+  }, [a, b]);
+  const showing = () => page.$eval("#against", (figure) => figure.dataset.showing);
+  const measured = await page.evaluate(() => window.hsrPage.state.lastComparison.error);
+  check(await differingPixels("error", "errorPixels") === 0 && (await showing()) === "difference", "the view against the reference opens on the error map");
+  await page.click('#against button[data-view="mine"]');
+  check(await differingPixels("error", "ids") === 0 && (await showing()) === "mine", "mine: the render's visible triangles, coloured as ids colours them");
+  await page.click('#against button[data-view="reference"]');
+  const unlikeMine = await differingPixels("error", "ids");
+  check((await showing()) === "reference" && unlikeMine >= measured.wrongPixels && unlikeMine <= measured.wrongPixels + measured.ambiguousPixels,
+        `the reference: it differs from mine at ${unlikeMine} pixels, the ${measured.wrongPixels} wrong ones and at most the ${measured.ambiguousPixels} ambiguous`);
+  await page.locator("#against").screenshot({ path: join(out, "against-reference.png") });
+  await page.click('#against button[data-view="blink"]');
+  const seen = new Set();
+  for (let sample = 0; sample < 6; ++sample, await page.waitForTimeout(230)) seen.add(await showing());
+  check(seen.has("mine") && seen.has("reference") && seen.size === 2, `blink: mine and the reference in turn (${[...seen].join(", ")})`);
+  await page.click('#against button[data-view="difference"]');
+  await page.waitForTimeout(600);
+  check(await differingPixels("error", "errorPixels") === 0 && (await showing()) === "difference", "and back to the difference, the blinking stopped");
+  await page.click('#against button[data-view="mine"]');
+  result = await renderWith();
+  check(await differingPixels("error", "ids") === 0 && (await showing()) === "mine", "the view chosen stays chosen for the next render");
+  await page.selectOption("#algorithm", "appel");
+  await page.selectOption("#scene", "blocks.toml");
+  result = await renderWith();
+  const offered = await page.$$eval("#against .toggle button:not(:disabled)", (buttons) => buttons.map((b) => b.dataset.view));
+  check(result.message === "" && JSON.stringify(offered) === '["difference"]' && (await showing()) === "difference" &&
+        await differingPixels("error", "errorPixels") === 0, `a line drawing has only its difference against the reference (offered: ${offered.join(", ")})`);
+  await page.selectOption("#algorithm", "zbuffer");
+  await page.selectOption("#scene", "hard/coplanar.toml");
+
   await page.selectOption('[id="zbuffer.depth-format"]', "float32");
   await page.selectOption("#scene", "city.toml");
   await page.fill("#size", "480x270");
