@@ -16,9 +16,6 @@ done
 study=$(mktemp -d)
 ./build/hsr compare scenes/bunny.toml scenes/hard/coplanar.toml --out "$study" > /dev/null
 cp "$study/contact_sheet.png" images/figures/compare.png
-# Its report.html as a browser shows it (chromium, headless).
-chromium --headless --no-sandbox --disable-gpu --window-size=1100,900 --screenshot="$PWD/images/figures/report.png" \
-  "file://$study/report.html" 2> /dev/null
 # Each algorithm's own steps (hsr render --steps), as the README's animations; and the
 # occlusion stage's steps side by side: what it removed, its depth map, a pyramid level.
 mkdir -p images/figures/steps
@@ -211,9 +208,10 @@ cp "$study/shadow_map.png" images/figures/effects/shadow_map.png
 rm -r "$study"
 # The browser edition's page after its first render, as its test leaves it (README "In the
 # browser"): the site built, served and clicked through in headless chromium; and the
-# steps page as its test leaves it.
+# steps page and hsr compare's report.html as their tests leave them.
 bash scripts/web_test.sh > /dev/null
 cp out/web/page.png images/figures/web.png
 cp out/web/why.png images/figures/web-why.png  # a pixel asked why about (README "Asking why")
 cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Watching an algorithm work")
+cp out/web/report.png images/figures/report.png     # hsr compare's report.html (README "report.html")
 echo "figures are in images/figures/"

@@ -2,12 +2,16 @@
 // time and error side by side, as a table, CSV, JSON and a contact sheet.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <sstream>
 #include <utility>
 
+#include "algorithms/registry.hpp"
 #include "renderer/lines/line_drawing.hpp"
 #include "renderer/reference/metrics.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/util/error.hpp"
+#include "renderer/util/markup.hpp"
 #include "studies/common.hpp"
 #include "studies/contact_sheet.hpp"
 #include "studies/measure.hpp"
@@ -20,6 +24,78 @@ namespace {
 // The default study: the shipped scenes that each teach something about visibility.
 const char* const kStudyScenes[] = {"cube.toml", "bunny.toml", "counters.toml", "trees.toml", "dragons.toml",
                                     "hard/coplanar.toml", "hard/near_plane.toml"};
+
+// The suite's own folder: where its scenes and each algorithm's README are.
+std::filesystem::path suiteFolder() { return std::filesystem::path(HSR_SCENES_DIR).parent_path(); }
+
+// A scene of the suite's own named from the suite's folder (scenes/cube.toml), as a
+// student finds it; any other as it was given.
+std::string suiteRelative(const std::string& path) {
+  const std::string suite = suiteFolder().string() + "/";
+  return path.rfind(suite, 0) == 0 ? path.substr(suite.size()) : path;
+}
+
+// The options that run a row's configuration again: "--algo zbuffer --knob variant=scanline".
+std::string commandOptions(const ResultRow& row) {
+  std::string options = "--algo " + row.algorithm;
+  if (row.knobs == "defaults" || row.knobs == "exact") return options;
+  std::istringstream settings(row.knobs);
+  for (std::string setting; settings >> setting;) options += " --knob " + setting;
+  return options;
+}
+
+// The algorithm's README, as a link from the report's folder; none where there is none.
+std::string readmeLink(const std::string& algorithm, const std::filesystem::path& out) {
+  const std::filesystem::path folder = algorithm == "reference" ? "renderer/reference" : "algorithms/" + algorithm;
+  const std::filesystem::path readme = suiteFolder() / folder / "README.md";
+  std::error_code error;
+  if (!std::filesystem::exists(readme, error)) return "";
+  const std::filesystem::path link = std::filesystem::relative(readme, std::filesystem::absolute(out, error), error);
+  return error ? readme.string() : link.generic_string();
+}
+
+// The gallery report.html leads with (studies/report.hpp): per scene, the reference and
+// each configuration with its picture, its error map and the figures a student compares,
+// as JSON, the pictures under images/.
+class Gallery {
+ public:
+  explicit Gallery(std::filesystem::path out) : out_(std::move(out)) {}
+
+  void beginScene(const std::string& scene, const PreparedScene& prepared) {
+    folder_ = "images/" + std::to_string(++scenes_) + "-" + std::filesystem::path(scene).stem().string();
+    std::filesystem::create_directories(out_ / folder_);
+    json_ += std::string(scenes_ > 1 ? "]}," : "") + "{\"scene\":" + jsonString(scene) + ",\"width\":" + std::to_string(prepared.width()) +
+             ",\"height\":" + std::to_string(prepared.height()) + ",\"triangles\":" + std::to_string(prepared.triangleCount()) + ",\"entries\":[";
+    entries_ = 0;
+  }
+
+  // One tile: the row's figures, its picture and the map of where it is wrong.
+  void add(const ResultRow& row, const std::vector<std::uint8_t>& picture, const std::vector<std::uint8_t>& errorMap, const std::string& errorLegend) {
+    const std::string name = folder_ + "/" + std::to_string(++entries_);
+    files_.addRgbaPng(out_ / (name + ".png"), row.width, row.height, picture);
+    files_.addRgbaPng(out_ / (name + "-error.png"), row.width, row.height, errorMap);
+    json_ += std::string(entries_ > 1 ? "," : "") + "{\"algorithm\":" + jsonString(row.algorithm) + ",\"knobs\":" + jsonString(row.knobs) +
+             ",\"picture\":" + jsonString(name + ".png") + ",\"errorMap\":" + jsonString(name + "-error.png") +
+             ",\"errorLegend\":" + jsonString(errorLegend) + ",\"lines\":" + (row.lines ? "true" : "false") +
+             ",\"visibilityMs\":[" + jsonNumber(row.visibility.median * 1e3) + "," + jsonNumber(row.visibility.min * 1e3) + "," +
+             jsonNumber(row.visibility.max * 1e3) + "],\"error\":" + jsonNumber(row.errorValue()) +
+             ",\"wrongPixels\":" + std::to_string(row.error.wrongPixels) + ",\"ambiguousPixels\":" + std::to_string(row.error.ambiguousPixels) +
+             ",\"options\":" + jsonString(commandOptions(row)) + ",\"readme\":" + jsonString(readmeLink(row.algorithm, out_)) +
+             ",\"answersWhy\":" + (findAlgorithm(row.algorithm).answersWhy ? "true" : "false") + "}";
+  }
+
+  // Written with the run's other files: gallery.json and the pictures.
+  void commit() {
+    files_.addText(out_ / "gallery.json", "{\"scenes\":[" + json_ + (scenes_ > 0 ? "]}" : "") + "]}\n");
+    files_.commit();
+  }
+
+ private:
+  std::filesystem::path out_;
+  std::string folder_, json_;
+  int scenes_ = 0, entries_ = 0;
+  OutputFiles files_;
+};
 
 std::string formatCount(std::int64_t value) {
   std::string digits = std::to_string(value), text;
@@ -63,9 +139,12 @@ int compare(const CompareOptions& options) {
 
   std::vector<ResultRow> rows;
   std::vector<SheetSection> sections;
+  Gallery gallery(options.out);
   const AlgorithmEntry& referenceAlgorithm = referenceEntry();
   for (const LoadedScene& scene : scenes) {
     const PreparedScene& prepared = *scene.prepared;
+    const std::string sceneName = suiteRelative(scene.name);
+    gallery.beginScene(sceneName, prepared);
     const auto reference = measure(options.repeat, [&](Stats& stats) { return renderReference(prepared, options.threads, stats); });
     const ReferenceImage& truth = reference.result;
 
@@ -77,8 +156,9 @@ int compare(const CompareOptions& options) {
                 formatCount(truth.ambiguousPixels).c_str(), formatCount(truth.exactFallbacks).c_str());
 
     std::vector<ResultRow> sceneRows;
-    ResultRow referenceRow = measuredRow(scene.name, prepared, referenceAlgorithm, "exact", reference, options.threads);
+    ResultRow referenceRow = measuredRow(sceneName, prepared, referenceAlgorithm, "exact", reference, options.threads);
     referenceRow.error = surfaceError(truth.frame, truth);
+    gallery.add(referenceRow, truth.frame.color, errorHeatMap(truth.frame, truth), "ambiguous pixels blue");
     sceneRows.push_back(referenceRow);
     char line[128];
     std::snprintf(line, sizeof line, "visibility %.1f ms, total %.1f", referenceRow.visibility.median * 1e3, referenceRow.time.median * 1e3);
@@ -95,7 +175,7 @@ int compare(const CompareOptions& options) {
         continue;
       }
       const auto [row, frame, lineErrors, exactLines] =
-          measureConfiguration(scene.name, prepared, truth, configuration, options.repeat, options.threads);
+          measureConfiguration(sceneName, prepared, truth, configuration, options.repeat, options.threads);
       // A line algorithm is judged by an exact drawing, not by the reference image: that
       // drawing gets a tile of its own before the first algorithm judged by it.
       if (row.lines) {
@@ -118,8 +198,11 @@ int compare(const CompareOptions& options) {
         std::snprintf(line, sizeof line, "%.1f px wrong (red), %.1f px missing (blue)", row.lineError.wronglyDrawn,
                       row.lineError.wronglyHidden);
         section.heatMaps.push_back({prepared.width(), prepared.height(), lineErrors, {line}});
+        gallery.add(row, frame.color, lineErrors, "drawn though hidden red, hidden though visible blue");
       } else {
-        section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(frame, truth),
+        std::vector<std::uint8_t> errorMap = errorHeatMap(frame, truth);
+        gallery.add(row, frame.color, errorMap, "wrong pixels red, ambiguous blue, over the reference dimmed");
+        section.heatMaps.push_back({prepared.width(), prepared.height(), std::move(errorMap),
                                     {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
       }
     }
@@ -136,7 +219,8 @@ int compare(const CompareOptions& options) {
   files.addText(out / "results.csv", resultsCsv(rows, {}));
   files.addText(out / "results.json", resultsJson(rows));
   files.commit();
-  std::printf("wrote %s, results.csv and results.json in %s\n", "contact_sheet.png", out.string().c_str());
+  gallery.commit();
+  std::printf("wrote %s, results.csv, results.json, gallery.json and images/ in %s\n", "contact_sheet.png", out.string().c_str());
   return 0;
 }
 

@@ -12,6 +12,8 @@
 
 #include "renderer/image/frame.hpp"
 #include "renderer/util/markup.hpp"
+#include "studies/report_gallery.hpp"
+#include "studies/results.hpp"
 
 namespace hsr::studies {
 namespace {
@@ -54,17 +56,37 @@ std::string readText(const std::filesystem::path& path) {
   return text.str();
 }
 
+// A CSV as a table that leads with the columns a reader compares first (algorithm, knobs,
+// visibility time, error, wrong pixels; a sweep's knobs): the others are folded until
+// asked for. Each heading says what its column means when pointed at, and a list under
+// the table says it for every column.
 std::string tableHtml(const std::vector<std::vector<std::string>>& rows) {
   if (rows.empty()) return "<p>(empty)</p>\n";
-  std::string html = "<div class=\"scroll\"><table class=\"sortable\">\n<thead><tr>";
-  for (const std::string& name : rows.front()) html += "<th title=\"sort by " + escapedMarkup(name) + "\">" + escapedMarkup(name) + "</th>";
+  const std::vector<std::string>& columns = rows.front();
+  std::vector<bool> folded;
+  for (const std::string& name : columns) folded.push_back(columnMeaning(name) && !columnMeaning(name)->key);
+  const auto cellClass = [&](std::size_t c) { return c < folded.size() && folded[c] ? std::string(" class=\"more\"") : std::string(); };
+  const std::size_t foldedCount = std::size_t(std::count(folded.begin(), folded.end(), true));
+  std::string html;
+  if (foldedCount > 0)
+    html += "<label class=\"columns\"><input type=\"checkbox\" onchange=\"this.parentNode.nextElementSibling.firstChild.classList.toggle('all', this.checked)\"> "
+            "show the other " + std::to_string(foldedCount) + " columns</label>\n";
+  html += "<div class=\"scroll\"><table class=\"sortable\">\n<thead><tr>";
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const ColumnMeaning* meaning = columnMeaning(columns[c]);
+    html += "<th" + cellClass(c) + " title=\"" + escapedMarkup(meaning ? meaning->meaning + " (click to sort)" : "sort by " + columns[c]) + "\">" +
+            escapedMarkup(columns[c]) + "</th>";
+  }
   html += "</tr></thead>\n<tbody>\n";
   for (std::size_t r = 1; r < rows.size(); ++r) {
     html += "<tr>";
-    for (const std::string& field : rows[r]) html += "<td>" + escapedMarkup(field) + "</td>";
+    for (std::size_t c = 0; c < rows[r].size(); ++c) html += "<td" + cellClass(c) + ">" + escapedMarkup(rows[r][c]) + "</td>";
     html += "</tr>\n";
   }
-  return html + "</tbody></table></div>\n";
+  html += "</tbody></table></div>\n<details class=\"meanings\"><summary>What the columns mean</summary><dl>\n";
+  for (const std::string& name : columns)
+    if (const ColumnMeaning* meaning = columnMeaning(name)) html += "<dt>" + escapedMarkup(name) + "</dt><dd>" + escapedMarkup(meaning->meaning) + "</dd>\n";
+  return html + "</dl></details>\n";
 }
 
 // Sorting: a click on a column's heading sorts its table by it, ascending then
@@ -106,6 +128,9 @@ th, td { border: 1px solid #ccc; padding: 0.2em 0.5em; text-align: left; white-s
 th { background: #eee; cursor: pointer; }
 th[aria-sort="ascending"]::after { content: " \25B2"; } th[aria-sort="descending"]::after { content: " \25BC"; }
 tbody tr:nth-child(even) { background: #fafafa; }
+table:not(.all) .more { display: none; }
+label.columns { display: block; margin: 0.4em 0; font-size: 0.9em; }
+details.meanings { font-size: 0.85em; margin: 0.5em 0 1em; } details.meanings dl { margin: 0.5em 0; }
 figure { margin: 1em 0; } img { max-width: 100%; border: 1px solid #ddd; }
 dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; } dt { font-weight: bold; }
 )";
@@ -147,8 +172,10 @@ void writeReport(const std::filesystem::path& folder, const std::string& title, 
   for (const std::filesystem::path& file : written) {
     const std::string extension = file.extension().string();
     if (extension == ".csv") tables.push_back(file);
-    // A plot's PNG beside its SVG is the same picture.
-    if (extension == ".svg" || (extension == ".png" && !wrote(std::filesystem::path(file).replace_extension(".svg"))))
+    // A plot's PNG beside its SVG is the same picture; a gallery shows the contact
+    // sheet's pictures one by one, each at its own size.
+    if (extension == ".svg" || (extension == ".png" && !wrote(std::filesystem::path(file).replace_extension(".svg")) &&
+                                !(file == "contact_sheet.png" && wrote("gallery.json"))))
       pictures.push_back(file);
   }
   std::string html = "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapedMarkup(title) +
@@ -157,7 +184,8 @@ void writeReport(const std::filesystem::path& folder, const std::string& title, 
   html += "<dt>hsr</dt><dd>" + escapedMarkup(invocation.version) + "</dd>\n";
   html += "<dt>machine</dt><dd>" + escapedMarkup(machineDescription()) + "</dd>\n";
   html += "<dt>written</dt><dd>" + utcNow() + "</dd>\n</dl>\n";
-  html += "<p>The columns are described in the hsr README. Click a column's heading to sort by it.</p>\n";
+  if (wrote("gallery.json")) html += galleryHtml(readText(folder / "gallery.json"));
+  html += "<p>Point at a column's heading for what it means; click it to sort by it.</p>\n";
   for (const std::filesystem::path& table : tables)
     html += "<h2>" + escapedMarkup(table.string()) + "</h2>\n" + tableHtml(parsedCsv(readText(folder / table)));
   for (const std::filesystem::path& picture : pictures) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 #include "renderer/lines/line_drawing.hpp"
 #include "renderer/reference/line_reference.hpp"
@@ -142,6 +143,44 @@ std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std
     csv += line(fields);
   }
   return csv;
+}
+
+const ColumnMeaning* columnMeaning(const std::string& column) {
+  static const std::map<std::string, ColumnMeaning> kMeanings = {
+      {"scene", {"the scene file, from the suite's folder for a shipped scene", true}},
+      {"algorithm", {"the algorithm's name in the registry (hsr list)", true}},
+      {"knobs", {"the knob settings that differ from the defaults (defaults if none; exact for the reference)", true}},
+      {"width", {"the image's width in pixels"}},
+      {"height", {"the image's height in pixels"}},
+      {"triangles", {"the scene's triangles"}},
+      {"threads", {"threads the run used (0 = all cores)"}},
+      {"repeats", {"timed runs"}},
+      {"visibility_median_ms", {"the algorithm's own time per run, median: its culling and visibility passes (the reference's ray casting)", true}},
+      {"visibility_min_ms", {"the algorithm's own time, fastest run"}},
+      {"visibility_max_ms", {"the algorithm's own time, slowest run"}},
+      {"effects_median_ms", {"the passes after visibility (shading, shadows, fog...), the same code for every algorithm, median"}},
+      {"effects_min_ms", {"the passes after visibility, fastest run"}},
+      {"effects_max_ms", {"the passes after visibility, slowest run"}},
+      {"time_median_ms", {"one whole render, median"}},
+      {"time_min_ms", {"one whole render, fastest"}},
+      {"time_max_ms", {"one whole render, slowest"}},
+      {"pixel_error", {"the fraction of the compared pixels whose visible triangle is not the exact reference's", true}},
+      {"wrong_pixels", {"pixels whose visible triangle is not the exact reference's", true}},
+      {"compared_pixels", {"pixels compared: all but the ambiguous ones"}},
+      {"ambiguous_pixels", {"pixels the reference certifies as ties (two surfaces at exactly one distance): no answer is wrong there"}},
+      {"depth_error_mean", {"the mean difference from the reference's depth, in scene units"}},
+      {"depth_error_max", {"the largest difference from the reference's depth, in scene units"}},
+      {"line_error", {"a line algorithm's error: the fraction of the visible length drawn wrong", true}},
+      {"visible_length_px", {"the exact drawing's visible length, in pixels"}},
+      {"wrongly_drawn_px", {"pixels of line drawn though hidden"}},
+      {"wrongly_hidden_px", {"pixels of line hidden though visible"}},
+      {"peak_memory_bytes", {"the most heap one timed run held above what was allocated before it"}},
+      {"pareto", {"1 on the Pareto front: no other configuration is both at least as accurate and surely faster", true}},
+      {"counters", {"the algorithm's key counters, name=value;..."}},
+      {"pass_ms", {"each pass's median time in ms, name=ms;..."}},
+  };
+  const auto found = kMeanings.find(column);
+  return found == kMeanings.end() ? nullptr : &found->second;
 }
 
 std::string resultsJson(const std::vector<ResultRow>& rows) {

@@ -94,6 +94,15 @@ std::string resultsJson(const std::vector<ResultRow>& rows);
 // memory, counters, time per pass), which the CSV and JSON always hold.
 std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs, bool wide);
 
+// What a column of results.csv (and sweep.csv) means, in a sentence, and whether a reader
+// compares it first (the report shows those and folds the rest); nothing for a column it
+// does not know (a swept knob's, named after the knob).
+struct ColumnMeaning {
+  std::string meaning;
+  bool key = false;
+};
+const ColumnMeaning* columnMeaning(const std::string& column);
+
 // A CSV field, quoted when it holds a comma, quote or newline (a JSON string literal:
 // jsonString, renderer/util/markup.hpp).
 std::string csvField(const std::string& text);

@@ -33,17 +33,6 @@ bool endsStatement(const std::string& line) {
   return last == std::string::npos || code[last] == ';' || code[last] == '{' || code[last] == '}' || code[last] == ':';
 }
 
-// JSON text placed in a <script> element: "</" would end the element, so it is written
-// "<\/", which JSON reads back as the same two characters.
-std::string safeInScript(const std::string& json) {
-  std::string safe;
-  for (std::size_t i = 0; i < json.size(); ++i) {
-    safe += json[i];
-    if (json[i] == '<' && i + 1 < json.size() && json[i + 1] == '/') safe += '\\';
-  }
-  return safe;
-}
-
 std::string excerptJson(const SourceExcerpt& source) {
   std::string json = "{\"file\":" + jsonString(source.file) + ",\"function\":" + jsonString(source.function) +
                      ",\"line\":" + std::to_string(source.line) + ",\"firstLine\":" + std::to_string(source.firstLine) +
@@ -235,8 +224,8 @@ std::string stepsPage(const std::string& title, const std::vector<PageStep>& ste
          "<main>\n<figure><img id=\"picture\" alt=\"\"></figure>\n"
          "<section id=\"source\" aria-label=\"the code that recorded the step\">\n<h2 id=\"sourceTitle\"></h2>\n"
          "<p class=\"function\" id=\"function\"></p>\n<pre id=\"code\"></pre>\n</section>\n</main>\n"
-         "<script type=\"application/json\" id=\"steps\">" + safeInScript(list) + "</script>\n"
-         "<script type=\"application/json\" id=\"sources\">" + safeInScript(sources) + "</script>\n"
+         "<script type=\"application/json\" id=\"steps\">" + jsonInScript(list) + "</script>\n"
+         "<script type=\"application/json\" id=\"sources\">" + jsonInScript(sources) + "</script>\n"
          "<script>" + kScript + "</script>\n</body>\n</html>\n";
 }
 

@@ -41,6 +41,17 @@ inline std::string jsonString(const std::string& text) {
   return quoted + "\"";
 }
 
+// JSON text placed in an HTML <script> element: "</" would end the element, so it is
+// written "<\/", which JSON reads back as the same two characters.
+inline std::string jsonInScript(const std::string& json) {
+  std::string safe;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    safe += json[i];
+    if (json[i] == '<' && i + 1 < json.size() && json[i + 1] == '/') safe += '\\';
+  }
+  return safe;
+}
+
 // A number as JSON: all 17 significant digits, so that it reads back as the same double;
 // null for NaN and the infinities, which JSON cannot hold.
 inline std::string jsonNumber(double value) {
