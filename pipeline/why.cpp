@@ -34,15 +34,15 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
   const std::string differs = "differs: the reference shows " + expected + ", ";
   if (answer.culled) return differs + "which the culling stages removed before the algorithm ran";
   const auto& history = answer.history;
-  std::size_t met = history.size();  // the reference's triangle's last event here
+  std::size_t met = history.size();  // the reference's triangle's last event here (a window's is no triangle's)
   for (std::size_t i = 0; i < history.size(); ++i)
-    if (history[i].id == answer.reference.id) met = i;
+    if (history[i].subject.empty() && history[i].id == answer.reference.id) met = i;
   if (met == history.size())
     return differs + (answer.reference.id == conventions::kBackgroundId
                           ? "where nothing lies between the near and far planes"
                           : "which never reached this pixel (the rasterizer did not cover the pixel's center with it, or it was clipped)");
   const auto event = [](std::size_t i) { return "event " + std::to_string(i + 1); };
-  if (!history[met].shown) return differs + "whose fragment (" + event(met) + ") " + history[met].outcome + ": " + history[met].detail;
+  if (!history[met].shown) return differs + "not shown after " + event(met) + ": " + history[met].outcome + ": " + history[met].detail;
   std::size_t replaced = met + 1;
   while (replaced < history.size() && !history[replaced].shown) ++replaced;
   HSR_CHECK(replaced < history.size());  // something replaced it, or the pixel would show it
@@ -112,7 +112,8 @@ std::string whyText(const PreparedScene& scene, const std::string& sceneName, co
             (count == 1 ? " event" : " events") + ", in the order the algorithm's loop met them\n";
     for (std::size_t i = 0; i < count; ++i) {
       const PixelEvent& event = answer.history[i];
-      text += "  " + std::to_string(i + 1) + ". " + triangleOf(scene, event.id) + ": " + event.outcome + "\n     " + event.detail +
+      text += "  " + std::to_string(i + 1) + ". " + (event.subject.empty() ? triangleOf(scene, event.id) : event.subject) + ": " + event.outcome +
+              "\n     " + event.detail +
               (std::isnan(event.distance) ? "" : "; distance " + number(event.distance)) + "\n";
     }
     text += "  shows " + triangleOf(scene, answer.shown) +
@@ -138,7 +139,9 @@ std::string whyJson(const PreparedScene& scene, const std::string& sceneName, co
             ", \"history\": [";
     for (std::size_t i = 0; i < answer.history.size(); ++i) {
       const PixelEvent& event = answer.history[i];
-      json += std::string(i ? ", " : "") + "\n    {\"triangle\": " + jsonTriangle(event.id) + ", \"name\": " + jsonString(triangleOf(scene, event.id)) +
+      const bool aboutTriangle = event.subject.empty();
+      json += std::string(i ? ", " : "") + "\n    {\"triangle\": " + (aboutTriangle ? jsonTriangle(event.id) : "null") +
+              ", \"name\": " + jsonString(aboutTriangle ? triangleOf(scene, event.id) : event.subject) +
               ", \"outcome\": " + jsonString(event.outcome) + ", \"detail\": " + jsonString(event.detail) +
               ", \"distance\": " + jsonNumber(event.distance) + ", \"shown\": " + (event.shown ? "true" : "false") + "}";
     }

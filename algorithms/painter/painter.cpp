@@ -101,7 +101,7 @@ void witnessPainting(const PaintedPieces& painted, const PieceFragment& fragment
   history->push_back({fragment.triangle + 1, "painted over what the pixel showed",
                       "piece " + std::to_string(fragment.piece + 1) + " of " + std::to_string(painted.order.pieces.size()) +
                           " in the order, back to front (" + cut + ")",
-                      fragment.depth, true});
+                      fragment.depth, true, {}});
 }
 
 }  // namespace

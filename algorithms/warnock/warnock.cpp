@@ -117,15 +117,16 @@ struct Counts {
 
 class Subdivision {
  public:
-  Subdivision(const ScreenGeometry& geometry, const Knobs& knobs, Frame& frame)
+  Subdivision(const ScreenGeometry& geometry, const Knobs& knobs, Frame& frame, PixelWitness* why)
       : triangles_(geometry.triangles), camera_(geometry.camera), knobs_(knobs), frame_(frame),
-        order_(geometry.camera) {}
+        order_(geometry.camera), why_(why) {}
 
   // Examines a window: step 1 classifies every polygon that met its parent, step 2
   // applies the rules in order, drawing the window when one decides it.
   Examined examine(const Window& window, std::span<const std::uint32_t> candidates, Counts& counts) const {
     // Step 1: the relation of each polygon to the window; the disjoint ones are dropped.
     Examined examined{Rule::subdivided, {}};
+    const std::array<std::int64_t, 4> relationsBefore = why_ ? counts.relations : std::array<std::int64_t, 4>{};
     std::optional<std::uint32_t> nearestSurrounding;
     double nearestSurroundingFarthest = std::numeric_limits<double>::infinity();
     for (const std::uint32_t i : candidates) {
@@ -166,15 +167,25 @@ class Subdivision {
     }
     // Otherwise subdivide (the caller cuts the window; the polygons meeting it go along).
     ++counts.windows[std::size_t(examined.rule)];
+    if (why_) {
+      std::array<std::int64_t, 4> related{};
+      for (std::size_t k = 0; k < related.size(); ++k) related[k] = counts.relations[k] - relationsBefore[k];
+      witnessWindow(window, examined, related, nearestSurrounding);
+    }
     if (examined.rule != Rule::subdivided) examined.meeting.clear();
     return examined;
   }
 
  private:
+  // The central pixel of a window, which decides a window at the smallest size.
+  static std::pair<int, int> centralPixel(const Window& window) {
+    return {window.x0 + (window.width() - 1) / 2, window.y0 + (window.height() - 1) / 2};
+  }
+
   // The polygon nearest at the center of the window's central pixel, of those covering
   // it; a tie goes to the earlier polygon, as in the z-buffer.
   std::optional<std::uint32_t> nearestAtCenter(const Window& window, std::span<const std::uint32_t> meeting) const {
-    const int x = window.x0 + (window.width() - 1) / 2, y = window.y0 + (window.height() - 1) / 2;
+    const auto [x, y] = centralPixel(window);
     std::optional<std::uint32_t> nearest;
     double nearestKey = std::numeric_limits<double>::infinity();
     for (const std::uint32_t i : meeting) {
@@ -212,11 +223,92 @@ class Subdivision {
       rasterizeSpan(tri, y, x0, x1, [&](int x) { setPixel(x, y, triangle); });
   }
 
+  // hsr why: a window examined that holds a pixel asked about, and the rule that decided
+  // it or that none did; for a decided window, what each polygon meeting it came to at
+  // the pixel. The window is examined once at each level, and only it draws its pixels,
+  // so a pixel's history is written by one thread at a time.
+  void witnessWindow(const Window& window, const Examined& examined, const std::array<std::int64_t, 4>& related,
+                     std::optional<std::uint32_t> surrounding) const {
+    for (std::size_t asked = 0; asked < why_->count(); ++asked) {
+      const auto [x, y] = why_->pixel(asked);
+      if (x < window.x0 || x >= window.x1 || y < window.y0 || y >= window.y1) continue;
+      std::vector<PixelEvent>& history = *why_->at(x, y);
+      const std::int64_t meeting = related[1] + related[2] + related[3];
+      PixelEvent event;
+      event.subject = "window " + std::to_string(window.width()) + " x " + std::to_string(window.height()) + " at (" +
+                      std::to_string(window.x0) + ", " + std::to_string(window.y0) + ")";
+      event.detail = std::to_string(meeting) + (meeting == 1 ? " polygon meets it" : " polygons meet it") + " (" +
+                     std::to_string(related[3]) + " surrounding, " + std::to_string(related[2]) + " intersecting, " +
+                     std::to_string(related[1]) + " contained)";
+      switch (examined.rule) {
+        case Rule::empty:
+          event.outcome = "rule 1, empty: no polygon meets it, so the window shows the background";
+          break;
+        case Rule::onePolygon:
+          event.outcome = "rule 2, one polygon: it is scan-converted within the window";
+          break;
+        case Rule::surrounded:
+          event.outcome = "rule 3, surrounded: the surrounding polygon is nearer than every other over the whole window";
+          break;
+        case Rule::smallest: {
+          const auto [cx, cy] = centralPixel(window);
+          event.outcome = "the smallest window (--knob smallest-window=" + std::to_string(knobs_.smallestWindow) +
+                          "): decided by the polygon nearest at its central pixel (" + std::to_string(cx) + ", " + std::to_string(cy) + ")";
+          break;
+        }
+        case Rule::subdivided:
+          event.outcome = "subdivided into four: no rule decides it";
+          event.detail += surrounding ? "; the nearest surrounding polygon is not nearer than every other over all of it"
+                                      : meeting > 1 ? "; more than one meets it and none surrounds it" : "";
+          break;
+      }
+      history.push_back(std::move(event));
+      if (examined.rule != Rule::subdivided) witnessDecision(window, examined, surrounding, x, y, history);
+    }
+  }
+
+  // What each polygon meeting a decided window came to at pixel (x, y): the one the rule
+  // gave the pixel, and why each other one is not shown there.
+  void witnessDecision(const Window& window, const Examined& examined, std::optional<std::uint32_t> surrounding, int x, int y,
+                       std::vector<PixelEvent>& history) const {
+    const Rule rule = examined.rule;
+    const std::vector<std::uint32_t>& meeting = examined.meeting;
+    const auto [cx, cy] = centralPixel(window);
+    const std::optional<std::uint32_t> nearest = rule == Rule::smallest ? nearestAtCenter(window, meeting) : std::nullopt;
+    const std::size_t pixel = std::size_t(y) * std::size_t(frame_.width) + std::size_t(x);
+    for (const std::uint32_t i : meeting) {
+      const ScreenTriangle& tri = triangles_[i];
+      PixelEvent event;
+      event.id = tri.triangle + 1;
+      event.distance = DepthOrder::distanceAt(camera_, tri, x, y);
+      event.shown = frame_.ids[pixel] == event.id;
+      const std::string central = "(" + std::to_string(cx) + ", " + std::to_string(cy) + ")";
+      if (rule == Rule::onePolygon) {
+        event.outcome = event.shown ? "drawn: it covers the pixel's center" : "not drawn here: it does not cover the pixel's center";
+        event.detail = "the one polygon meeting the window";
+      } else if (rule == Rule::surrounded) {
+        event.outcome = i == surrounding ? "fills the window: it surrounds it and is nearer than every other there"
+                                         : "hidden: the surrounding polygon is nearer over the whole window";
+        event.detail = i == surrounding ? "its farthest depth in the window is before every other polygon's nearest"
+                                        : "its nearest depth in the window is beyond the surrounding polygon's farthest";
+      } else if (!coversCenter(tri, cx, cy)) {
+        event.outcome = "does not cover the window's central pixel " + central;
+        event.detail = "at the smallest size only the central pixel's center is tested, for every pixel of the window";
+      } else {
+        event.outcome = i == nearest ? "fills the window: the nearest at its central pixel " + central
+                                     : "farther than another polygon at the window's central pixel " + central;
+        event.detail = "its plane's distance there " + std::to_string(DepthOrder::distanceAt(camera_, tri, cx, cy));
+      }
+      history.push_back(std::move(event));
+    }
+  }
+
   const std::vector<ScreenTriangle>& triangles_;
   const CameraTransform& camera_;
   const Knobs& knobs_;
   Frame& frame_;
   DepthOrder order_;
+  PixelWitness* why_;
 };
 
 // The window's four quadrants (two halves, or itself, where it is one pixel thin).
@@ -327,7 +419,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       buildScreenTriangles(request.scene, request.view, {.submitted = request.triangles}, request.threads, request.stats);
   PhaseTimer timer(request.stats, "subdivision");
   Frame& frame = visibility.frame;
-  const Subdivision subdivision(geometry, knobs, frame);
+  const Subdivision subdivision(geometry, knobs, frame, request.why);
 
   // The first window is the whole image, and every polygon may meet it. Level by level
   // over the whole image while windows are large; a recording watches every level so.
@@ -366,6 +458,7 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"windows examined", "windows subdivided", "polygon-window tests"};
   entry.studyConfigurations = {{}, {{"smallest-window", "4"}}, {{"smallest-window", "16"}}};
   entry.takesTriangleSubsets = true;
+  entry.answersWhy = true;
   setVisibility(entry, visibility);
   return entry;
 }

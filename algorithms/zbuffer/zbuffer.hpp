@@ -191,7 +191,7 @@ struct DepthTest {
                           : isTie(tri, z, stored, id) ? "tie: the same stored depth; the triangle drawn first keeps the pixel"
                                                       : "lost the depth test";
     history->push_back({tri.triangle + 1, std::move(outcome), "depth stored " + text(z) + ", the pixel held " + held,
-                        distance(tri.triangle + 1, z, *witnessCamera), written});
+                        distance(tri.triangle + 1, z, *witnessCamera), written, {}});
   }
 
   static std::string text(Stored value) {

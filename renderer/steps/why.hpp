@@ -17,13 +17,16 @@
 namespace hsr {
 
 struct PixelEvent {
-  std::uint32_t id = 0;  // the triangle the event is about: global index + 1 (0: none)
+  std::uint32_t id = 0;  // the triangle the event is about: global index + 1 (0: the background)
   std::string outcome;   // what the loop decided, in the textbook's words ("written", "lost the depth test")
   std::string detail;    // the numbers it decided by, in the algorithm's own terms
   // The event's depth as the algorithm stored it, decoded to a distance along the view
   // axis (as Frame::depth measures it); NaN when the event has none.
   double distance = std::numeric_limits<double>::quiet_NaN();
   bool shown = false;  // after the event, the pixel shows its triangle
+  // What the event is about when it is not a triangle (a window Warnock examined): named
+  // in the triangle's place; empty for a triangle's event.
+  std::string subject;
 };
 
 class PixelWitness {

@@ -122,8 +122,13 @@ try {
 
   await page.selectOption("#algorithm", "warnock");
   result = await renderWith();
+  const subdivided = await clickPixel("color", 98, 44);
+  check(subdivided.shown === nativeWhy("hard/cyclic_overlap.toml", subdivided.pixel, ["--algo", "warnock"]) && subdivided.shown.includes("window 200 x 200 at (0, 0)"),
+        `Warnock's answer to why, its windows down to the pixel, as hsr why's (pixel ${subdivided.pixel})`);
+  await page.selectOption("#algorithm", "watkins");
+  result = await renderWith();
   await clickPixel("color", 10, 10);
-  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo warnock: hsr why follows the loops of zbuffer, painter") &&
+  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo watkins: hsr why follows the loops of zbuffer, painter, warnock") &&
         (await text("#message")) === "", `why for an algorithm whose loops it does not follow: the command line's line, in the box (${await text("#why")})`);
 
   await page.selectOption("#algorithm", "zbuffer");

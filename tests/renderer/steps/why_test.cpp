@@ -14,9 +14,9 @@ TEST(PixelWitness, OnlyThePixelsAskedAboutHaveAHistoryEachItsOwnInTheOrderAsked)
   EXPECT_EQ(witness.at(9, 9), nullptr);
   EXPECT_EQ(witness.at(5, 3), nullptr);
   ASSERT_NE(witness.at(0, 0), nullptr);
-  witness.at(5, 2)->push_back({1, "written", "", 2.0, true});
-  witness.at(3, 7)->push_back({2, "written", "", 1.0, true});
-  witness.at(3, 7)->push_back({3, "lost the depth test", "", 4.0, false});
+  witness.at(5, 2)->push_back({1, "written", "", 2.0, true, {}});
+  witness.at(3, 7)->push_back({2, "written", "", 1.0, true, {}});
+  witness.at(3, 7)->push_back({3, "lost the depth test", "", 4.0, false, {}});
   EXPECT_EQ(witness.pixel(0).x, 5);
   EXPECT_EQ(witness.pixel(2).y, 7);
   ASSERT_EQ(witness.history(0).size(), 1u);
