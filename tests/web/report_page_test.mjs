@@ -23,7 +23,7 @@ mkdirSync(out, { recursive: true });
 rmSync(folder, { recursive: true, force: true });
 // hsr run from the suite's folder, as README's commands are; the commands the page gives too.
 const hsr = (command) => spawnSync("bash", ["-c", `./build/${command}`], { encoding: "utf8", cwd: root });
-const compared = hsr(`hsr compare scenes/counters.toml scenes/hard/coplanar.toml --algos zbuffer,painter:variant=sort,abuffer --size 320x180 --repeat 1 --out ${folder}`);
+const compared = hsr(`hsr compare scenes/counters.toml scenes/hard/coplanar.toml --algos zbuffer,painter:variant=sort,abuffer --size 320x180 --repeat 1 --out out/web/report`);
 if (compared.status !== 0) throw new Error(`hsr compare failed: ${compared.stderr}`);
 const gallery = JSON.parse(readFileSync(join(folder, "gallery.json"), "utf8"));
 
