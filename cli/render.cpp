@@ -163,7 +163,8 @@ class StepsFolder {
   bool made_ = false, written_ = false;
 };
 
-// The steps page's title: the command that records the same steps again.
+// The steps page's title: the command that records the same steps again (its words as
+// they were given, unquoted).
 std::string stepsTitle(const RenderOptions& options) {
   std::string command = "hsr render " + options.scene + " --algo " + options.algorithm;
   if (!options.variant.empty()) command += " --variant " + options.variant;
@@ -173,7 +174,7 @@ std::string stepsTitle(const RenderOptions& options) {
   if (!options.size.empty()) command += " --size " + options.size;
   if (!options.lineStyle.empty()) command += " --line-style " + options.lineStyle;
   if (options.every > 0) command += " --every " + std::to_string(options.every);
-  return command;
+  return command + " -o " + options.output + " --steps " + options.steps;
 }
 
 }  // namespace

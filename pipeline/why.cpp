@@ -37,10 +37,17 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
   std::size_t met = history.size();  // the reference's triangle's last event here (a window's is no triangle's)
   for (std::size_t i = 0; i < history.size(); ++i)
     if (history[i].subject.empty() && history[i].id == answer.reference.id) met = i;
+  if (met == history.size() && answer.reference.id == conventions::kBackgroundId) {
+    // Nothing lies along the ray: the event that last gave the pixel a triangle is the one at fault.
+    std::size_t filled = history.size();
+    for (std::size_t i = 0; i < history.size(); ++i)
+      if (history[i].subject.empty() && history[i].shown) filled = i;
+    if (filled == history.size()) return differs + "where nothing lies between the near and far planes";
+    return differs + "where nothing lies along the ray, but " + triangleOf(scene, history[filled].id) + " was shown (event " +
+           std::to_string(filled + 1) + ": " + history[filled].outcome + ": " + history[filled].detail + ")";
+  }
   if (met == history.size())
-    return differs + (answer.reference.id == conventions::kBackgroundId
-                          ? "where nothing lies between the near and far planes"
-                          : "which never reached this pixel (the rasterizer did not cover the pixel's center with it, or it was clipped)");
+    return differs + "which never reached this pixel (the rasterizer did not cover the pixel's center with it, or it was clipped)";
   const auto event = [](std::size_t i) { return "event " + std::to_string(i + 1); };
   if (!history[met].shown) return differs + "not shown after " + event(met) + ": " + history[met].outcome + ": " + history[met].detail;
   std::size_t replaced = met + 1;

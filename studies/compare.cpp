@@ -1,6 +1,7 @@
 // hsr compare: every applicable algorithm on each scene against the exact reference,
 // time and error side by side, as a table, CSV, JSON and a contact sheet.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -62,7 +63,11 @@ class Gallery {
   explicit Gallery(std::filesystem::path out) : out_(std::move(out)) {}
 
   void beginScene(const std::string& scene, const PreparedScene& prepared) {
-    folder_ = "images/" + std::to_string(++scenes_) + "-" + std::filesystem::path(scene).stem().string();
+    // Named after the scene, in the characters an address takes as they are.
+    std::string stem = std::filesystem::path(scene).stem().string();
+    for (char& c : stem)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    folder_ = "images/" + std::to_string(++scenes_) + "-" + stem;
     std::filesystem::create_directories(out_ / folder_);
     json_ += std::string(scenes_ > 1 ? "]}," : "") + "{\"scene\":" + jsonString(scene) + ",\"width\":" + std::to_string(prepared.width()) +
              ",\"height\":" + std::to_string(prepared.height()) + ",\"triangles\":" + std::to_string(prepared.triangleCount()) + ",\"entries\":[";

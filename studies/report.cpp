@@ -56,15 +56,17 @@ std::string readText(const std::filesystem::path& path) {
   return text.str();
 }
 
-// A CSV as a table that leads with the columns a reader compares first (algorithm, knobs,
+// A CSV as a table. hsr compare's and hsr sweep's (`explained`: their columns are
+// results.hpp's) lead with the columns a reader compares first (algorithm, knobs,
 // visibility time, error, wrong pixels; a sweep's knobs): the others are folded until
-// asked for. Each heading says what its column means when pointed at, and a list under
-// the table says it for every column.
-std::string tableHtml(const std::vector<std::vector<std::string>>& rows) {
+// asked for, each heading says what its column means when pointed at, and a list under
+// the table says it for every column. A study's columns are its own.
+std::string tableHtml(const std::vector<std::vector<std::string>>& rows, bool explained) {
   if (rows.empty()) return "<p>(empty)</p>\n";
   const std::vector<std::string>& columns = rows.front();
+  const auto meaningOf = [&](const std::string& name) { return explained ? columnMeaning(name) : nullptr; };
   std::vector<bool> folded;
-  for (const std::string& name : columns) folded.push_back(columnMeaning(name) && !columnMeaning(name)->key);
+  for (const std::string& name : columns) folded.push_back(meaningOf(name) && !meaningOf(name)->key);
   const auto cellClass = [&](std::size_t c) { return c < folded.size() && folded[c] ? std::string(" class=\"more\"") : std::string(); };
   const std::size_t foldedCount = std::size_t(std::count(folded.begin(), folded.end(), true));
   std::string html;
@@ -73,7 +75,7 @@ std::string tableHtml(const std::vector<std::vector<std::string>>& rows) {
             "show the other " + std::to_string(foldedCount) + " columns</label>\n";
   html += "<div class=\"scroll\"><table class=\"sortable\">\n<thead><tr>";
   for (std::size_t c = 0; c < columns.size(); ++c) {
-    const ColumnMeaning* meaning = columnMeaning(columns[c]);
+    const ColumnMeaning* meaning = meaningOf(columns[c]);
     html += "<th" + cellClass(c) + " title=\"" + escapedMarkup(meaning ? meaning->meaning + " (click to sort)" : "sort by " + columns[c]) + "\">" +
             escapedMarkup(columns[c]) + "</th>";
   }
@@ -83,9 +85,11 @@ std::string tableHtml(const std::vector<std::vector<std::string>>& rows) {
     for (std::size_t c = 0; c < rows[r].size(); ++c) html += "<td" + cellClass(c) + ">" + escapedMarkup(rows[r][c]) + "</td>";
     html += "</tr>\n";
   }
-  html += "</tbody></table></div>\n<details class=\"meanings\"><summary>What the columns mean</summary><dl>\n";
+  html += "</tbody></table></div>\n";
+  if (!explained) return html;
+  html += "<details class=\"meanings\"><summary>What the columns mean</summary><dl>\n";
   for (const std::string& name : columns)
-    if (const ColumnMeaning* meaning = columnMeaning(name)) html += "<dt>" + escapedMarkup(name) + "</dt><dd>" + escapedMarkup(meaning->meaning) + "</dd>\n";
+    if (const ColumnMeaning* meaning = meaningOf(name)) html += "<dt>" + escapedMarkup(name) + "</dt><dd>" + escapedMarkup(meaning->meaning) + "</dd>\n";
   return html + "</dl></details>\n";
 }
 
@@ -187,7 +191,8 @@ void writeReport(const std::filesystem::path& folder, const std::string& title, 
   if (wrote("gallery.json")) html += galleryHtml(readText(folder / "gallery.json"));
   html += "<p>Point at a column's heading for what it means; click it to sort by it.</p>\n";
   for (const std::filesystem::path& table : tables)
-    html += "<h2>" + escapedMarkup(table.string()) + "</h2>\n" + tableHtml(parsedCsv(readText(folder / table)));
+    html += "<h2>" + escapedMarkup(table.string()) + "</h2>\n" +
+            tableHtml(parsedCsv(readText(folder / table)), table == "results.csv" || table == "sweep.csv");
   for (const std::filesystem::path& picture : pictures) {
     const std::string name = escapedMarkup(picture.string());
     html += "<h2>" + name + "</h2>\n<figure><a href=\"" + name + "\"><img src=\"" + name + "\" alt=\"" + name +

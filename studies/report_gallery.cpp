@@ -36,6 +36,7 @@ svg.scatter g.point:hover circle { fill: #c30; } svg.scatter g.point:hover .spre
 )css";
 
 constexpr const char* kGalleryScript = R"js(
+(() => {  // the gallery's names stay its own
 const gallery = JSON.parse(document.getElementById("galleryData").textContent);
 const make = (tag, properties = {}, ...children) => { const made = Object.assign(document.createElement(tag), properties); made.append(...children); return made; };
 const svgMake = (tag, attributes = {}) => { const made = document.createElementNS("http://www.w3.org/2000/svg", tag); for (const [k, v] of Object.entries(attributes)) made.setAttribute(k, v); return made; };
@@ -135,7 +136,7 @@ document.getElementById("zoomImage").addEventListener("click", (event) => {
   Object.assign(ring.style, { width: `${size}px`, height: `${size}px`, left: `${image.offsetLeft + (x + 0.5) * zoom.scale - size / 2 - 2}px`, top: `${image.offsetTop + (y + 0.5) * zoom.scale - size / 2 - 2}px` });
   ring.hidden = false;
   const box = document.getElementById("zoomPixel");
-  box.replaceChildren(`pixel (${x}, ${y}). Its history in ${zoom.entry.answersWhy ? label(zoom.entry) : "the z-buffer (hsr why follows the z-buffer's and the painter's loops)"} beside the exact reference's answer: `,
+  box.replaceChildren(`pixel (${x}, ${y}). Its history in ${zoom.entry.answersWhy ? label(zoom.entry) : "the z-buffer (hsr why does not follow this algorithm's loops yet)"} beside the exact reference's answer: `,
                       make("code", { textContent: whyCommand(zoom.scene, zoom.entry, x, y) }));
   box.dataset.pixel = `${x},${y}`;
 });
@@ -176,6 +177,7 @@ gallery.scenes.forEach((scene, index) => {
   part.append(cards);
   section.append(part);
 });
+})();
 )js";
 
 }  // namespace

@@ -259,7 +259,7 @@ class Subdivision {
         case Rule::subdivided:
           event.outcome = "subdivided into four: no rule decides it";
           event.detail += surrounding ? "; the nearest surrounding polygon is not nearer than every other over all of it"
-                                      : meeting > 1 ? "; more than one meets it and none surrounds it" : "";
+                                      : "; more than one meets it and none surrounds it";
           break;
       }
       history.push_back(std::move(event));
@@ -268,34 +268,36 @@ class Subdivision {
   }
 
   // What each polygon meeting a decided window came to at pixel (x, y): the one the rule
-  // gave the pixel, and why each other one is not shown there.
+  // gave the pixel, and why each other one is not shown there. Which one is shown follows
+  // from the rule, as the drawing above decided it (the property test checks it against
+  // the image); a distance only where the polygon covers the pixel's center.
   void witnessDecision(const Window& window, const Examined& examined, std::optional<std::uint32_t> surrounding, int x, int y,
                        std::vector<PixelEvent>& history) const {
     const Rule rule = examined.rule;
     const std::vector<std::uint32_t>& meeting = examined.meeting;
     const auto [cx, cy] = centralPixel(window);
     const std::optional<std::uint32_t> nearest = rule == Rule::smallest ? nearestAtCenter(window, meeting) : std::nullopt;
-    const std::size_t pixel = std::size_t(y) * std::size_t(frame_.width) + std::size_t(x);
     for (const std::uint32_t i : meeting) {
       const ScreenTriangle& tri = triangles_[i];
       PixelEvent event;
       event.id = tri.triangle + 1;
-      event.distance = DepthOrder::distanceAt(camera_, tri, x, y);
-      event.shown = frame_.ids[pixel] == event.id;
+      if (coversCenter(tri, x, y)) event.distance = DepthOrder::distanceAt(camera_, tri, x, y);
+      const bool isSurrounding = surrounding.has_value() && *surrounding == i, isNearest = nearest.has_value() && *nearest == i;
+      event.shown = rule == Rule::onePolygon ? coversCenter(tri, x, y) : rule == Rule::surrounded ? isSurrounding : isNearest;
       const std::string central = "(" + std::to_string(cx) + ", " + std::to_string(cy) + ")";
       if (rule == Rule::onePolygon) {
         event.outcome = event.shown ? "drawn: it covers the pixel's center" : "not drawn here: it does not cover the pixel's center";
         event.detail = "the one polygon meeting the window";
       } else if (rule == Rule::surrounded) {
-        event.outcome = i == surrounding ? "fills the window: it surrounds it and is nearer than every other there"
+        event.outcome = isSurrounding ? "fills the window: it surrounds it and is nearer than every other there"
                                          : "hidden: the surrounding polygon is nearer over the whole window";
-        event.detail = i == surrounding ? "its farthest depth in the window is before every other polygon's nearest"
+        event.detail = isSurrounding ? "its farthest depth in the window is before every other polygon's nearest"
                                         : "its nearest depth in the window is beyond the surrounding polygon's farthest";
       } else if (!coversCenter(tri, cx, cy)) {
         event.outcome = "does not cover the window's central pixel " + central;
         event.detail = "at the smallest size only the central pixel's center is tested, for every pixel of the window";
       } else {
-        event.outcome = i == nearest ? "fills the window: the nearest at its central pixel " + central
+        event.outcome = isNearest ? "fills the window: the nearest at its central pixel " + central
                                      : "farther than another polygon at the window's central pixel " + central;
         event.detail = "its plane's distance there " + std::to_string(DepthOrder::distanceAt(camera_, tri, cx, cy));
       }

@@ -143,7 +143,11 @@ document.addEventListener("keydown", (event) => {
   else if (event.key === " ") { play(); event.preventDefault(); }
 });
 const asked = /^#step=(\d+)$/.exec(location.hash);
-show(asked ? Number(asked[1]) - 1 : 0);
+if (steps.length > 0) show(asked ? Number(asked[1]) - 1 : 0);
+else {
+  $("caption").textContent = "No step was recorded.";
+  for (const id of ["first", "previous", "next", "last", "play", "slider"]) $(id).disabled = true;
+}
 )";
 
 }  // namespace
@@ -163,7 +167,10 @@ SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::
 
   std::ifstream in(inSuite ? (sourceRoot.empty() ? std::filesystem::path(HSR_SOURCE_DIR) : sourceRoot) / relative : path);
   std::vector<std::string> lines;
-  for (std::string text; std::getline(in, text);) lines.push_back(text);
+  for (std::string text; std::getline(in, text);) {
+    if (!text.empty() && text.back() == '\r') text.pop_back();  // a file saved with Windows' line ends
+    lines.push_back(text);
+  }
   if (excerpt.line < 1 || excerpt.line > int(lines.size())) return excerpt;
   const auto at = [&](int number) -> const std::string& { return lines[std::size_t(number - 1)]; };
   // The compiler may name any line of a call that spans several: the recording statement

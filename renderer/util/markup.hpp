@@ -41,14 +41,12 @@ inline std::string jsonString(const std::string& text) {
   return quoted + "\"";
 }
 
-// JSON text placed in an HTML <script> element: "</" would end the element, so it is
-// written "<\/", which JSON reads back as the same two characters.
+// JSON text placed in an HTML <script> element: "</script" would end the element and
+// "<!--" change how it is read, so every "<" (which JSON holds only inside strings) is
+// written "\u003c", which JSON reads back as the same character.
 inline std::string jsonInScript(const std::string& json) {
   std::string safe;
-  for (std::size_t i = 0; i < json.size(); ++i) {
-    safe += json[i];
-    if (json[i] == '<' && i + 1 < json.size() && json[i + 1] == '/') safe += '\\';
-  }
+  for (const char c : json) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
   return safe;
 }
 

@@ -130,6 +130,9 @@ TEST_P(EveryAlgorithmsSteps, ChangeNoCounterAndNoPixelAndShowTheAlgorithmsOwnSte
     for (int line = source.line; line <= source.markedTo && line - source.firstLine < int(source.lines.size()); ++line)
       marked += source.lines[std::size_t(line - source.firstLine)] + "\n";
     EXPECT_TRUE(std::regex_search(marked, std::regex(R"(record\w*\(|->drawn\()"))) << source.file << ":" << source.line << "\n" << marked;
+    // From the loop that took the step: a recording helper passes its caller's place on.
+    EXPECT_EQ(source.function.find("::record"), std::string::npos) << source.function;
+    EXPECT_EQ(source.function.find("::drawn("), std::string::npos) << source.function;
   }
 }
 
@@ -263,7 +266,8 @@ TEST(Steps, TheCommandWritesFramesCaptionsAndAnAnimationOfThem) {
   std::size_t listed = 0;
   for (std::size_t at = page.find("\"picture\":\"step-"); at != std::string::npos; at = page.find("\"picture\":\"step-", at + 1)) ++listed;
   EXPECT_EQ(listed, captions.size());
-  EXPECT_NE(page.find("<h1>hsr render " + test::sourcePath("scenes/cube.toml").string() + " --algo ray_casting --size 96x72 --every 8</h1>"),
+  EXPECT_NE(page.find("<h1>hsr render " + test::sourcePath("scenes/cube.toml").string() + " --algo ray_casting --size 96x72 --every 8 -o " +
+                      image.string() + " --steps " + folder.string() + "</h1>"),
             std::string::npos);
   // A second run recording fewer frames leaves none of the first run's behind.
   ASSERT_EQ(test::runCommand(command + " --every 36").exitCode, 0);

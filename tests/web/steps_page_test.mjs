@@ -24,7 +24,7 @@ mkdirSync(out, { recursive: true });
 function recordSteps(name, args) {
   const folder = join(out, name);
   rmSync(folder, { recursive: true, force: true });
-  const run = spawnSync(join(root, "build", "hsr"), ["render", ...args, "-o", join(out, `${name}.png`), "--steps", folder], { encoding: "utf8", cwd: root });
+  const run = spawnSync(join(root, "build", "hsr"), ["render", ...args, "-o", `out/web/${name}.png`, "--steps", `out/web/${name}`], { encoding: "utf8", cwd: root });
   if (run.status !== 0) throw new Error(`hsr render ${args.join(" ")} --steps failed: ${run.stderr}`);
   const captions = readFileSync(join(folder, "captions.txt"), "utf8").trimEnd().split("\n").map((line) => line.slice(5));
   return { url: pathToFileURL(join(folder, "steps.html")).href, captions };
