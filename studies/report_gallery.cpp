@@ -90,6 +90,9 @@ function scatter(scene) {
   const yLabel = svgMake("text", { x: 14, y: (top + height - bottom) / 2, transform: `rotate(-90 14 ${(top + height - bottom) / 2})`, "text-anchor": "middle" });
   yLabel.textContent = "pixel error";
   svg.append(xLabel, yLabel);
+  // A point's number beside it, unless another number is already there (pointing at a
+  // point names it in any case).
+  const labelled = [];
   for (const { entry, number } of points) {
     const [median, fastest, slowest] = entry.visibilityMs;
     const point = svgMake("g", { class: "point" });
@@ -97,9 +100,13 @@ function scatter(scene) {
     title.textContent = `${number}. ${label(entry)}: ${ms(median)} ms [${ms(fastest)}-${ms(slowest)}], ${errorText(entry)}`;
     point.append(title, svgMake("line", { class: "spread", x1: x(fastest), x2: x(slowest), y1: y(entry.error), y2: y(entry.error) }),
                  svgMake("circle", { cx: x(median), cy: y(entry.error), r: 4 }));
-    const text = svgMake("text", { x: x(median) + 6, y: y(entry.error) - 5 });
-    text.textContent = number;
-    point.append(text);
+    const [labelX, labelY] = [x(median) + 6, y(entry.error) - 5];
+    if (!labelled.some(([otherX, otherY]) => Math.abs(otherX - labelX) < 16 && Math.abs(otherY - labelY) < 11)) {
+      const text = svgMake("text", { x: labelX, y: labelY });
+      text.textContent = number;
+      point.append(text);
+      labelled.push([labelX, labelY]);
+    }
     point.addEventListener("click", () => document.getElementById(`card-${scene.index}-${number}`).scrollIntoView({ behavior: "smooth", block: "center" }));
     svg.append(point);
   }
