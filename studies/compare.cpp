@@ -163,12 +163,13 @@ int compare(const CompareOptions& options) {
     std::vector<ResultRow> sceneRows;
     ResultRow referenceRow = measuredRow(sceneName, prepared, referenceAlgorithm, "exact", reference, options.threads);
     referenceRow.error = surfaceError(truth.frame, truth);
-    gallery.add(referenceRow, truth.frame.color, errorHeatMap(truth.frame, truth), "ambiguous pixels blue");
+    std::vector<std::uint8_t> ambiguity = errorHeatMap(truth.frame, truth);
+    gallery.add(referenceRow, truth.frame.color, ambiguity, "ambiguous pixels blue");
     sceneRows.push_back(referenceRow);
     char line[128];
     std::snprintf(line, sizeof line, "visibility %.1f ms, total %.1f", referenceRow.visibility.median * 1e3, referenceRow.time.median * 1e3);
     section.images.push_back({prepared.width(), prepared.height(), truth.frame.color, {"reference (exact)", line}});
-    section.heatMaps.push_back({prepared.width(), prepared.height(), errorHeatMap(truth.frame, truth),
+    section.heatMaps.push_back({prepared.width(), prepared.height(), std::move(ambiguity),
                                 {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
 
     std::vector<std::vector<std::uint8_t>> exactDrawingsShown;  // the line references' tiles so far

@@ -276,7 +276,8 @@ async function render() {
     const { width, height } = result;
     const what = `${request.algorithm} on ${asTheStudentNamesIt(chosen)}, ${width}×${height}`;
     drawRgba("color", width, height, hsr.module.colorPixels());
-    drawRgba("ids", width, height, idColours(hsr.module.idPixels()));
+    const idsShown = idColours(hsr.module.idPixels());
+    drawRgba("ids", width, height, idsShown);
     drawDepth(width, height, hsr.module.depthPixels());
     Object.assign(against, { width, height, views: {} });
     showAgainst(against.chosen);
@@ -296,7 +297,7 @@ async function render() {
         const referenceIds = hsr.module.referenceIdPixels();
         against.views = {
           difference: error.length ? new Uint8ClampedArray(error) : null,
-          mine: referenceIds.length ? idColours(hsr.module.idPixels()) : null,
+          mine: referenceIds.length ? idsShown : null,
           reference: referenceIds.length ? idColours(referenceIds) : null,
         };
         showAgainst(against.chosen);

@@ -281,9 +281,10 @@ class Subdivision {
       const ScreenTriangle& tri = triangles_[i];
       PixelEvent event;
       event.id = tri.triangle + 1;
-      if (coversCenter(tri, x, y)) event.distance = DepthOrder::distanceAt(camera_, tri, x, y);
+      const bool coversPixel = coversCenter(tri, x, y);
+      if (coversPixel) event.distance = DepthOrder::distanceAt(camera_, tri, x, y);
       const bool isSurrounding = surrounding.has_value() && *surrounding == i, isNearest = nearest.has_value() && *nearest == i;
-      event.shown = rule == Rule::onePolygon ? coversCenter(tri, x, y) : rule == Rule::surrounded ? isSurrounding : isNearest;
+      event.shown = rule == Rule::onePolygon ? coversPixel : rule == Rule::surrounded ? isSurrounding : isNearest;
       const std::string central = "(" + std::to_string(cx) + ", " + std::to_string(cy) + ")";
       if (rule == Rule::onePolygon) {
         event.outcome = event.shown ? "drawn: it covers the pixel's center" : "not drawn here: it does not cover the pixel's center";

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include <unistd.h>
 
@@ -269,17 +270,23 @@ std::string stepNumber(std::size_t index) {
 
 void StepsWriter::add(const Step& step) {
   files_.addRgbaPng(folder_ / stepPictureName(frames_.size()), step.picture.width, step.picture.height, step.picture.pixels);
-  captions_.push_back(step.caption);
-  recordedAt_.push_back(step.where);
+  recorded_.emplace_back(step.caption, step.where);
   frames_.push_back(withCaption(atMostWide(step.picture, kAnimationWidth), step.caption));
 }
 
 void StepsWriter::finish(const std::string& title) {
   std::string captions;
-  for (std::size_t s = 0; s < captions_.size(); ++s) captions += stepNumber(s) + " " + captions_[s] + "\n";
-  files_.addText(folder_ / "captions.txt", captions);
   std::vector<PageStep> pageSteps;
-  for (std::size_t s = 0; s < captions_.size(); ++s) pageSteps.push_back({stepPictureName(s), captions_[s], sourceExcerpt(recordedAt_[s])});
+  // A loop's steps share their recording place: its lines are read once.
+  std::map<std::pair<std::string, std::uint_least32_t>, SourceExcerpt> excerpts;
+  for (std::size_t s = 0; s < recorded_.size(); ++s) {
+    const auto& [caption, where] = recorded_[s];
+    captions += stepNumber(s) + " " + caption + "\n";
+    auto [place, isNew] = excerpts.try_emplace({where.file_name(), where.line()});
+    if (isNew) place->second = sourceExcerpt(where);
+    pageSteps.push_back({stepPictureName(s), caption, place->second});
+  }
+  files_.addText(folder_ / "captions.txt", captions);
   files_.addText(folder_ / "steps.html", stepsPage(title, pageSteps));
   // An animation's frames share one size: each is padded with white to the largest.
   int width = 0, height = 0;

@@ -16,6 +16,7 @@
 #include <mutex>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/geometry/camera.hpp"
@@ -128,8 +129,7 @@ class StepsWriter {
   std::filesystem::path folder_;
   int framesPerSecond_;
   OutputFiles files_;
-  std::vector<std::string> captions_;
-  std::vector<SourceLocation> recordedAt_;
+  std::vector<std::pair<std::string, SourceLocation>> recorded_;  // each step's caption, and where it was recorded
   std::vector<Image> frames_;
 };
 

@@ -44,7 +44,7 @@ const shown = (page) => page.evaluate(() => ({
 
 // The page shows step `n` (from 1) of `captions`, as it should.
 async function expectStep(page, n, captions, how) {
-  await page.waitForFunction((m) => document.getElementById("picture").complete, n);
+  await page.waitForFunction(() => document.getElementById("picture").complete);
   const now = await shown(page);
   const m = captions.length;
   const disabled = [...(n === 1 ? ["first", "previous"] : []), ...(n === m ? ["next", "last"] : [])];
