@@ -128,6 +128,59 @@ class ThreadPool {
   std::vector<std::thread> threads_;  // joined by the destructor (std::jthread is not in every standard library yet)
 };
 
+// The time spent in parallel loops, so that a pass can say how much of it ran on one
+// thread: its serial time, which by Amdahl's law caps its speed-up on any number of
+// cores. Only a thread's outermost loop counts (a loop inside a loop's body is part of
+// it). Two sums: the loops' wall time, and what they would take on kAmdahlCores cores:
+// a loop that ran on W workers, spread over min(its items, kAmdahlCores) instead (a loop
+// of 4 items uses at most 4). Taken by every loop, not only under --stats: two clock
+// reads a loop.
+class ParallelTime {
+ public:
+  static constexpr int kAmdahlCores = 16;  // the cores of the machines students and instructors use
+
+  struct Totals {
+    double seconds = 0;               // in loops, start to end
+    double secondsOnAmdahlCores = 0;  // the same loops, spread over kAmdahlCores cores
+  };
+  static Totals totals() {
+    return {double(loopNanoseconds_.load(std::memory_order_relaxed)) * 1e-9,
+            double(amdahlNanoseconds_.load(std::memory_order_relaxed)) * 1e-9};
+  }
+  // Whether this thread runs inside a parallel loop (its time is already counted there).
+  static bool insideLoop() { return insideLoop_; }
+
+  // Marks its lifetime as inside a loop on this thread; a mark made with workers > 0
+  // outside any loop also times the loop, which runs on that many workers.
+  class Loop {
+   public:
+    Loop(std::size_t items, int workers) : timed_(!insideLoop_ && workers > 0), wasInside_(insideLoop_), items_(items), workers_(workers) {
+      insideLoop_ = true;
+      if (timed_) start_ = std::chrono::steady_clock::now();
+    }
+    ~Loop() {
+      insideLoop_ = wasInside_;
+      if (!timed_) return;
+      const std::int64_t elapsed = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
+      const std::int64_t width = std::max<std::int64_t>(1, std::min<std::int64_t>(kAmdahlCores, std::int64_t(items_)));
+      loopNanoseconds_.fetch_add(elapsed, std::memory_order_relaxed);
+      amdahlNanoseconds_.fetch_add(elapsed * workers_ / width, std::memory_order_relaxed);
+    }
+    Loop(const Loop&) = delete;
+    Loop& operator=(const Loop&) = delete;
+
+   private:
+    bool timed_, wasInside_;
+    std::size_t items_;
+    int workers_;
+    std::chrono::steady_clock::time_point start_{};
+  };
+
+ private:
+  static inline std::atomic<std::int64_t> loopNanoseconds_{0}, amdahlNanoseconds_{0};
+  static inline thread_local bool insideLoop_ = false;
+};
+
 // How many workers parallelFor(count, threads, ...) runs: its bodies see worker numbers
 // [0, parallelWorkers(count, threads)), so per-worker state can be made in advance.
 inline int parallelWorkers(std::size_t count, int threads) {
@@ -138,12 +191,14 @@ inline int parallelWorkers(std::size_t count, int threads) {
 template <typename Body>
 void parallelFor(std::size_t count, int threads, Body&& body) {
   const int workers = parallelWorkers(count, threads);
+  const ParallelTime::Loop timed(count, workers);
   if (workers <= 1) {
     for (std::size_t item = 0; item < count; ++item) body(item, 0);
     return;
   }
   std::atomic<std::size_t> next{0};
   auto work = [&](int worker) {
+    const ParallelTime::Loop inside(count, 0);  // untimed: a loop a helper starts is this loop's time
     for (std::size_t item = next++; item < count; item = next++) body(item, worker);
   };
   if (ThreadPool::shared().run(workers - 1, work)) return;

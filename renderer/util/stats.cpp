@@ -14,6 +14,16 @@ double Stats::seconds(const std::string& phase) const {
   return found == seconds_.end() ? 0.0 : found->second;
 }
 
+double Stats::serialSeconds(const std::string& phase) const {
+  auto found = serialSeconds_.find(phase);
+  return found == serialSeconds_.end() ? 0.0 : found->second;
+}
+
+double Stats::amdahlSeconds(const std::string& phase) const {
+  auto found = amdahlSeconds_.find(phase);
+  return found == amdahlSeconds_.end() ? 0.0 : found->second;
+}
+
 const std::string& Stats::noteOf(const std::string& name) const {
   static const std::string kNone;
   auto found = notes_.find(name);
@@ -40,9 +50,16 @@ std::string Stats::report() const {
     text += line;
   }
   for (const auto& [name, value] : notes_) text += (name + std::string(name.size() < 32 ? 32 - name.size() : 0, ' ')) + " " + value + "\n";
-  for (const auto& [name, value] : seconds_) {
-    std::snprintf(line, sizeof line, "%-32s %.3f ms\n", (name + " time").c_str(), value * 1e3);
+  auto timeLine = [&](const std::string& name, double seconds) {
+    std::snprintf(line, sizeof line, "%-32s %.3f ms\n", name.c_str(), seconds * 1e3);
     text += line;
+  };
+  for (const auto& [name, value] : seconds_) {
+    timeLine(name + " time", value);
+    if (!serialSeconds_.count(name)) continue;
+    timeLine(name + " serial time", serialSeconds_.at(name));
+    if (name.rfind("pass: ", 0) == 0)
+      timeLine(name + " on " + std::to_string(ParallelTime::kAmdahlCores) + " cores (Amdahl) time", amdahlSeconds_.at(name));
   }
   return text;
 }

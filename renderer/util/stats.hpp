@@ -8,12 +8,20 @@
 #include <string>
 #include <vector>
 
+#include "renderer/util/parallel.hpp"
+
 namespace hsr {
 
 class Stats {
  public:
   void add(const std::string& counter, std::int64_t amount = 1) { counters_[counter] += amount; }
   void addSeconds(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
+  // Of a phase's time, what ran outside parallel loops, and what the phase would take on
+  // ParallelTime::kAmdahlCores cores by Amdahl's law (PhaseTimer measures both).
+  void addSerialSeconds(const std::string& phase, double serial, double onAmdahlCores) {
+    serialSeconds_[phase] += serial;
+    amdahlSeconds_[phase] += onAmdahlCores;
+  }
   // A fact in words where a number would not say enough (which cell the eye is in, which
   // objects a set holds); the last note of a name is kept.
   void note(const std::string& name, std::string text) { notes_[name] = std::move(text); }
@@ -23,27 +31,38 @@ class Stats {
   // Whether a pass counted `name` at all (a counter kept only by one path, say).
   bool counted(const std::string& name) const { return counters_.count(name) != 0; }
   double seconds(const std::string& phase) const;
+  double serialSeconds(const std::string& phase) const;  // 0 for a phase timed inside a parallel loop
+  double amdahlSeconds(const std::string& phase) const;
 
   std::vector<std::string> counterNames() const;
   std::vector<std::string> phaseNames() const;
 
   const std::string& noteOf(const std::string& name) const;  // empty where nothing was noted
 
-  std::string report() const;  // one "name value" line each: counters, notes, then phase times
+  // One "name value" line each: counters, notes, then phase times, each phase followed by
+  // its serial time and a pass ("pass: NAME") also by its time on kAmdahlCores cores.
+  std::string report() const;
 
  private:
   std::map<std::string, std::int64_t> counters_;
-  std::map<std::string, double> seconds_;
+  std::map<std::string, double> seconds_, serialSeconds_, amdahlSeconds_;
   std::map<std::string, std::string> notes_;
 };
 
-// Adds the wall time of its own lifetime to a phase.
+// Adds the wall time of its own lifetime to a phase, and of it the time outside parallel
+// loops (unless the timer itself runs inside one, where all of its time is the loop's).
 class PhaseTimer {
  public:
   PhaseTimer(Stats& stats, std::string phase)
-      : stats_(stats), phase_(std::move(phase)), start_(std::chrono::steady_clock::now()) {}
+      : stats_(stats), phase_(std::move(phase)), start_(std::chrono::steady_clock::now()), loopsAtStart_(ParallelTime::totals()) {}
   ~PhaseTimer() {
-    stats_.addSeconds(phase_, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    stats_.addSeconds(phase_, elapsed);
+    if (ParallelTime::insideLoop()) return;
+    const ParallelTime::Totals loops = ParallelTime::totals();
+    const double inLoops = loops.seconds - loopsAtStart_.seconds;
+    const double serial = std::max(0.0, elapsed - inLoops);
+    stats_.addSerialSeconds(phase_, serial, serial + loops.secondsOnAmdahlCores - loopsAtStart_.secondsOnAmdahlCores);
   }
   PhaseTimer(const PhaseTimer&) = delete;
   PhaseTimer& operator=(const PhaseTimer&) = delete;
@@ -52,6 +71,7 @@ class PhaseTimer {
   Stats& stats_;
   std::string phase_;
   std::chrono::steady_clock::time_point start_;
+  ParallelTime::Totals loopsAtStart_;
 };
 
 }  // namespace hsr
