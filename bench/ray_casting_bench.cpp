@@ -67,7 +67,7 @@ void bvhBuild(benchmark::State& state) {
     const hsr::PreparedScene prepared(scene);
     hsr::Stats stats;
     nodes = std::int64_t(prepared.triangleBvh(stats, threads).nodes().size());
-    wideNodes = std::int64_t(prepared.wideTriangleBvh(stats).nodes().size());
+    wideNodes = std::int64_t(prepared.wideTriangleBvh(stats, threads).nodes().size());
     benchmark::DoNotOptimize(nodes);
   }
   state.SetLabel(std::string(kScenes[state.range(0)]) + " flatten + SAH build + collapse to eight children, threads=" +

@@ -25,8 +25,8 @@ struct Pending {
 
 }  // namespace
 
-WideBvhTracer::WideBvhTracer(const PreparedScene& scene, Stats& stats)
-    : bvh_(scene.wideTriangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
+WideBvhTracer::WideBvhTracer(const PreparedScene& scene, Stats& stats, int threads)
+    : bvh_(scene.wideTriangleBvh(stats, threads)), triangles_(scene.leafTriangles(stats)) {}
 
 HSR_AVX2 Hit WideBvhTracer::trace(const PixelRay& pixel, Counters& counters) const {
   Hit nearest{conventions::kBackgroundId, pixel.tFar};
@@ -73,8 +73,8 @@ HSR_AVX2 Hit WideBvhTracer::trace(const PixelRay& pixel, Counters& counters) con
   }
 }
 
-PacketTracer::PacketTracer(const PreparedScene& scene, Stats& stats)
-    : single_(scene, stats), bvh_(scene.wideTriangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
+PacketTracer::PacketTracer(const PreparedScene& scene, Stats& stats, int threads)
+    : single_(scene, stats, threads), bvh_(scene.wideTriangleBvh(stats, threads)), triangles_(scene.leafTriangles(stats)) {}
 
 void PacketTracer::traceRun(const CameraTransform& camera, int y, int x0, int count, std::uint32_t* ids, float* depths,
                             Counters& counters, double* costs) const {

@@ -27,7 +27,7 @@ namespace hsr::ray_casting {
 class WideBvhTracer {
  public:
   using Counters = TraversalCounters;
-  WideBvhTracer(const PreparedScene& scene, Stats& stats);
+  WideBvhTracer(const PreparedScene& scene, Stats& stats, int threads = 1);  // threads: the wide BVH's build, if first
   Hit trace(const PixelRay& pixel, Counters& counters) const;
 
  private:
@@ -38,7 +38,7 @@ class WideBvhTracer {
 class PacketTracer {
  public:
   using Counters = TraversalCounters;
-  PacketTracer(const PreparedScene& scene, Stats& stats);
+  PacketTracer(const PreparedScene& scene, Stats& stats, int threads = 1);
   // Pixels x0 .. x0 + count - 1 of row y (castRays, cast.hpp) in packets of eight
   // neighbours; a packet whose rays cannot travel together (RayPacket::travelTogether)
   // is traced ray by ray by the simd path. costs[i], when asked for, is the inner nodes

@@ -151,8 +151,8 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
         stats.add("ray-triangle tests", counters.triangleTests);
       };
       if (knobs.path == Path::scalar || !cpuHasAvx2()) cast(BvhTracer(scene, stats));
-      else if (knobs.path == Path::packet) cast(PacketTracer(scene, stats));
-      else cast(WideBvhTracer(scene, stats));
+      else if (knobs.path == Path::packet) cast(PacketTracer(scene, stats, request.threads));
+      else cast(WideBvhTracer(scene, stats, request.threads));
       break;
     }
     case Variant::march:

@@ -36,7 +36,8 @@ struct alignas(64) WideBvhNode {
 class WideBvh {
  public:
   WideBvh() = default;
-  explicit WideBvh(const Bvh& binary);
+  // The same nodes in the same places for any thread count.
+  explicit WideBvh(const Bvh& binary, int threads = 1);
 
   const std::vector<WideBvhNode>& nodes() const { return nodes_; }  // nodes()[0] is the root
   bool empty() const { return nodes_.empty(); }
@@ -45,7 +46,15 @@ class WideBvh {
   static constexpr int kStackSize = (WideBvhNode::kWidth - 1) * Bvh::kMaxDepth + 1;
 
  private:
-  void collapse(std::uint32_t wide, const Bvh& binary, std::uint32_t node);
+  struct Subtree {  // a binary subtree below the levels filled on one thread
+    std::uint32_t node;                 // its binary root
+    std::uint32_t size = 0;             // how many wide nodes it becomes
+    std::uint32_t wide = 0, firstBelow = 0;  // its wide root's place, and its descendants' first
+  };
+  static void findSubtrees(const std::vector<BvhNode>& tree, std::uint32_t node, int depth, std::uint32_t& upperNodes,
+                           std::vector<Subtree>& subtrees);
+  std::uint32_t fill(std::uint32_t wide, const std::vector<BvhNode>& tree, std::uint32_t node, std::uint32_t next, int depth,
+                     std::vector<Subtree>& subtrees, std::size_t& nextSubtree);
   std::vector<WideBvhNode> nodes_;
 };
 

@@ -27,11 +27,11 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal)
+SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal, int threads)
     : scene_(scene),
-      bvh_(scene.triangleBvh(stats)),
+      bvh_(scene.triangleBvh(stats, threads)),
       triangles_(scene.leafTriangles(stats)),
-      wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats) : nullptr) {}
+      wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats, threads) : nullptr) {}
 
 void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const {
   // Eight rays at a time; where they cannot travel together (they straddle a plane of
@@ -187,8 +187,7 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
 }
 
 void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image) {
-  scene.triangleBvh(stats, threads);  // built on first use, on this render's threads
-  const SurfaceReference reference(scene, stats, traversal);
+  const SurfaceReference reference(scene, stats, traversal, threads);  // the BVHs built on first use, on this render's threads
   const CameraTransform& camera = scene.camera();
   PhaseTimer timer(stats, "reference");
   // Every pixel's id, depth and ambiguity is written below: an image of this size is

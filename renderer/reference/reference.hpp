@@ -47,7 +47,8 @@ enum class ReferenceTraversal { packets, textbook };
 class SurfaceReference {
  public:
   // Builds (or reuses) the scene's triangle BVH, and the wide one for packets.
-  SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal = ReferenceTraversal::textbook);
+  // `threads`: what the BVHs are built on, if this is their first use.
+  SurfaceReference(const PreparedScene& scene, Stats& stats, ReferenceTraversal traversal = ReferenceTraversal::textbook, int threads = 1);
 
   // Per-ray work counters, summed by the caller.
   struct Counters {

@@ -1,6 +1,9 @@
 #include "renderer/scene/adjacency.hpp"
 
+#include <algorithm>
 #include <unordered_map>
+
+#include "renderer/util/parallel.hpp"
 
 namespace hsr {
 
@@ -35,16 +38,27 @@ EdgeAdjacency buildEdgeAdjacency(std::size_t vertexCount, std::span<const Triang
   return adjacency;
 }
 
-VertexTriangles buildVertexTriangles(std::size_t vertexCount, std::span<const Triangle> triangles) {
+// A counting sort of the triangles by vertex. On threads, each triangle claims its slot
+// in a vertex's row with an atomic increment, so a row's order depends on the threads'
+// timing; each row is then sorted, which gives the one-thread order (ascending triangle)
+// back, and with it the same sums of neighbouring normals in the same order.
+VertexTriangles buildVertexTriangles(std::size_t vertexCount, std::span<const Triangle> triangles, int threads) {
+  constexpr std::size_t kChunk = 16384;
+  auto atomicIncrement = [](std::uint32_t& value) { return __atomic_fetch_add(&value, 1u, __ATOMIC_RELAXED); };
   VertexTriangles rows;
   rows.first.assign(vertexCount + 1, 0);
-  for (const Triangle& triangle : triangles)
-    for (std::uint32_t v : triangle) ++rows.first[v + 1];
+  parallelForEach(triangles.size(), kChunk, threads, [&](std::size_t t) {
+    for (std::uint32_t v : triangles[t]) atomicIncrement(rows.first[v + 1]);
+  });
   for (std::size_t v = 0; v < vertexCount; ++v) rows.first[v + 1] += rows.first[v];
   rows.triangles.resize(triangles.size() * 3);
   std::vector<std::uint32_t> filled(rows.first.begin(), rows.first.end() - 1);
-  for (std::uint32_t t = 0; t < triangles.size(); ++t)
-    for (std::uint32_t v : triangles[t]) rows.triangles[filled[v]++] = t;
+  parallelForEach(triangles.size(), kChunk, threads, [&](std::size_t t) {
+    for (std::uint32_t v : triangles[t]) rows.triangles[atomicIncrement(filled[v])] = std::uint32_t(t);
+  });
+  parallelForEach(vertexCount, kChunk, threads, [&](std::size_t v) {
+    std::sort(rows.triangles.begin() + rows.first[v], rows.triangles.begin() + rows.first[v + 1]);
+  });
   return rows;
 }
 

@@ -27,7 +27,8 @@ struct VertexTriangles {
     return {triangles.data() + first[vertex], triangles.data() + first[vertex + 1]};
   }
 };
-VertexTriangles buildVertexTriangles(std::size_t vertexCount, std::span<const Triangle> triangles);
+// The same rows for any thread count.
+VertexTriangles buildVertexTriangles(std::size_t vertexCount, std::span<const Triangle> triangles, int threads = 1);
 
 struct EdgeAdjacency {
   std::vector<MeshEdge> edges;  // in order of first use (triangle by triangle, corner by corner)

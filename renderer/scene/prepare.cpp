@@ -127,10 +127,10 @@ dvec3 PreparedScene::faceNormal(std::uint32_t triangle) const {
   return length > 0 ? n / length : dvec3(0);
 }
 
-const VertexTriangles& PreparedScene::trianglesAroundVertices(Stats& stats) const {
+const VertexTriangles& PreparedScene::trianglesAroundVertices(Stats& stats, int threads) const {
   std::call_once(aroundBuilt_, [&] {
     PhaseTimer timer(stats, "vertex triangles");
-    trianglesAroundVertices_ = buildVertexTriangles(positions_.size(), triangles_);
+    trianglesAroundVertices_ = buildVertexTriangles(positions_.size(), triangles_, threads);
     faceStates_ = std::make_unique<std::atomic<std::uint8_t>[]>(triangles_.size());  // all kFaceAbsent
     faceGeometries_ = uninitializedArray<FaceGeometry>(triangles_.size());  // written before it is read
   });
@@ -211,11 +211,11 @@ const Bvh& PreparedScene::triangleBvh(Stats& stats, int threads) const {
   return triangleBvh_;
 }
 
-const WideBvh& PreparedScene::wideTriangleBvh(Stats& stats) const {
-  const Bvh& binary = triangleBvh(stats);
+const WideBvh& PreparedScene::wideTriangleBvh(Stats& stats, int threads) const {
+  const Bvh& binary = triangleBvh(stats, threads);
   std::call_once(wideBvhBuilt_, [&] {
     PhaseTimer timer(stats, "wide bvh build");
-    wideTriangleBvh_ = WideBvh(binary);
+    wideTriangleBvh_ = WideBvh(binary, threads);
     stats.add("wide bvh nodes built", static_cast<std::int64_t>(wideTriangleBvh_.nodes().size()));
   });
   return wideTriangleBvh_;

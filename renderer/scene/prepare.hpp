@@ -99,7 +99,7 @@ class PreparedScene {
   dvec3 faceNormal(std::uint32_t triangle) const;
   // The triangles around each vertex, built on first use (phase "vertex triangles"):
   // what corner normals average over.
-  const VertexTriangles& trianglesAroundVertices(Stats& stats) const;
+  const VertexTriangles& trianglesAroundVertices(Stats& stats, int threads) const;
   // A triangle's unit normal (faceNormal) and its angle at each corner, what a corner
   // normal weighs its neighbours by. Computed the first time any corner normal needs it
   // and kept: each triangle is a neighbour of every triangle sharing one of its vertices,
@@ -132,10 +132,10 @@ class PreparedScene {
   };
   const std::vector<LeafTriangle>& leafTriangles(Stats& stats) const;
 
-  // triangleBvh() with four children to a node (renderer/rays/wide_bvh.hpp), for the fast
+  // triangleBvh() with eight children to a node (renderer/rays/wide_bvh.hpp), for the fast
   // paths' traversals; its leaves are the same slots. Built on first use (phase "wide
   // bvh build", counter "wide bvh nodes built").
-  const WideBvh& wideTriangleBvh(Stats& stats) const;
+  const WideBvh& wideTriangleBvh(Stats& stats, int threads = 1) const;
 
   // A BVH over the instances' boxes (primitive i = instances()[i]) for culling whole
   // objects hierarchically, built on first use (phase "object bvh build", counter

@@ -103,7 +103,7 @@ void PixelShader<Real>::setUpClaimed(const std::vector<std::uint32_t>& claimed, 
   const std::size_t first = setUps_.size();
   for (std::size_t i = 0; i < claimed.size(); ++i) slotOf_[claimed[i]] = static_cast<std::uint32_t>(first + i + 1);
   setUps_.resize(first + claimed.size());
-  const VertexTriangles* around = smooth_ ? &scene_.trianglesAroundVertices(stats) : nullptr;
+  const VertexTriangles* around = smooth_ ? &scene_.trianglesAroundVertices(stats, threads) : nullptr;
   constexpr std::size_t kChunk = 256;
   const std::size_t chunks = (claimed.size() + kChunk - 1) / kChunk;
   std::vector<std::int64_t> fromMesh(chunks, 0);

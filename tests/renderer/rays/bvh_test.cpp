@@ -181,6 +181,40 @@ TEST(WideBvh, EveryPrimitiveInOneLeafAndEveryBoxContainsItsChildren) {
   }
 }
 
+// The collapse fills the subtrees below its top levels side by side, each numbered from
+// the sizes known in advance: every thread count gives the one-thread nodes, byte for
+// byte, numbered depth first (a node's inner children next to each other, after it).
+TEST(WideBvh, EveryThreadCountCollapsesToTheSameNodesInTheSamePlaces) {
+  for (const std::size_t count : {1u, 9u, 1000u, 60000u}) {
+    const std::vector<Aabb> boxes = randomTriangleBoxes(count, 11);
+    const Bvh binary(boxes);
+    const WideBvh one(binary, 1);
+    for (std::size_t index = 0; index < one.nodes().size(); ++index) {
+      const WideBvhNode& node = one.nodes()[index];
+      std::uint32_t expected = 0;
+      for (int child = 0; child < node.children; ++child) {
+        if (node.leaf(child)) continue;
+        if (expected != 0) {
+          EXPECT_EQ(node.index[child], expected) << "node " << index << ": its inner children side by side";
+        }
+        EXPECT_GT(node.index[child], index) << "node " << index;
+        expected = node.index[child] + 1;
+      }
+    }
+    for (const int threads : {2, 3, 4, 7}) {
+      const WideBvh many(binary, threads);
+      ASSERT_EQ(many.nodes().size(), one.nodes().size()) << count << " primitives, " << threads << " threads";
+      for (std::size_t index = 0; index < one.nodes().size(); ++index) {
+        const WideBvhNode &a = one.nodes()[index], &b = many.nodes()[index];  // field by field: the padding is no one's
+        ASSERT_TRUE(std::memcmp(a.low, b.low, sizeof a.low) == 0 && std::memcmp(a.high, b.high, sizeof a.high) == 0 &&
+                    std::memcmp(a.index, b.index, sizeof a.index) == 0 && std::memcmp(a.count, b.count, sizeof a.count) == 0 &&
+                    a.children == b.children)
+            << count << " primitives, " << threads << " threads: node " << index;
+      }
+    }
+  }
+}
+
 TEST(WideBvh, ChildBoxTestsGiveTheBinaryBoxTestsEntries) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the wide box test is never run here";
   const std::vector<Aabb> boxes = randomTriangleBoxes(3000, 5);

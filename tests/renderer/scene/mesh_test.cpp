@@ -1,9 +1,11 @@
 // Procedural primitives and shipped models are closed and wound outward.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <numbers>
 
+#include "renderer/scene/adjacency.hpp"
 #include "renderer/scene/mesh.hpp"
 #include "renderer/scene/obj.hpp"
 #include "test_support.hpp"
@@ -58,6 +60,28 @@ TEST(Mesh, ShippedModelsAreClosedAndOutward) {
   }
   EXPECT_TRUE(closedAndConsistent(loadObj(test::sourcePath("models/bunny.obj"))));
   EXPECT_EQ(loadObj(test::sourcePath("models/dragon_100k.obj")).triangles.size(), 99784u);
+}
+
+// The rows of triangles around each vertex are built on threads, each triangle claiming
+// its slot as the threads race; every row still lists its triangles in ascending order,
+// every triangle of the vertex once, whatever the thread count.
+TEST(Mesh, TheTrianglesAroundEachVertexAreTheSameRowsOnAnyNumberOfThreads) {
+  const Mesh mesh = loadObj(test::sourcePath("models/dragon_100k.obj"));
+  const VertexTriangles one = buildVertexTriangles(mesh.positions.size(), mesh.triangles, 1);
+  std::vector<std::uint32_t> uses(mesh.positions.size(), 0);
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t) ++uses[v];
+  for (std::uint32_t v = 0; v < mesh.positions.size(); ++v) {
+    const std::span<const std::uint32_t> row = one.around(v);
+    ASSERT_EQ(row.size(), uses[v]) << "vertex " << v;
+    ASSERT_TRUE(std::is_sorted(row.begin(), row.end())) << "vertex " << v;
+    for (std::uint32_t t : row) ASSERT_NE(std::find(mesh.triangles[t].begin(), mesh.triangles[t].end(), v), mesh.triangles[t].end());
+  }
+  for (int threads : {2, 3, 4}) {
+    const VertexTriangles many = buildVertexTriangles(mesh.positions.size(), mesh.triangles, threads);
+    EXPECT_EQ(many.first, one.first) << threads << " threads";
+    EXPECT_EQ(many.triangles, one.triangles) << threads << " threads";
+  }
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ TEST(Shading, CornerNormalsAreTheSameColdOrWarmInAnyOrderFromAnyThread) {
   Stats stats;
   const std::size_t count = racing.prepared.triangleCount();
   std::vector<std::array<dvec3, 3>> cold(count), warm(count), reversed(count);
-  const VertexTriangles& around = racing.prepared.trianglesAroundVertices(stats);
+  const VertexTriangles& around = racing.prepared.trianglesAroundVertices(stats, 2);
   // Two threads, each over every triangle from its own end, so both ask for the same
   // faces at about the same time.
   parallelFor(2, 2, [&](std::size_t thread, int) {
@@ -90,7 +90,7 @@ TEST(Shading, CornerNormalsAreTheSameColdOrWarmInAnyOrderFromAnyThread) {
     }
   });
   for (std::uint32_t t = 0; t < count; ++t) racing.prepared.cornerNormals(t, around, warm[t]);
-  const VertexTriangles& aroundBackwards = backwards.prepared.trianglesAroundVertices(stats);
+  const VertexTriangles& aroundBackwards = backwards.prepared.trianglesAroundVertices(stats, 1);
   for (std::uint32_t t = static_cast<std::uint32_t>(count); t-- > 0;) backwards.prepared.cornerNormals(t, aroundBackwards, reversed[t]);
   for (std::size_t t = 0; t < count; ++t)
     for (std::size_t k = 0; k < 3; ++k) {
