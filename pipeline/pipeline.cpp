@@ -114,8 +114,10 @@ void runVisibility(Context& context) {
       const VisibleSet* triangles = context.kept ? &*context.kept : nullptr;
       std::optional<VisibleSet> opaque;
       if (Facts{scene, context.configuration}.opaqueFirst) triangles = &opaque.emplace(trianglesByOpacity(scene, triangles, true));
-      if (context.visibility.frame.width != scene.width() || context.visibility.frame.height != scene.height())
+      if (context.visibility.frame.width != scene.width() || context.visibility.frame.height != scene.height()) {
+        PhaseTimer timer(context.stats, "frame buffers");
         context.visibility.frame = Frame(scene.width(), scene.height());
+      }
       context.visibility.polygons.clear();  // what only some algorithms answer, never left from another's
       context.visibility.coverage.reset();
       algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats, context.steps, context.why},

@@ -1,6 +1,6 @@
 // parallelFor and the threads it keeps between loops (renderer/util/parallel.hpp): every item
 // once, loops inside loops, an exception from the caller's share, and the caller's
-// floating-point traps in every worker.
+// floating-point traps in every worker; and the time phases spend outside the loops.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,11 +9,13 @@
 #include <chrono>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "floating_point_traps.hpp"
 #include "renderer/util/parallel.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr {
 namespace {
@@ -89,6 +91,38 @@ TEST(Parallel, WorkersRunWithTheCallersFloatingPointTraps) {
     const test::TrappedFloatingPoint none(0);
     EXPECT_EQ(trapsSeen(), std::vector<int>({0, 0}));
   }
+}
+
+// A phase's serial time is its time outside parallel loops: a loop inside a loop's body
+// counts once, as part of the outer one, and a phase timed inside a loop's body has no
+// serial time of its own. Sleeps give lower bounds only, so the bounds below hold on any
+// machine however loaded; the Amdahl time is exact arithmetic on the measured times.
+TEST(Parallel, APhasesSerialTimeIsItsTimeOutsideParallelLoops) {
+  using std::chrono::milliseconds;
+  Stats stats;
+  {
+    PhaseTimer timer(stats, "phase");
+    std::this_thread::sleep_for(milliseconds(10));  // serial
+    parallelFor(4, 1, [&](std::size_t, int) {       // four items on one thread: 4 x 5 ms in a loop
+      parallelFor(2, 2, [&](std::size_t, int) {});  // nested: already inside the outer loop's time
+      PhaseTimer inner(stats, "inside a loop");
+      std::this_thread::sleep_for(milliseconds(5));
+    });
+  }
+  const double total = stats.seconds("phase"), serial = stats.serialSeconds("phase");
+  EXPECT_GE(serial, 0.010);
+  EXPECT_LE(serial, total - 0.020);
+  // The loop ran on one worker; on 16 cores its four items would take a quarter of it.
+  EXPECT_NEAR(stats.amdahlSeconds("phase") - serial, (total - serial) / 4, 1e-6);
+  EXPECT_GE(stats.seconds("inside a loop"), 0.020);
+  EXPECT_EQ(stats.serialSeconds("inside a loop"), 0.0);
+  EXPECT_EQ(ParallelTime::insideLoop(), false);
+  // --stats prints each phase's serial time, and a pass's time on 16 cores.
+  Stats pass;
+  { PhaseTimer timer(pass, "pass: visibility"); }
+  const std::string report = pass.report();
+  EXPECT_NE(report.find("pass: visibility serial time"), std::string::npos) << report;
+  EXPECT_NE(report.find("pass: visibility on 16 cores (Amdahl) time"), std::string::npos) << report;
 }
 
 TEST(FloatingPointTraps, OnInEveryTestExactlyWhereTheBuildAsks) {
