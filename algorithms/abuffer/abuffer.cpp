@@ -69,7 +69,9 @@ struct Resolving {
   float opacity;
 };
 
-struct Counts {
+// A row's counts, on a cache line of their own: neighbouring rows are often resolved on
+// different threads, which would otherwise wait for each other at every pixel's count.
+struct alignas(64) Counts {
   std::int64_t mostFragments = 0, partial = 0;
   Counts& operator+=(const Counts& other) {
     mostFragments = std::max(mostFragments, other.mostFragments), partial += other.partial;

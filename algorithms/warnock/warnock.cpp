@@ -105,7 +105,9 @@ struct Examined {
   std::vector<std::uint32_t> meeting;
 };
 
-struct Counts {
+// A worker's counts, on cache lines of their own: two threads counting polygon-window
+// tests on one line would wait for each other at every test.
+struct alignas(64) Counts {
   std::array<std::int64_t, 5> windows{};    // by Rule
   std::array<std::int64_t, 4> relations{};  // by Relation
   Counts& operator+=(const Counts& other) {

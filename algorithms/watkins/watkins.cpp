@@ -30,7 +30,9 @@ enum class Outcome { empty, onePolygon, decidedAtEnds, onePixel, leftEndOnly, sp
 constexpr std::array<const char*, 6> kOutcomeCounters = {"spans empty",        "spans with one polygon", "spans decided at both ends",
                                                          "spans of one pixel", "spans taken from their left end", "spans split"};
 
-struct Counts {
+// A band's counts, on cache lines of their own: the bands run side by side, and two
+// threads counting spans on one line would wait for each other at every span.
+struct alignas(64) Counts {
   std::int64_t crossings = 0, activePolygons = 0, depthSamples = 0, mostCrossings = 0;
   std::array<std::int64_t, 6> spans{};  // by Outcome
   Counts& operator+=(const Counts& other) {
