@@ -214,4 +214,8 @@ cp out/web/page.png images/figures/web.png
 cp out/web/why.png images/figures/web-why.png  # a pixel asked why about (README "Asking why")
 cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Watching an algorithm work")
 cp out/web/report.png images/figures/report.png     # hsr compare's report.html (README "report.html")
+# The speed-up of every algorithm's visibility pass against threads (README "On more
+# cores"): a machine's own figure, so it changes with the machine that runs this.
+bash bench/scaling.sh > /dev/null 2>&1
+cp out/scaling/speedup.png images/figures/scaling.png
 echo "figures are in images/figures/"

@@ -133,8 +133,8 @@ class ThreadPool {
 // cores. Only a thread's outermost loop counts (a loop inside a loop's body is part of
 // it). Two sums: the loops' wall time, and what they would take on kAmdahlCores cores:
 // a loop that ran on W workers, spread over min(its items, kAmdahlCores) instead (a loop
-// of 4 items uses at most 4). Taken by every loop, not only under --stats: two clock
-// reads a loop.
+// of 4 tiles uses at most 4; one cut into a part per thread, all of them). Taken by every
+// loop, not only under --stats: two clock reads a loop.
 class ParallelTime {
  public:
   static constexpr int kAmdahlCores = 16;  // the cores of the machines students and instructors use
@@ -191,7 +191,10 @@ inline int parallelWorkers(std::size_t count, int threads) {
 template <typename Body>
 void parallelFor(std::size_t count, int threads, Body&& body) {
   const int workers = parallelWorkers(count, threads);
-  const ParallelTime::Loop timed(count, workers);
+  // A loop cut into one part per thread asked for (bands of rows, say) is cut into as many
+  // on more cores: for Amdahl's estimate its items are not a limit.
+  const bool cutPerThread = count == std::size_t(resolveThreadCount(threads));
+  const ParallelTime::Loop timed(cutPerThread ? std::size_t(ParallelTime::kAmdahlCores) : count, workers);
   if (workers <= 1) {
     for (std::size_t item = 0; item < count; ++item) body(item, 0);
     return;
