@@ -216,6 +216,6 @@ cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Wa
 cp out/web/report.png images/figures/report.png     # hsr compare's report.html (README "report.html")
 # The speed-up of every algorithm's visibility pass against threads (README "On more
 # cores"): a machine's own figure, so it changes with the machine that runs this.
-bash bench/scaling.sh > /dev/null 2>&1
+bash bench/scaling.sh > /dev/null  # its progress, and any image differing between counts, on stderr
 cp out/scaling/speedup.png images/figures/scaling.png
 echo "figures are in images/figures/"

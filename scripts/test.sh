@@ -22,6 +22,12 @@ bash scripts/build.sh release -DHSR_WERROR=ON -DHSR_BUILD_BENCH=OFF -DHSR_STANDA
 lap "release build"
 ctest --preset release
 lap "release tests"
+# The same bits through the command line, fresh processes on one and two threads, ids and
+# colour, every surface algorithm and Roberts on counters and the city (bench/scaling.sh
+# small and once each; its full run is a benchmark).
+bash bench/scaling.sh --scenes counters,city --threads 1,2 --runs 1 --size 480x270 --out out/scaling-ci \
+  --algos reference,zbuffer,ray_casting,painter,warnock,watkins,weiler_atherton,abuffer,roberts > /dev/null
+lap "the same bits on one and two threads"
 bash scripts/sanitize.sh -DHSR_WERROR=ON
 lap "sanitizer build and tests"
 bash scripts/fuzz.sh 10
