@@ -97,8 +97,9 @@ void WideBvh::findSubtrees(const std::vector<BvhNode>& tree, std::uint32_t node,
 }
 
 // Fills wide node `wide` with the binary subtree under `node`, numbering its descendants
-// from `next` on, and returns the number after them. At `stopDepth` (-1: never), a
-// subtree is not filled but its place is written into the next of `subtrees`.
+// from `next` on, and returns the number after them. `depth` counts wide levels from the
+// root (-1: inside a subtree below kSharedDepth); at kSharedDepth a subtree is not filled
+// but its place is written into the next of `subtrees`.
 std::uint32_t WideBvh::fill(std::uint32_t wide, const std::vector<BvhNode>& tree, std::uint32_t node, std::uint32_t next,
                             int depth, std::vector<Subtree>& subtrees, std::size_t& nextSubtree) {
   if (depth == kSharedDepth) {

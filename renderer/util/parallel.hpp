@@ -154,7 +154,11 @@ class ParallelTime {
   // outside any loop also times the loop, which runs on that many workers.
   class Loop {
    public:
-    Loop(std::size_t items, int workers) : timed_(!insideLoop_ && workers > 0), wasInside_(insideLoop_), items_(items), workers_(workers) {
+    Loop(std::size_t items, int workers)
+        : timed_(!insideLoop_ && workers > 0),
+          wasInside_(insideLoop_),
+          width_(std::max<std::int64_t>(1, std::min<std::int64_t>(kAmdahlCores, std::int64_t(items)))),
+          workers_(workers) {
       insideLoop_ = true;
       if (timed_) start_ = std::chrono::steady_clock::now();
     }
@@ -162,16 +166,15 @@ class ParallelTime {
       insideLoop_ = wasInside_;
       if (!timed_) return;
       const std::int64_t elapsed = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
-      const std::int64_t width = std::max<std::int64_t>(1, std::min<std::int64_t>(kAmdahlCores, std::int64_t(items_)));
       loopNanoseconds_.fetch_add(elapsed, std::memory_order_relaxed);
-      amdahlNanoseconds_.fetch_add(elapsed * workers_ / width, std::memory_order_relaxed);
+      amdahlNanoseconds_.fetch_add(elapsed * workers_ / width_, std::memory_order_relaxed);
     }
     Loop(const Loop&) = delete;
     Loop& operator=(const Loop&) = delete;
 
    private:
     bool timed_, wasInside_;
-    std::size_t items_;
+    std::int64_t width_;  // the most cores the loop could spread over
     int workers_;
     std::chrono::steady_clock::time_point start_{};
   };

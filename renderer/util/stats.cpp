@@ -14,14 +14,9 @@ double Stats::seconds(const std::string& phase) const {
   return found == seconds_.end() ? 0.0 : found->second;
 }
 
-double Stats::serialSeconds(const std::string& phase) const {
-  auto found = serialSeconds_.find(phase);
-  return found == serialSeconds_.end() ? 0.0 : found->second;
-}
-
-double Stats::amdahlSeconds(const std::string& phase) const {
-  auto found = amdahlSeconds_.find(phase);
-  return found == amdahlSeconds_.end() ? 0.0 : found->second;
+Stats::SerialTime Stats::serialTime(const std::string& phase) const {
+  auto found = serialTimes_.find(phase);
+  return found == serialTimes_.end() ? SerialTime{} : found->second;
 }
 
 const std::string& Stats::noteOf(const std::string& name) const {
@@ -56,10 +51,11 @@ std::string Stats::report() const {
   };
   for (const auto& [name, value] : seconds_) {
     timeLine(name + " time", value);
-    if (!serialSeconds_.count(name)) continue;
-    timeLine(name + " serial time", serialSeconds_.at(name));
+    const auto serial = serialTimes_.find(name);
+    if (serial == serialTimes_.end()) continue;
+    timeLine(name + " serial time", serial->second.serial);
     if (name.rfind("pass: ", 0) == 0)
-      timeLine(name + " on " + std::to_string(ParallelTime::kAmdahlCores) + " cores (Amdahl) time", amdahlSeconds_.at(name));
+      timeLine(name + " on " + std::to_string(ParallelTime::kAmdahlCores) + " cores (Amdahl) time", serial->second.onAmdahlCores);
   }
   return text;
 }

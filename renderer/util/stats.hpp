@@ -18,9 +18,12 @@ class Stats {
   void addSeconds(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
   // Of a phase's time, what ran outside parallel loops, and what the phase would take on
   // ParallelTime::kAmdahlCores cores by Amdahl's law (PhaseTimer measures both).
-  void addSerialSeconds(const std::string& phase, double serial, double onAmdahlCores) {
-    serialSeconds_[phase] += serial;
-    amdahlSeconds_[phase] += onAmdahlCores;
+  struct SerialTime {
+    double serial = 0, onAmdahlCores = 0;  // seconds
+  };
+  void addSerialTime(const std::string& phase, SerialTime time) {
+    SerialTime& sum = serialTimes_[phase];
+    sum.serial += time.serial, sum.onAmdahlCores += time.onAmdahlCores;
   }
   // A fact in words where a number would not say enough (which cell the eye is in, which
   // objects a set holds); the last note of a name is kept.
@@ -31,8 +34,7 @@ class Stats {
   // Whether a pass counted `name` at all (a counter kept only by one path, say).
   bool counted(const std::string& name) const { return counters_.count(name) != 0; }
   double seconds(const std::string& phase) const;
-  double serialSeconds(const std::string& phase) const;  // 0 for a phase timed inside a parallel loop
-  double amdahlSeconds(const std::string& phase) const;
+  SerialTime serialTime(const std::string& phase) const;  // zeros for a phase timed inside a parallel loop
 
   std::vector<std::string> counterNames() const;
   std::vector<std::string> phaseNames() const;
@@ -45,7 +47,8 @@ class Stats {
 
  private:
   std::map<std::string, std::int64_t> counters_;
-  std::map<std::string, double> seconds_, serialSeconds_, amdahlSeconds_;
+  std::map<std::string, double> seconds_;
+  std::map<std::string, SerialTime> serialTimes_;
   std::map<std::string, std::string> notes_;
 };
 
@@ -62,7 +65,7 @@ class PhaseTimer {
     const ParallelTime::Totals loops = ParallelTime::totals();
     const double inLoops = loops.seconds - loopsAtStart_.seconds;
     const double serial = std::max(0.0, elapsed - inLoops);
-    stats_.addSerialSeconds(phase_, serial, serial + loops.secondsOnAmdahlCores - loopsAtStart_.secondsOnAmdahlCores);
+    stats_.addSerialTime(phase_, {serial, serial + loops.secondsOnAmdahlCores - loopsAtStart_.secondsOnAmdahlCores});
   }
   PhaseTimer(const PhaseTimer&) = delete;
   PhaseTimer& operator=(const PhaseTimer&) = delete;

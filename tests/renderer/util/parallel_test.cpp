@@ -109,13 +109,13 @@ TEST(Parallel, APhasesSerialTimeIsItsTimeOutsideParallelLoops) {
       std::this_thread::sleep_for(milliseconds(5));
     });
   }
-  const double total = stats.seconds("phase"), serial = stats.serialSeconds("phase");
+  const double total = stats.seconds("phase"), serial = stats.serialTime("phase").serial;
   EXPECT_GE(serial, 0.010);
   EXPECT_LE(serial, total - 0.020);
   // The loop ran on one worker; on 16 cores its four items would take a quarter of it.
-  EXPECT_NEAR(stats.amdahlSeconds("phase") - serial, (total - serial) / 4, 1e-6);
+  EXPECT_NEAR(stats.serialTime("phase").onAmdahlCores - serial, (total - serial) / 4, 1e-6);
   EXPECT_GE(stats.seconds("inside a loop"), 0.020);
-  EXPECT_EQ(stats.serialSeconds("inside a loop"), 0.0);
+  EXPECT_EQ(stats.serialTime("inside a loop").serial, 0.0);
   EXPECT_EQ(ParallelTime::insideLoop(), false);
   // --stats prints each phase's serial time, and a pass's time on 16 cores.
   Stats pass;
