@@ -47,7 +47,7 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
            std::to_string(filled + 1) + ": " + history[filled].outcome + ": " + history[filled].detail + ")";
   }
   if (met == history.size())
-    return differs + "which never reached this pixel (the rasterizer did not cover the pixel's center with it, or it was clipped)";
+    return differs + "which the algorithm never met at this pixel (the rasterizer did not cover the pixel's center with it, it was clipped, or no ray tested it)";
   const auto event = [](std::size_t i) { return "event " + std::to_string(i + 1); };
   if (!history[met].shown) return differs + "not shown after " + event(met) + ": " + history[met].outcome + ": " + history[met].detail;
   std::size_t replaced = met + 1;

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "renderer/raster/plane_depth.hpp"
 #include "renderer/raster/screen_triangles.hpp"
@@ -78,6 +80,31 @@ struct alignas(64) Counts {
     return *this;
   }
 };
+
+// hsr why: a pixel asked about, resolved: its fragments front to back (the order the
+// resolve takes them in), each with its mask and the subsamples it took, then the surface
+// the id image names.
+void witnessResolve(const std::vector<Resolving>& fragments, const std::vector<float>& shares, const ScreenGeometry& geometry,
+                    const CameraTransform& fine, const DepthOrder& order, int k, std::uint32_t shown, float shownShare,
+                    std::vector<PixelEvent>& history) {
+  const int samples = k * k;
+  for (std::size_t i = 0; i < fragments.size(); ++i) {
+    std::string mask;  // the k x k subsamples, rows top to bottom: # covered, . not
+    for (int sample = 0; sample < samples; ++sample)
+      mask += std::string(sample && sample % k == 0 ? "/" : "") + (fragments[i].mask >> sample & 1 ? "#" : ".");
+    char detail[240];
+    std::snprintf(detail, sizeof detail, "mask %s: covers %d of %d subsamples; opacity %.3g; its share %.6g", mask.c_str(),
+                  std::popcount(fragments[i].mask), samples, double(fragments[i].opacity), double(shares[i]) / samples);
+    history.push_back({geometry.triangles[fragments[i].polygon].triangle + 1,
+                       "fragment " + std::to_string(i + 1) + " of " + std::to_string(fragments.size()) + " front to back",
+                       detail, fine.distanceFromScreenAffine(order.sign * fragments[i].key), false, {}});
+  }
+  char detail[120];
+  std::snprintf(detail, sizeof detail, "the largest share, %.6g of the pixel (the background's is 1 less the shares' sum)",
+                double(shownShare));
+  history.push_back({shown, "resolved: the id image names the surface with the largest share", detail,
+                     std::numeric_limits<double>::quiet_NaN(), true, {}});
+}
 
 }  // namespace
 
@@ -187,6 +214,8 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       // background when it has more than any.
       const bool background = 1 - total > largestShare;
       frame.ids[pixel] = background ? conventions::kBackgroundId : largest;
+      if (std::vector<PixelEvent>* history = request.why ? request.why->at(x, int(y)) : nullptr) [[unlikely]]
+        witnessResolve(fragments, shares, geometry, fine, order, k, frame.ids[pixel], background ? 1 - total : largestShare, *history);
       frame.depth[pixel] = background ? std::numeric_limits<float>::infinity()
                                       : static_cast<float>(fine.distanceFromScreenAffine(order.sign * largestKey));
       const std::size_t surfaces = rowSurfaces[y].size() - firstSurface;
@@ -233,6 +262,7 @@ AlgorithmEntry entry() {
   entry.studyConfigurations = {{}, {{"mask", "8x8"}}, {{"mask", "2x2"}}};
   entry.takesTriangleSubsets = true;
   entry.resolvesTransparency = true;
+  entry.answersWhy = true;
   setVisibility(entry, visibility);
   return entry;
 }

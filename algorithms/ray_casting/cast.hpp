@@ -12,7 +12,9 @@
 #include "renderer/image/frame.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/steps/steps.hpp"
+#include "renderer/steps/why.hpp"
 #include "renderer/util/conventions.hpp"
+#include "renderer/util/error.hpp"
 #include "renderer/util/parallel.hpp"
 #include "renderer/util/stats.hpp"
 
@@ -98,17 +100,19 @@ struct Recording {
   const PreparedScene& scene;
 };
 
-// Runs tracer.trace(PixelRay, Counters&) -> Hit for every pixel center, one row per work
+// Runs tracer.trace(PixelRay, Counters&, history) -> Hit for every pixel center, one row per work
 // item, and fills frame.ids and frame.depth; a tracer that traces several rays at once
 // has instead traceRun(camera, y, x0, count, ids, depths, Counters&, costs or null),
 // which sets up, traces and writes pixels x0 .. x0 + count - 1 of row y itself. Counters is the tracer's own tally (summed
 // with +=; cost() is one ray's work in the unit Counters::kCostUnit names); each row
 // counts on its own stack, since neighbouring rows' counters share cache lines and other
 // threads are writing them. With a recording, the rows run in order on one thread, and a
-// step shows the image so far beside each ray's cost as a heat map.
+// step shows the image so far beside each ray's cost as a heat map. With hsr why's
+// pixels (why, renderer/steps/why.hpp), a ray through one of them is traced one at a time
+// with its pixel's history, where the tracer records what it met (null at other pixels).
 template <typename Tracer>
 typename Tracer::Counters castRays(const Tracer& tracer, const CameraTransform& camera, int threads, Frame& frame,
-                                   const Recording* recording = nullptr) {
+                                   const Recording* recording = nullptr, PixelWitness* why = nullptr) {
   using Counters = typename Tracer::Counters;
   const auto rows = static_cast<std::size_t>(frame.height);
   std::vector<Counters> rowCounters(rows);
@@ -120,13 +124,20 @@ typename Tracer::Counters castRays(const Tracer& tracer, const CameraTransform& 
       const int count = std::min(kRaysSetUpTogether, frame.width - x0);
       const std::size_t first = row * std::size_t(frame.width) + std::size_t(x0);
       if constexpr (requires { tracer.traceRun(camera, 0, 0, 0, frame.ids.data(), frame.depth.data(), counters, costAt.data()); }) {
+        HSR_CHECK(!why && "this tracer keeps no history: hsr why traces with the textbook's");
         tracer.traceRun(camera, int(row), x0, count, &frame.ids[first], &frame.depth[first], counters, recording ? &costAt[first] : nullptr);
       } else {
         setUpPixelRays(camera, int(row), x0, count, pixels.data());
         for (int i = 0; i < count; ++i) {
           const PixelRay& pixel = pixels[std::size_t(i)];
           const double before = recording ? counters.cost() : 0;
-          const Hit hit = tracer.trace(pixel, counters);
+          Hit hit;
+          if constexpr (requires { tracer.trace(pixel, counters, nullptr); }) {
+            hit = tracer.trace(pixel, counters, why ? why->at(x0 + i, int(row)) : nullptr);
+          } else {
+            HSR_CHECK(!why && "this tracer keeps no history: hsr why traces with the textbook's");
+            hit = tracer.trace(pixel, counters);
+          }
           frame.ids[first + std::size_t(i)] = hit.id;
           frame.depth[first + std::size_t(i)] = frameDepth(hit.id, pixel.distance(hit.t));
           if (recording) costAt[first + std::size_t(i)] = counters.cost() - before;

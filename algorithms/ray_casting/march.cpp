@@ -16,8 +16,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/occupancy.hpp"
@@ -143,7 +145,9 @@ class Marcher {
     copyBvh_ = Bvh(boxes);
   }
 
-  Hit trace(const PixelRay& pixel, Counters& counters) const {
+  // history: hsr why's events at this pixel (every sample, and the triangle named), or
+  // null (renderer/steps/why.hpp).
+  Hit trace(const PixelRay& pixel, Counters& counters, std::vector<PixelEvent>* history = nullptr) const {
     Hit nearest;
     const auto [first, last] = clipToBounds(pixel);
     if (first > last) return nearest;
@@ -168,6 +172,7 @@ class Marcher {
         const double surface = previousTested ? refine(copy, pixel, t - stepT, t, counters) : t;
         if (!found || surface < entry || (surface == entry && copy < entered)) entered = copy, entry = surface, found = true;
       });
+      if (history) [[unlikely]] witnessSample(k, t, found, entry, pixel, *history);
       if (!found) continue;
       // Step 5: name the entered object's triangle nearest to the point found (a search
       // that grows with how deep inside the point is: refinement makes it cheaper).
@@ -176,6 +181,9 @@ class Marcher {
       const dvec3 local = dvec3(copy.objectFromWorld * dvec4(pixel.at(entry), 1.0));
       nearest.id = copy.firstTriangle + object.grid->nearestTriangle(*object.object->mesh, local, counters.voxelsSearched) + 1;
       nearest.t = entry;
+      if (history) [[unlikely]]
+        history->push_back({nearest.id, "named: the triangle of that object nearest to where the ray entered it",
+                            "searched in the object's occupancy grid", pixel.distance(entry), true, {}});
       return nearest;
     }
   }
@@ -190,6 +198,18 @@ class Marcher {
     dmat4 objectFromWorld;
     std::uint32_t object, firstTriangle;
   };
+
+  // hsr why: a sample at parameter t, outside every copy, or inside one, which the ray
+  // entered at parameter `entry` (refined, or the sample itself).
+  void witnessSample(double k, double t, bool found, double entry, const PixelRay& pixel,
+                     std::vector<PixelEvent>& history) const {
+    char detail[160] = "no object's inside test holds there";
+    if (found)
+      std::snprintf(detail, sizeof detail, "the ray entered the object at distance %.9g%s", pixel.distance(entry),
+                    entry == t ? " (the sample's: not refined)" : " (refined between this sample and the last)");
+    history.push_back({conventions::kBackgroundId, found ? "inside an object: the march stops" : "outside every object: the march goes on",
+                       detail, pixel.distance(t), false, "sample " + std::to_string(static_cast<long long>(k))});
+  }
 
   // The ray's parameters inside the march box and between the near and far planes.
   std::pair<double, double> clipToBounds(const PixelRay& pixel) const {
@@ -279,10 +299,10 @@ double marchSamplesPerRay(const PreparedScene& scene, const KnobNumber& step) {
 }
 
 void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform& camera, int threads, Frame& frame,
-           Stats& stats, const Recording* recording) {
+           Stats& stats, const Recording* recording, PixelWitness* why) {
   const Marcher marcher(scene, knobs, stats);
   PhaseTimer timer(stats, "ray casting");
-  const auto counters = castRays(marcher, camera, threads, frame, recording);
+  const auto counters = castRays(marcher, camera, threads, frame, recording, why);
   stats.add("march samples", counters.samples);
   stats.add("inside tests", counters.insideTests);
   stats.add("refinement steps", counters.refinementSteps);

@@ -14,8 +14,8 @@ double marchStepLength(const PreparedScene& scene, const KnobNumber& step);
 double marchSamplesPerRay(const PreparedScene& scene, const KnobNumber& step);
 
 // Fills frame.ids and frame.depth; leaves frame.color alone. With a recording, records
-// rows as castRays does (cast.hpp).
+// rows as castRays does (cast.hpp); with hsr why's pixels, their samples.
 void march(const PreparedScene& scene, const Knobs& knobs, const CameraTransform& camera, int threads, Frame& frame,
-           Stats& stats, const Recording* recording = nullptr);
+           Stats& stats, const Recording* recording = nullptr, PixelWitness* why = nullptr);
 
 }  // namespace hsr::ray_casting

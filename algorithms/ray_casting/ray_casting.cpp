@@ -5,7 +5,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
+#include <string>
 
 #include "algorithms/ray_casting/cast.hpp"
 #include "algorithms/ray_casting/fast_path.hpp"
@@ -34,10 +36,11 @@ class NaiveTracer {
   // The BVH's leaf order is as good an order as any: the answer does not depend on it.
   NaiveTracer(const PreparedScene& scene, Stats& stats) : triangles_(scene.leafTriangles(stats)) {}
 
-  Hit trace(const PixelRay& pixel, Counters& counters) const {
+  // history: hsr why's events at this pixel, or null (renderer/steps/why.hpp).
+  Hit trace(const PixelRay& pixel, Counters& counters, std::vector<PixelEvent>* history = nullptr) const {
     const WatertightRay<double> ray(pixel.ray, pixel.inverseDirection);
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
-    for (const PackedTriangle& triangle : triangles_) offer(ray, triangle, pixel, nearest);
+    for (const PackedTriangle& triangle : triangles_) offer(ray, triangle, pixel, nearest, history);
     counters.triangleTests += static_cast<std::int64_t>(triangles_.size());
     return nearest;
   }
@@ -53,7 +56,9 @@ class BvhTracer {
 
   BvhTracer(const PreparedScene& scene, Stats& stats) : bvh_(scene.triangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
 
-  Hit trace(const PixelRay& pixel, Counters& counters) const {
+  // history: hsr why's events at this pixel (every node entered or dropped, every
+  // triangle tested), or null (renderer/steps/why.hpp).
+  Hit trace(const PixelRay& pixel, Counters& counters, std::vector<PixelEvent>* history = nullptr) const {
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
     if (bvh_.empty()) return nearest;
     const RayBoxTest boxes(pixel.ray.origin, pixel.ray.direction, pixel.inverseDirection);
@@ -68,20 +73,27 @@ class BvhTracer {
     std::array<Pending, Bvh::kMaxDepth + 1> stack;
     int size = 0;
     Pending current{0, boxes.entry(nodes[0], reach())};
-    if (current.entry == kMiss) return nearest;
+    if (current.entry == kMiss) {
+      if (history) [[unlikely]] witnessNode(0, "missed: the ray does not enter the scene's box", "", *history);
+      return nearest;
+    }
     while (true) {
       const BvhNode& node = nodes[current.node];
       ++counters.nodesVisited;
       if (node.leaf()) {
+        if (history) [[unlikely]]
+          witnessNode(current.node, "entered a leaf: its " + std::to_string(node.count) + (node.count == 1 ? " triangle" : " triangles") + " tested",
+                      "its box begins at " + where(current.entry, pixel), *history);
         counters.triangleTests += node.count;
         for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
-          offer(ray, triangles_[slot], pixel, nearest);
+          offer(ray, triangles_[slot], pixel, nearest, history);
       } else {
         // Ordered traversal: go on with the nearer child, keep the farther for later.
         const auto [entry0, entry1] = boxes.childEntries(&nodes[node.index], reach());
         Pending first{node.index, entry0};
         Pending second{node.index + 1, entry1};
         if (second.entry < first.entry) std::swap(first, second);
+        if (history) [[unlikely]] witnessChildren(current, first, second, pixel, *history);
         if (first.entry != kMiss) {
           if (second.entry != kMiss) stack[size++] = second;
           current = first;
@@ -92,17 +104,69 @@ class BvhTracer {
       do {
         if (size == 0) return nearest;
         current = stack[--size];
+        if (history && current.entry > reach()) [[unlikely]]
+          witnessNode(current.node, "dropped (early exit): its box begins beyond the nearest hit",
+                      "its box begins at " + where(current.entry, pixel) + "; the nearest hit is " +
+                          (nearest.id == conventions::kBackgroundId ? "none yet" : "at " + where(nearest.t, pixel)),
+                      *history);
       } while (current.entry > reach());
     }
   }
 
  private:
   static constexpr double kMiss = std::numeric_limits<double>::infinity();
+
+  // hsr why's words for a parameter along the ray: its distance along the view axis.
+  static std::string where(double t, const PixelRay& pixel) {
+    char text[64];
+    std::snprintf(text, sizeof text, "distance %.9g", std::max(pixel.distance(t), pixel.distance(pixel.tNear)));
+    return text;
+  }
+  static void witnessNode(std::uint32_t node, std::string outcome, std::string detail, std::vector<PixelEvent>& history) {
+    history.push_back({conventions::kBackgroundId, std::move(outcome), std::move(detail),
+                       std::numeric_limits<double>::quiet_NaN(), false, "BVH node " + std::to_string(node)});
+  }
+  template <typename Pending>
+  static void witnessChildren(const Pending& node, const Pending& nearer, const Pending& farther, const PixelRay& pixel,
+                              std::vector<PixelEvent>& history) {
+    const auto child = [&](const Pending& which) {
+      return "node " + std::to_string(which.node) + (which.entry == kMiss ? " missed (or begins beyond the nearest hit)" : " entered at " + where(which.entry, pixel));
+    };
+    const std::string outcome = nearer.entry == kMiss    ? "entered: both children missed"
+                                : farther.entry == kMiss ? "entered: one child to go on with"
+                                                         : "entered: the nearer child first, the farther stacked";
+    witnessNode(node.node, outcome, "its box begins at " + where(node.entry, pixel) + "; " + child(nearer) + ", " + child(farther), history);
+  }
   const Bvh& bvh_;
   const std::vector<PackedTriangle>& triangles_;
 };
 
 }  // namespace
+
+void witnessOffer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, const Hit& nearest,
+                  bool met, double t, bool nearer, std::vector<PixelEvent>& history) {
+  // The numbers the test decided by: the edge functions at the ray (step 4), and where
+  // along the ray it meets the triangle's plane (step 5).
+  const ScaledBarycentrics<double> s = ray.barycentrics(triangle.a, triangle.b, triangle.c);
+  char edges[160];
+  std::snprintf(edges, sizeof edges, "edge functions %.6g, %.6g, %.6g", s.u, s.v, s.w);
+  const bool outside = (s.u < 0 || s.v < 0 || s.w < 0) && (s.u > 0 || s.v > 0 || s.w > 0);
+  const double det = s.u + s.v + s.w;
+  double planeT = std::numeric_limits<double>::quiet_NaN();
+  if (!outside && det != 0) ray.hitParameter(s, det, planeT);
+  const double distance = std::isnan(planeT) ? planeT : pixel.distance(planeT);
+  std::string outcome;
+  if (outside) outcome = "missed: the ray passes outside an edge";
+  else if (det == 0) outcome = "missed: the ray lies in its plane (edge-on)";
+  else if (!met && planeT < pixel.tNear) outcome = "missed: met before the near plane";
+  else if (!met && nearest.id == conventions::kBackgroundId) outcome = "missed: met beyond the far plane";
+  else if (!met) outcome = "met, but beyond the nearest hit so far";
+  else if (nearer && nearest.id != conventions::kBackgroundId && t == nearest.t) outcome = "nearest: a tie at the same distance, the lower triangle wins";
+  else if (nearer) outcome = "nearest so far";
+  else outcome = "met at the same distance as the nearest so far: a tie, the lower triangle keeps it";
+  const std::string signs = outside ? " (of both signs)" : det == 0 ? " (summing to 0)" : " (of one sign: inside)";
+  history.push_back({triangle.id, std::move(outcome), std::string(edges) + signs, met ? pixel.distance(t) : distance, nearer, {}});
+}
 
 std::string refusal(const PreparedScene& scene, const Knobs& knobs) {
   // The work a run would do at most, in its own unit: ray-triangle tests or samples.
@@ -139,24 +203,25 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
     case Variant::naive: {
       const NaiveTracer tracer(scene, stats);
       PhaseTimer timer(stats, "ray casting");
-      const auto counters = castRays(tracer, camera, request.threads, frame, recording);
+      const auto counters = castRays(tracer, camera, request.threads, frame, recording, request.why);
       stats.add("ray-triangle tests", counters.triangleTests);
       break;
     }
     case Variant::bvh: {
       const auto cast = [&](const auto& tracer) {
         PhaseTimer timer(stats, "ray casting");
-        const TraversalCounters counters = castRays(tracer, camera, request.threads, frame, recording);
+        const TraversalCounters counters = castRays(tracer, camera, request.threads, frame, recording, request.why);
         stats.add("bvh nodes visited", counters.nodesVisited);
         stats.add("ray-triangle tests", counters.triangleTests);
       };
-      if (knobs.path == Path::scalar || !cpuHasAvx2()) cast(BvhTracer(scene, stats));
+      // hsr why follows the textbook traversal, whatever the path (they give the same bits).
+      if (knobs.path == Path::scalar || !cpuHasAvx2() || request.why) cast(BvhTracer(scene, stats));
       else if (knobs.path == Path::packet) cast(PacketTracer(scene, stats, request.threads));
       else cast(WideBvhTracer(scene, stats, request.threads));
       break;
     }
     case Variant::march:
-      march(scene, knobs, camera, request.threads, frame, stats, recording);
+      march(scene, knobs, camera, request.threads, frame, stats, recording, request.why);
       break;
   }
 }
@@ -171,6 +236,7 @@ AlgorithmEntry entry() {
   entry.studyConfigurations = {{}, {{"path", "simd"}}, {{"path", "scalar"}}, {{"variant", "naive"}}, {{"variant", "march"}}, {{"variant", "march"}, {"refine", "6"}}};
   setRefusal(entry, refusal);
   setVisibility(entry, visibility);
+  entry.answersWhy = true;
   return entry;
 }
 

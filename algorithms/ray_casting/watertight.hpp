@@ -13,10 +13,12 @@
 
 #include <array>
 #include <utility>
+#include <vector>
 
 #include "algorithms/ray_casting/cast.hpp"
 #include "renderer/geometry/camera.hpp"
 #include "renderer/scene/prepare.hpp"
+#include "renderer/steps/why.hpp"
 #include "renderer/util/math.hpp"
 
 namespace hsr::ray_casting {
@@ -98,10 +100,18 @@ using PackedTriangle = PreparedScene::LeafTriangle;
 // lower id does, so the answer does not depend on the order triangles are offered in
 // (which is why naive and bvh give identical images).
 // `nearest` starts as {background, tFar}: the first hit up to the far plane is taken.
-inline void offer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, Hit& nearest) {
-  double t;
-  if (!ray.hit(triangle.a, triangle.b, triangle.c, pixel.tNear, nearest.t, t)) return;
-  if (nearest.id == conventions::kBackgroundId || t < nearest.t || triangle.id < nearest.id) nearest = {triangle.id, t};
+// hsr why: the test of a triangle at a pixel asked about (history: its events; null
+// otherwise), recorded before the nearest hit changes: what the ray met, and the outcome.
+void witnessOffer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, const Hit& nearest,
+                  bool met, double t, bool nearer, std::vector<PixelEvent>& history);
+
+inline void offer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, Hit& nearest,
+                  std::vector<PixelEvent>* history = nullptr) {
+  double t = 0;
+  const bool met = ray.hit(triangle.a, triangle.b, triangle.c, pixel.tNear, nearest.t, t);
+  const bool nearer = met && (nearest.id == conventions::kBackgroundId || t < nearest.t || triangle.id < nearest.id);
+  if (history) [[unlikely]] witnessOffer(ray, triangle, pixel, nearest, met, t, nearer, *history);
+  if (nearer) nearest = {triangle.id, t};
 }
 
 }  // namespace hsr::ray_casting

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "renderer/raster/active_triangles.hpp"
 #include "renderer/raster/plane_depth.hpp"
@@ -54,8 +56,9 @@ struct AtEnds {
 // per thread). Holds the row's working lists, reused from row to row.
 class RowResolver {
  public:
-  RowResolver(const ScreenGeometry& geometry, const Knobs& knobs, Frame& frame)
-      : triangles_(geometry.triangles), camera_(geometry.camera), knobs_(knobs), frame_(frame), order_(geometry.camera) {}
+  // why: hsr why's pixels, or null (renderer/steps/why.hpp).
+  RowResolver(const ScreenGeometry& geometry, const Knobs& knobs, Frame& frame, PixelWitness* why)
+      : triangles_(geometry.triangles), camera_(geometry.camera), knobs_(knobs), frame_(frame), order_(geometry.camera), why_(why) {}
 
   // marks: with a recording, where the row was cut (x, and whether at a split).
   void resolveRow(int y, const std::vector<std::uint32_t>& active, Counts& counts, std::vector<std::pair<int, bool>>* marks) {
@@ -77,6 +80,12 @@ class RowResolver {
     // two crossings is resolved with the polygons present over it (kept in submission
     // order, so a depth tie goes to the earlier polygon, as in the z-buffer).
     std::sort(crossings_.begin(), crossings_.end(), [](const Crossing& a, const Crossing& b) { return a.x < b.x; });
+    if (why_) [[unlikely]]
+      why_->forEachInRun(y, 0, frame_.width, [&](int, std::vector<PixelEvent>& history) {
+        history.push_back({conventions::kBackgroundId, "cut into spans where the polygons' edges cross it",
+                           std::to_string(active.size()) + " active polygons, " + std::to_string(crossings_.size()) + " crossings",
+                           std::numeric_limits<double>::quiet_NaN(), false, "row " + std::to_string(y)});
+      });
     present_.clear();
     int spanStart = 0;
     for (std::size_t k = 0; k < crossings_.size();) {
@@ -101,6 +110,7 @@ class RowResolver {
     const auto decided = [&](Outcome outcome, std::optional<std::uint32_t> polygon) {
       ++counts.spans[std::size_t(outcome)];
       fill(y, a, b, polygon);
+      if (why_) [[unlikely]] witnessSpan(y, a, b, outcome, polygon);
     };
     if (present_.empty()) return decided(Outcome::empty, std::nullopt);
     if (present_.size() == 1) return decided(Outcome::onePolygon, present_[0]);
@@ -137,6 +147,7 @@ class RowResolver {
     ++counts.spans[std::size_t(Outcome::split)];
     const int split = knobs_.split == Split::crossing && left.polygon != right.polygon ? whereDepthsCross(left, right, a, b) : a + (b - a) / 2;
     if (marks) marks->emplace_back(split, true);
+    if (why_) [[unlikely]] witnessSpan(y, a, b, Outcome::split, std::nullopt, split);
     resolveSpan(y, a, split, counts, marks);  // the parts have the same polygons present
     resolveSpan(y, split, b, counts, marks);
   }
@@ -153,6 +164,44 @@ class RowResolver {
     const double crossing = a + fraction * double(b - 1 - a);
     if (!(crossing >= a && crossing <= b - 1)) return a + (b - a) / 2;
     return std::clamp(static_cast<int>(std::floor(crossing)) + 1, a + 1, b - 1);
+  }
+
+  // hsr why: span [a, b) of row y decided (or split at `split`), at each pixel asked
+  // about in it: the polygons present, each with its distances at the span's first and
+  // last pixel, and the rule that chose the one that fills it (or split it).
+  void witnessSpan(int y, int a, int b, Outcome outcome, std::optional<std::uint32_t> polygon, int split = 0) const {
+    static constexpr std::array<const char*, 6> kRules = {
+        "empty: no polygon is present, the background fills it",
+        "one polygon present: it fills the span",
+        "nearest at both ends by more than rounding: it fills the span (two planes' depths differ linearly along it)",
+        "one pixel: the nearest at its center fills it",
+        "not decided at both ends; split=none takes the nearest at its left end",
+        "the nearest differs between its ends (or is within rounding): split"};
+    const auto atEnds = [&](std::uint32_t i) {
+      char text[100];
+      std::snprintf(text, sizeof text, "at distance %.9g at its first pixel, %.9g at its last", DepthOrder::distanceAt(camera_, triangles_[i], a, y),
+                    DepthOrder::distanceAt(camera_, triangles_[i], b - 1, y));
+      return std::string(text);
+    };
+    const std::string span = "span " + std::to_string(a) + ".." + std::to_string(b - 1) + " of row " + std::to_string(y);
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    why_->forEachInRun(y, a, b, [&](int x, std::vector<PixelEvent>& history) {
+      if (outcome == Outcome::split) {
+        history.push_back({conventions::kBackgroundId, std::string(kRules[std::size_t(outcome)]) + " at column " + std::to_string(split),
+                           std::to_string(present_.size()) + " polygons present", none, false, span});
+        return;
+      }
+      for (const std::uint32_t i : present_)
+        if (i != polygon)
+          history.push_back({triangles_[i].triangle + 1, "present in " + span + ", not the one the rule chose", atEnds(i),
+                             DepthOrder::distanceAt(camera_, triangles_[i], x, y), false, {}});
+      if (!polygon) {
+        history.push_back({conventions::kBackgroundId, span + ": " + kRules[std::size_t(outcome)], "", none, true, {}});
+        return;
+      }
+      history.push_back({triangles_[*polygon].triangle + 1, span + ": " + kRules[std::size_t(outcome)], atEnds(*polygon),
+                         DepthOrder::distanceAt(camera_, triangles_[*polygon], x, y), true, {}});
+    });
   }
 
   void fill(int y, int a, int b, const std::optional<std::uint32_t>& polygon) const {
@@ -177,6 +226,7 @@ class RowResolver {
   std::vector<Crossing> crossings_;
   std::vector<std::uint32_t> present_;
   std::vector<AtEnds> ends_;
+  PixelWitness* why_;
 };
 
 // A step: the rows finished so far (the rest blank), the row in blue, where it was cut
@@ -216,7 +266,7 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   std::vector<Counts> bandCounts(static_cast<std::size_t>(workers));
   parallelFor(static_cast<std::size_t>(workers), workers, [&](std::size_t band, int) {
     const auto [first, last] = partRange(static_cast<std::size_t>(frame.height), static_cast<std::size_t>(workers), band);
-    RowResolver rows(geometry, knobs, frame);
+    RowResolver rows(geometry, knobs, frame, request.why);
     // Step 2: going down, the active list admits each polygon on its first row and
     // retires it after its last (renderer/raster/active_triangles.hpp).
     ActiveTriangles activeList(geometry.triangles, startingAt, first);
@@ -252,6 +302,7 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"crossings", "spans", "spans split"};
   entry.studyConfigurations = {{}, {{"split", "halves"}}, {{"split", "none"}}};
   entry.takesTriangleSubsets = true;
+  entry.answersWhy = true;
   setVisibility(entry, visibility);
   return entry;
 }

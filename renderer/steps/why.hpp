@@ -45,6 +45,15 @@ class PixelWitness {
     return found != keys_.end() && *found == key(x, y) ? &histories_[std::size_t(found - keys_.begin())] : nullptr;
   }
 
+  // visit(x, history) for each pixel asked about in row y between columns a and b - 1, left
+  // to right: for a loop that decides a run of pixels at once.
+  template <typename Visit>
+  void forEachInRun(int y, int a, int b, Visit&& visit) {
+    if (a >= b) return;
+    for (auto k = std::lower_bound(keys_.begin(), keys_.end(), key(a, y)); k != keys_.end() && *k < key(b, y); ++k)
+      visit(int(*k - key(0, y)), histories_[std::size_t(k - keys_.begin())]);
+  }
+
   std::size_t count() const { return pixels_.size(); }
   const Pixel& pixel(std::size_t asked) const { return pixels_[asked]; }
   // The asked-th pixel's history, in the order the algorithm met the events.

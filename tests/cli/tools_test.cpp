@@ -458,6 +458,62 @@ TEST(Why, FollowsWarnocksWindowsDownToThePixelAndNamesTheRuleThatDecidedIt) {
     EXPECT_NE(exact.output.find(line), std::string::npos) << line << "\n" << exact.output;
 }
 
+// Ray casting on far_layers: the BVH's nodes and each triangle tested, in the textbook
+// traversal's order (whatever the path), the back layer met beyond the nearest hit; the
+// naive variant tests the same triangles without nodes; the march names the triangle
+// nearest to where its samples entered the front layer.
+TEST(Why, FollowsRayCastingsNodesAndTrianglesTested) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/far_layers.toml --pixel 160,120 --size 320x240 --algo ray_casting";
+  for (const char* path : {" --knob path=packet", " --knob path=scalar"}) {
+    const test::CommandResult bvh = test::runCommand(why + path);
+    ASSERT_EQ(bvh.exitCode, 0) << bvh.output;
+    for (const char* line : {"pixel (160, 120): 6 events", "1. BVH node 0: entered: the nearer child first, the farther stacked",
+                             "2. BVH node 1: entered a leaf: its 2 triangles tested", "3. triangle 0 of \"front\": nearest so far",
+                             "(of one sign: inside); distance 3.03086711", "4. triangle 1 of \"front\": missed: the ray passes outside an edge",
+                             "5. BVH node 2: entered a leaf: its 1 triangle tested",
+                             "6. triangle 2 of \"back\": met, but beyond the nearest hit so far", "=> agrees with the exact reference"})
+      EXPECT_NE(bvh.output.find(line), std::string::npos) << path << ": " << line << "\n" << bvh.output;
+  }
+  const test::CommandResult naive = test::runCommand(why + " --knob variant=naive");
+  ASSERT_EQ(naive.exitCode, 0) << naive.output;
+  EXPECT_NE(naive.output.find("pixel (160, 120): 3 events"), std::string::npos) << naive.output;
+  EXPECT_EQ(naive.output.find("BVH node"), std::string::npos) << naive.output;
+  const test::CommandResult march = test::runCommand(why + " --knob variant=march");
+  ASSERT_EQ(march.exitCode, 0) << march.output;
+  for (const char* line : {"sample ", ": inside an object: the march stops",
+                           "triangle 0 of \"front\": named: the triangle of that object nearest to where the ray entered it",
+                           "shows triangle 0 of \"front\""})
+    EXPECT_NE(march.output.find(line), std::string::npos) << line << "\n" << march.output;
+}
+
+// Watkins on the interpenetrating pair, row 80: the span from column 71 to 130 holds both
+// triangles, nearest at different ends; by default it is split at column 100 where they
+// cross, and with split=none the left end's nearest fills it, which the verdict names.
+// The A-buffer's fragments at pixel (71, 80), front to back, with their masks.
+TEST(Why, FollowsWatkinssSpansAndTheAbuffersFragments) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/interpenetrating.toml --pixel 125,80 --algo watkins";
+  const test::CommandResult split = test::runCommand(why);
+  ASSERT_EQ(split.exitCode, 0) << split.output;
+  for (const char* line : {"1. row 80: cut into spans where the polygons' edges cross it", "2 active polygons, 4 crossings",
+                           "2. span 71..130 of row 80: the nearest differs between its ends (or is within rounding): split at column 100",
+                           "span 100..130 of row 80: nearest at both ends by more than rounding", "=> agrees with the exact reference"})
+    EXPECT_NE(split.output.find(line), std::string::npos) << line << "\n" << split.output;
+  const test::CommandResult none = test::runCommand(why + " --knob split=none");
+  ASSERT_EQ(none.exitCode, 0) << none.output;
+  EXPECT_NE(none.output.find("=> differs: the reference shows triangle 0 of \"pair\", not shown after event 2: present in span 71..130 "
+                             "of row 80, not the one the rule chose"),
+            std::string::npos) << none.output;
+  const test::CommandResult abuffer =
+      test::runCommand(std::string(HSR_BINARY) + " why " + kScenes + "hard/interpenetrating.toml --pixel 71,80 --algo abuffer");
+  ASSERT_EQ(abuffer.exitCode, 0) << abuffer.output;
+  for (const char* line : {"1. triangle 1 of \"pair\": fragment 1 of 2 front to back",
+                           "mask ####/####/####/####: covers 16 of 16 subsamples; opacity 1; its share 1",
+                           "2. triangle 0 of \"pair\": fragment 2 of 2 front to back", "mask ..##/.###/.###/####: covers 12 of 16 subsamples",
+                           "3. triangle 1 of \"pair\": resolved: the id image names the surface with the largest share",
+                           "=> agrees with the exact reference"})
+    EXPECT_NE(abuffer.output.find(line), std::string::npos) << line << "\n" << abuffer.output;
+}
+
 TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
   const auto folder = freshFolder("study-effects");
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " study effects --frames 1 --size 160x100 --out " +
