@@ -40,6 +40,7 @@ struct Context {
   std::optional<ShadowMaps> shadowMaps = {};
   std::optional<PixelShader<float>> shader = {};  // built by the first pass that shades
   PixelWitness* why = nullptr;                     // hsr why's pixels; null unless asked
+  std::vector<VisibleSet>* keptByStage = nullptr;  // each culling stage's kept set, for hsr why; null unless asked
 
   PixelShader<float>& pixelShader() {
     if (!shader) shader.emplace(scene, camera, shadowMaps ? &*shadowMaps : nullptr);
@@ -89,8 +90,8 @@ Decision decideCulling(const Facts& facts) {
 }
 
 void runCulling(Context& context) {
-  context.kept =
-      culling::runPipeline(context.scene, context.configuration.culling, context.threads, context.stats, context.previous, context.steps);
+  context.kept = culling::runPipeline(context.scene, context.configuration.culling, context.threads, context.stats, context.previous,
+                                      context.steps, context.keptByStage);
 }
 
 Decision decideVisibility(const Facts& facts) {
@@ -355,11 +356,13 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 }
 
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
-                            Visibility& visibility, const culling::PreviousFrame* previous, PixelWitness* why) {
+                            Visibility& visibility, const culling::PreviousFrame* previous, PixelWitness* why,
+                            std::vector<VisibleSet>* keptByStage) {
   HSR_CHECK(configuration.algorithm->kind == AlgorithmKind::surface);
   HSR_CHECK(!why || configuration.algorithm->answersWhy);
   Context context{scene, scene.camera(), configuration, threads, stats, previous, nullptr, std::nullopt, visibility};
   context.why = why;
+  context.keptByStage = keptByStage;
   runPasses(context, kVisibilityPasses);
   return context.kept ? std::move(*context.kept) : VisibleSet::everything(scene);
 }

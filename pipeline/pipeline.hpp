@@ -87,8 +87,10 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 // stages kept (every triangle when there are none). `why`: the pixels hsr why asks about,
 // whose histories an algorithm that answers why (AlgorithmEntry::answersWhy) records, and
 // the counter "why: events recorded"; null: none asked, and no provenance work done.
+// keptByStage: where the culling stages' kept sets go, one per stage in order, or null.
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
-                            Visibility& visibility, const culling::PreviousFrame* previous = nullptr, PixelWitness* why = nullptr);
+                            Visibility& visibility, const culling::PreviousFrame* previous = nullptr, PixelWitness* why = nullptr,
+                            std::vector<VisibleSet>* keptByStage = nullptr);
 
 // The time of each pass that ran, in pipeline order, from a render's Stats.
 struct PassTime {

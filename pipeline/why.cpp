@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <regex>
+#include <string>
+#include <vector>
 
 #include "renderer/util/conventions.hpp"
 #include "renderer/util/error.hpp"
@@ -32,7 +35,7 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
   if (answer.reference.ambiguous)
     return "a certified tie: two or more triangles are exactly nearest here, so any of them is right (the reference names " + expected + ")";
   const std::string differs = "differs: the reference shows " + expected + ", ";
-  if (answer.culled) return differs + "which the culling stages removed before the algorithm ran";
+  if (answer.culled) return differs + "which the culling stage " + answer.culledBy + " removed before the algorithm ran";
   const auto& history = answer.history;
   std::size_t met = history.size();  // the reference's triangle's last event here (a window's is no triangle's)
   for (std::size_t i = 0; i < history.size(); ++i)
@@ -55,6 +58,35 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
   HSR_CHECK(replaced < history.size());  // something replaced it, or the pixel would show it
   return differs + "which was shown (" + event(met) + ") and then replaced by " + triangleOf(scene, history[replaced].id) + " (" +
          event(replaced) + ": " + history[replaced].outcome + ")";
+}
+
+// The culling stages' fate for the reference's triangle, one event a stage in order,
+// until one removes it: what the stage was given of the triangle's object and kept of it.
+// Empty when there are no stages or the reference shows the background.
+std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling::Pipeline& stages,
+                                      const std::vector<VisibleSet>& keptByStage, std::uint32_t id, std::string& culledBy) {
+  std::vector<PixelEvent> events;
+  if (id == conventions::kBackgroundId) return events;
+  const Instance& object = scene.instanceOf(id - 1);
+  const auto ofObject = [&](const VisibleSet& set) {
+    const auto first = std::lower_bound(set.triangles.begin(), set.triangles.end(), object.firstTriangle);
+    return std::lower_bound(first, set.triangles.end(), object.firstTriangle + object.triangleCount) - first;
+  };
+  std::ptrdiff_t given = object.triangleCount;
+  for (std::size_t s = 0; s < stages.size(); ++s) {
+    const VisibleSet& kept = keptByStage[s];
+    const bool keeps = std::binary_search(kept.triangles.begin(), kept.triangles.end(), id - 1);
+    const std::ptrdiff_t keptOfObject = ofObject(kept);
+    events.push_back({id, keeps ? "kept the reference's triangle" : "removed the reference's triangle: " + stages[s].stage->summary,
+                      "of its object's " + std::to_string(given) + " triangles given to the stage, it kept " + std::to_string(keptOfObject),
+                      std::numeric_limits<double>::quiet_NaN(), false, "culling stage " + stages[s].name()});
+    if (!keeps) {
+      culledBy = stages[s].name();
+      break;
+    }
+    given = keptOfObject;
+  }
+  return events;
 }
 
 std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgroundId ? "null" : std::to_string(id - 1); }
@@ -84,7 +116,8 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
                                        const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats) {
   PixelWitness witness(pixels, scene.width());
   Visibility visibility;
-  const VisibleSet kept = renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness);
+  std::vector<VisibleSet> keptByStage;
+  const VisibleSet kept = renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness, &keptByStage);
   Stats referenceStats;
   const SurfaceReference reference(scene, referenceStats);
   const CameraTransform& camera = scene.camera();
@@ -92,7 +125,6 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
   for (std::size_t asked = 0; asked < witness.count(); ++asked) {
     PixelAnswer answer;
     answer.pixel = witness.pixel(asked);
-    answer.history = witness.history(asked);
     const std::size_t at = std::size_t(answer.pixel.y) * std::size_t(scene.width()) + std::size_t(answer.pixel.x);
     answer.shown = visibility.frame.ids[at];
     answer.distance = visibility.frame.depth[at];
@@ -101,6 +133,10 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
         camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters);
     answer.culled = answer.reference.id != conventions::kBackgroundId &&
                     !std::binary_search(kept.triangles.begin(), kept.triangles.end(), answer.reference.id - 1);
+    // The culling stages ran first: their fate for the reference's triangle leads the history.
+    answer.history = cullingEvents(scene, configuration.culling, keptByStage, answer.reference.id, answer.culledBy);
+    const std::vector<PixelEvent>& loop = witness.history(asked);
+    answer.history.insert(answer.history.end(), loop.begin(), loop.end());
     answer.agrees = answer.shown == answer.reference.id || answer.reference.ambiguous;
     answer.verdict = verdictOf(scene, answer);
     answers.push_back(std::move(answer));

@@ -26,6 +26,7 @@ struct PixelAnswer {
   double distance = 0;              // and its depth (+infinity for the background)
   ReferenceHit reference;           // the exact reference's certified answer
   bool culled = false;              // the reference's triangle was removed by the culling stages
+  std::string culledBy;             // and the stage that removed it ("frustum:object")
   // Whether the algorithm is right here: it shows the reference's triangle, or the pixel
   // is a certified tie (any of the tied triangles is right; the reference names the lowest).
   bool agrees = false;

@@ -124,7 +124,7 @@ void recordStage(const PreparedScene& scene, const CameraTransform& camera, cons
 }  // namespace
 
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
-                       const PreviousFrame* previous, StepRecorder* steps) {
+                       const PreviousFrame* previous, StepRecorder* steps, std::vector<VisibleSet>* keptByStage) {
   const CameraTransform& camera = scene.camera();
   VisibleSet set = VisibleSet::everything(scene);
   if (previous && previous->memory) previous->memory->resize(std::max(previous->memory->size(), pipeline.size()));
@@ -133,6 +133,7 @@ VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int
     std::unique_ptr<StageMemory>* memory = previous && previous->memory ? &(*previous->memory)[s] : nullptr;
     VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps, memory});
     if (steps) recordStage(scene, camera, choice, set, kept, *steps);
+    if (keptByStage) keptByStage->push_back(kept);
     set = std::move(kept);
   }
   stats.add("culling: triangles kept", static_cast<std::int64_t>(set.triangles.size()));

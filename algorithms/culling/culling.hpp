@@ -121,9 +121,11 @@ std::string describePipeline(const Pipeline& pipeline);  // "backface:object,fru
 
 // Runs the stages in order on the scene's camera and size. threads: 0 = all cores; the
 // result is the same for every thread count. Counts "culling: triangles kept". With
-// steps, records after each stage what it kept and what it removed.
+// steps, records after each stage what it kept and what it removed; with keptByStage,
+// keeps there what each stage kept, in order (hsr why names the stage that removed a triangle).
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
-                       const PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr);
+                       const PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr,
+                       std::vector<VisibleSet>* keptByStage = nullptr);
 
 // The machinery the stages share. The triangles of `in` for which a test holds, in
 // order, tested in parallel chunks: makeTest() gives each chunk its own test (a callable

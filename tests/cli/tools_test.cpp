@@ -514,6 +514,28 @@ TEST(Why, FollowsWatkinssSpansAndTheAbuffersFragments) {
     EXPECT_NE(abuffer.output.find(line), std::string::npos) << line << "\n" << abuffer.output;
 }
 
+// Culling before the z-buffer on hard/cull_off_center: the view-direction backface test
+// removes the left cube's inner side, which faces the eye; the history leads with each
+// stage's fate for the reference's triangle, and the verdict names the stage. The
+// eye-position test keeps it, and so does the frustum stage after it.
+TEST(Why, NamesTheCullingStageThatRemovedTheReferencesTriangle) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/cull_off_center.toml --pixel 72,120 --cull ";
+  const test::CommandResult wrong = test::runCommand(why + "backface:view-direction,frustum");
+  ASSERT_EQ(wrong.exitCode, 0) << wrong.output;
+  for (const char* line : {"1. culling stage backface:view-direction: removed the reference's triangle: drop triangles facing away from the eye",
+                           "of its object's 12 triangles given to the stage, it kept 4", "shows the background",
+                           "=> differs: the reference shows triangle 3 of \"left\", which the culling stage backface:view-direction removed "
+                           "before the algorithm ran"})
+    EXPECT_NE(wrong.output.find(line), std::string::npos) << line << "\n" << wrong.output;
+  EXPECT_EQ(wrong.output.find("culling stage frustum"), std::string::npos) << "no stage after the one that removed it\n" << wrong.output;
+  const test::CommandResult right = test::runCommand(why + "backface,frustum");
+  ASSERT_EQ(right.exitCode, 0) << right.output;
+  for (const char* line : {"1. culling stage backface:object: kept the reference's triangle", "of its object's 12 triangles given to the stage, it kept 4",
+                           "2. culling stage frustum:sphere: kept the reference's triangle", "of its object's 4 triangles given to the stage, it kept 4",
+                           "=> agrees with the exact reference"})
+    EXPECT_NE(right.output.find(line), std::string::npos) << line << "\n" << right.output;
+}
+
 TEST(Study, EffectsAddsEachEffectInTurnAndTimesItsPass) {
   const auto folder = freshFolder("study-effects");
   const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " study effects --frames 1 --size 160x100 --out " +
