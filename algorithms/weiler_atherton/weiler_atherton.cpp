@@ -9,6 +9,7 @@
 #include <numeric>
 #include <optional>
 #include <array>
+#include <string>
 
 #include "renderer/raster/plane_depth.hpp"
 #include "renderer/raster/screen_triangles.hpp"
@@ -135,6 +136,15 @@ struct Piece {
       : polygon(polygon_), outline(std::move(outline_)), nearerThan(std::move(nearerThan_)), box(boxOf(outline)) {}
 };
 
+// Whether the center of pixel (x, y) lies strictly inside every line of the outline:
+// step 5's test (Clipper::show) at one pixel, for hsr why.
+bool holdsCenter(const Outline& outline, int x, int y) {
+  const std::int64_t px = x * kSubpixelScale + kSubpixelScale / 2, py = y * kSubpixelScale + kSubpixelScale / 2;
+  return std::all_of(outline.begin(), outline.end(), [&](const Corner& corner) {
+    return corner.edge.a * px + corner.edge.b * py + corner.edge.c > 0;
+  });
+}
+
 // A polygon's whole outline: its triangle's three edges.
 Outline outlineOf(const ScreenTriangle& tri) {
   Outline outline;
@@ -193,9 +203,10 @@ struct Counts {
 
 class Clipper {
  public:
-  Clipper(const ScreenGeometry& geometry, Frame& frame, Counts& counts, std::vector<VisiblePolygon>& polygons)
+  // why: hsr why's pixels, or null (renderer/steps/why.hpp).
+  Clipper(const ScreenGeometry& geometry, Frame& frame, Counts& counts, std::vector<VisiblePolygon>& polygons, PixelWitness* why)
       : triangles_(geometry.triangles), camera_(geometry.camera), order_(geometry.camera), frame_(frame), counts_(counts),
-        polygons_(polygons) {}
+        polygons_(polygons), why_(why) {}
 
   // Textbook step 1: the preliminary sort, by each polygon's nearest depth.
   std::vector<std::uint32_t> sortedByNearestDepth() const {
@@ -219,8 +230,10 @@ class Clipper {
     std::vector<Piece> kept;
     bool anyInFront = false;
     for (Piece& piece : inside) {
-      if (piece.polygon != clip) {
-        const Relation relation = relationOf(piece, clip);
+      // The clip polygon's own piece is not judged against itself.
+      const std::optional<Relation> relation = piece.polygon != clip ? std::optional(relationOf(piece, clip)) : std::nullopt;
+      if (why_) [[unlikely]] witnessInside(piece, clip, relation, stack.size());
+      if (relation) {
         if (relation == Relation::behind) {
           ++counts_.hidden;
           continue;
@@ -326,6 +339,45 @@ class Clipper {
     return DepthOrder::inFront(order_.key(triangles_[polygon], x, y), polygon, order_.key(triangles_[other], x, y), other);
   }
 
+  // hsr why: a piece inside clip polygon `clip`'s outline, at each pixel asked about whose
+  // center it holds: how step 3 judged it against the clip polygon (`depth` clip polygons
+  // deep in step 4's recursion).
+  void witnessInside(const Piece& piece, std::uint32_t clip, std::optional<Relation> relation, std::size_t depth) const {
+    const ScreenTriangle& tri = triangles_[piece.polygon];
+    why_->forEachPixel([&](int x, int y, std::vector<PixelEvent>& history) {
+      if (!holdsCenter(piece.outline, x, y)) return;
+      const std::string outcome =
+          !relation                         ? "the clip polygon's own piece, inside its outline"
+          : relation == Relation::behind    ? "removed: inside the clip polygon's outline and behind it at every corner"
+          : relation == Relation::crossing  ? "kept where nearer: its plane crosses the clip polygon's (or comes within rounding)"
+                                            : "in front of the clip polygon at every corner: it clips the inside list in turn";
+      history.push_back({tri.triangle + 1, outcome,
+                         "clip polygon: triangle " + std::to_string(triangles_[clip].triangle) + "; a piece of " +
+                             std::to_string(piece.outline.size()) + " corners" +
+                             (depth ? ", " + std::to_string(depth) + (depth == 1 ? " recursion" : " recursions") + " deep" : ""),
+                         DepthOrder::distanceAt(camera_, tri, x, y), false, {}});
+    });
+  }
+
+  // hsr why: a visible piece scan-converted, at each pixel asked about whose center it
+  // holds: drawn there, or not where a polygon it passes through is nearer.
+  void witnessShown(const Piece& piece, int top, int bottom) const {
+    const ScreenTriangle& tri = triangles_[piece.polygon];
+    why_->forEachPixel([&](int x, int y, std::vector<PixelEvent>& history) {
+      if (y < top || y > bottom || x < tri.minX || x > tri.maxX || !holdsCenter(piece.outline, x, y)) return;
+      const auto nearer = std::find_if(piece.nearerThan.begin(), piece.nearerThan.end(),
+                                       [&](std::uint32_t other) { return !nearerAt(piece.polygon, other, x, y); });
+      const bool drawn = nearer == piece.nearerThan.end();
+      std::string through;  // the polygons it passes through, where it is drawn only if nearer
+      for (const std::uint32_t other : piece.nearerThan) through += (through.empty() ? "" : ", ") + std::to_string(triangles_[other].triangle);
+      history.push_back({tri.triangle + 1, drawn ? "drawn: a visible piece, scan-converted" : "not drawn here: a polygon it passes through is nearer",
+                         drawn ? "a piece of " + std::to_string(piece.outline.size()) + " corners" +
+                                     (through.empty() ? "" : ", nearer here than the triangles it passes through (" + through + ")")
+                               : "triangle " + std::to_string(triangles_[*nearer].triangle) + " is nearer at this pixel's center",
+                         DepthOrder::distanceAt(camera_, tri, x, y), drawn, {}});
+    });
+  }
+
   // Step 5: a visible piece is scan-converted: on each row, the centers strictly inside
   // every line of its outline (solved exactly, as renderer/raster/raster's coveredRun does for a
   // triangle), and of those the ones where it is nearer than each polygon it passes through.
@@ -335,6 +387,7 @@ class Clipper {
     const Box& box = piece.box;
     std::int64_t pixels = 0;
     const int top = std::max(tri.minY, static_cast<int>(std::floor(box.y0))), bottom = std::min(tri.maxY, static_cast<int>(std::ceil(box.y1)));
+    if (why_) [[unlikely]] witnessShown(piece, top, bottom);
     for (int y = top; y <= bottom; ++y) {
       const std::int64_t py = y * kSubpixelScale + kSubpixelScale / 2, px = tri.minX * kSubpixelScale + kSubpixelScale / 2;
       std::int64_t lo = 0, hi = tri.maxX - tri.minX;
@@ -385,6 +438,7 @@ class Clipper {
   Frame& frame_;
   Counts& counts_;
   std::vector<VisiblePolygon>& polygons_;
+  PixelWitness* why_;
 };
 
 // The whole list, held in tiles: a clip polygon meets only the pieces in the tiles its
@@ -496,7 +550,7 @@ void visibility(const VisibilityRequest& request, const Knobs&, Visibility& visi
   std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
   visibility.polygons.clear();
   Counts counts;
-  Clipper clipper(geometry, frame, counts, visibility.polygons);
+  Clipper clipper(geometry, frame, counts, visibility.polygons, request.why);
 
   // Step 1: the list, sorted by nearest depth; each polygon whole, one piece.
   const std::vector<std::uint32_t> sorted = clipper.sortedByNearestDepth();
@@ -565,6 +619,7 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"clip polygons", "pieces made", "visible pieces"};
   entry.takesTriangleSubsets = true;
   entry.drawsPolygons = true;
+  entry.answersWhy = true;
   setRefusal(entry, refusal);
   setVisibility(entry, visibility);
   return entry;

@@ -54,6 +54,14 @@ class PixelWitness {
       visit(int(*k - key(0, y)), histories_[std::size_t(k - keys_.begin())]);
   }
 
+  // visit(x, y, history) for each pixel asked about, row by row: for a loop that decides
+  // shapes rather than pixels, which asks each shape whether it holds the pixel.
+  template <typename Visit>
+  void forEachPixel(Visit&& visit) {
+    for (std::size_t k = 0; k < keys_.size(); ++k)
+      visit(int(keys_[k] % std::uint64_t(width_)), int(keys_[k] / std::uint64_t(width_)), histories_[k]);
+  }
+
   std::size_t count() const { return pixels_.size(); }
   const Pixel& pixel(std::size_t asked) const { return pixels_[asked]; }
   // The asked-th pixel's history, in the order the algorithm met the events.

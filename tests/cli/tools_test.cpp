@@ -514,6 +514,27 @@ TEST(Why, FollowsWatkinssSpansAndTheAbuffersFragments) {
     EXPECT_NE(abuffer.output.find(line), std::string::npos) << line << "\n" << abuffer.output;
 }
 
+// Weiler-Atherton on the cyclic overlap at (98, 44): "third" comes first in the sort and
+// clips, "second" lies inside its outline and in front, so it clips the inside list in
+// turn (one recursion), where "third" is behind it and removed; "second" is drawn.
+TEST(Why, FollowsWeilerAthertonsClipPolygonsAndPieces) {
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " why " + kScenes +
+                                                      "hard/cyclic_overlap.toml --pixel 98,44 --algo weiler_atherton");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* line : {"pixel (98, 44): 5 events", "1. triangle 4 of \"third\": the clip polygon's own piece, inside its outline",
+                           "2. triangle 2 of \"second\": in front of the clip polygon at every corner: it clips the inside list in turn",
+                           "3. triangle 4 of \"third\": removed: inside the clip polygon's outline and behind it at every corner",
+                           "clip polygon: triangle 2; a piece of 4 corners, 1 recursion deep",
+                           "5. triangle 2 of \"second\": drawn: a visible piece, scan-converted", "=> agrees with the exact reference"})
+    EXPECT_NE(result.output.find(line), std::string::npos) << line << "\n" << result.output;
+  // Where the interpenetrating pair cross, each piece is kept only where it is nearer.
+  const test::CommandResult crossing = test::runCommand(std::string(HSR_BINARY) + " why " + kScenes +
+                                                        "hard/interpenetrating.toml --pixel 125,80 --algo weiler_atherton");
+  for (const char* line : {"kept where nearer: its plane crosses the clip polygon's", "nearer here than the triangles it passes through (1)",
+                           "6. triangle 1 of \"pair\": not drawn here: a polygon it passes through is nearer", "=> agrees with the exact reference"})
+    EXPECT_NE(crossing.output.find(line), std::string::npos) << line << "\n" << crossing.output;
+}
+
 // Culling before the z-buffer on hard/cull_off_center: the view-direction backface test
 // removes the left cube's inner side, which faces the eye; the history leads with each
 // stage's fate for the reference's triangle, and the verdict names the stage. The

@@ -164,7 +164,8 @@ TEST(RandomScenes, AppelQuantitativeInvisibilityKeepsItsInvariants) {
 // ambiguous pixels and exact fall-backs (counted where every pixel was asked about).
 TEST(RandomScenes, WhyHistoriesEndOnTheImagesPixelAndTheReferenceAnswersAsTheWholeImage) {
   // How many events about triangles (no subject) the histories of all pixels hold, from
-  // the render's counters; null where no counter says (Warnock's windows, Watkins's spans).
+  // the render's counters; null where no counter says (Warnock's windows, Watkins's spans,
+  // Weiler-Atherton's pieces).
   using TriangleEvents = std::int64_t (*)(const Stats&, std::int64_t pixels);
   struct Asked {
     const char* algorithm;
@@ -188,7 +189,8 @@ TEST(RandomScenes, WhyHistoriesEndOnTheImagesPixelAndTheReferenceAnswersAsTheWho
                                              {"abuffer", {{"mask", "8x8"}, {"depth", "subsample"}}, fragmentsAndResolves},
                                              {"watkins", {}, nullptr},
                                              {"watkins", {{"split", "halves"}}, nullptr},
-                                             {"watkins", {{"split", "none"}}, nullptr}};
+                                             {"watkins", {{"split", "none"}}, nullptr},
+                                             {"weiler_atherton", {}, nullptr}};
   long pixels = 0, events = 0;
   for (std::uint64_t seed = firstSeed; seed < firstSeed + sceneCount; ++seed) {
     const Judged judged(seed);
