@@ -49,6 +49,17 @@ class NaiveTracer {
   const std::vector<PackedTriangle>& triangles_;
 };
 
+// hsr why's events for the bvh variant's traversal (defined below the tracer): kept out
+// of its loop, cold, so that the loop without a history is the textbook's alone.
+constexpr double kMiss = std::numeric_limits<double>::infinity();
+[[gnu::cold]] void witnessMissedScene(std::vector<PixelEvent>& history);
+[[gnu::cold]] void witnessLeaf(std::uint32_t node, std::uint32_t triangles, double entry, const PixelRay& pixel,
+                               std::vector<PixelEvent>& history);
+[[gnu::cold]] void witnessChildren(std::uint32_t node, double entry, std::uint32_t nearer, double nearerEntry, std::uint32_t farther,
+                                   double fartherEntry, const PixelRay& pixel, std::vector<PixelEvent>& history);
+[[gnu::cold]] void witnessDropped(std::uint32_t node, double entry, const Hit& nearest, const PixelRay& pixel,
+                                  std::vector<PixelEvent>& history);
+
 // Variant bvh: front-to-back traversal of the scene's triangle BVH.
 class BvhTracer {
  public:
@@ -57,8 +68,15 @@ class BvhTracer {
   BvhTracer(const PreparedScene& scene, Stats& stats) : bvh_(scene.triangleBvh(stats)), triangles_(scene.leafTriangles(stats)) {}
 
   // history: hsr why's events at this pixel (every node entered or dropped, every
-  // triangle tested), or null (renderer/steps/why.hpp).
+  // triangle tested), or null (renderer/steps/why.hpp). The traversal is compiled twice,
+  // with and without a history, so that without one it is the textbook's loop alone.
   Hit trace(const PixelRay& pixel, Counters& counters, std::vector<PixelEvent>* history = nullptr) const {
+    return history ? traverse<true>(pixel, counters, history) : traverse<false>(pixel, counters, nullptr);
+  }
+
+ private:
+  template <bool kWitnessed>
+  Hit traverse(const PixelRay& pixel, Counters& counters, std::vector<PixelEvent>* history) const {
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
     if (bvh_.empty()) return nearest;
     const RayBoxTest boxes(pixel.ray.origin, pixel.ray.direction, pixel.inverseDirection);
@@ -74,26 +92,25 @@ class BvhTracer {
     int size = 0;
     Pending current{0, boxes.entry(nodes[0], reach())};
     if (current.entry == kMiss) {
-      if (history) [[unlikely]] witnessNode(0, "missed: the ray does not enter the scene's box", "", *history);
+      if constexpr (kWitnessed) witnessMissedScene(*history);
       return nearest;
     }
     while (true) {
       const BvhNode& node = nodes[current.node];
       ++counters.nodesVisited;
       if (node.leaf()) {
-        if (history) [[unlikely]]
-          witnessNode(current.node, "entered a leaf: its " + std::to_string(node.count) + (node.count == 1 ? " triangle" : " triangles") + " tested",
-                      "its box begins at " + where(current.entry, pixel), *history);
+        if constexpr (kWitnessed) witnessLeaf(current.node, node.count, current.entry, pixel, *history);
         counters.triangleTests += node.count;
         for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot)
-          offer(ray, triangles_[slot], pixel, nearest, history);
+          offer(ray, triangles_[slot], pixel, nearest, kWitnessed ? history : nullptr);
       } else {
         // Ordered traversal: go on with the nearer child, keep the farther for later.
         const auto [entry0, entry1] = boxes.childEntries(&nodes[node.index], reach());
         Pending first{node.index, entry0};
         Pending second{node.index + 1, entry1};
         if (second.entry < first.entry) std::swap(first, second);
-        if (history) [[unlikely]] witnessChildren(current, first, second, pixel, *history);
+        if constexpr (kWitnessed)
+          witnessChildren(current.node, current.entry, first.node, first.entry, second.node, second.entry, pixel, *history);
         if (first.entry != kMiss) {
           if (second.entry != kMiss) stack[size++] = second;
           current = first;
@@ -104,42 +121,56 @@ class BvhTracer {
       do {
         if (size == 0) return nearest;
         current = stack[--size];
-        if (history && current.entry > reach()) [[unlikely]]
-          witnessNode(current.node, "dropped (early exit): its box begins beyond the nearest hit",
-                      "its box begins at " + where(current.entry, pixel) + "; the nearest hit is " +
-                          (nearest.id == conventions::kBackgroundId ? "none yet" : "at " + where(nearest.t, pixel)),
-                      *history);
+        if constexpr (kWitnessed)
+          if (current.entry > reach()) witnessDropped(current.node, current.entry, nearest, pixel, *history);
       } while (current.entry > reach());
     }
   }
 
- private:
-  static constexpr double kMiss = std::numeric_limits<double>::infinity();
-
-  // hsr why's words for a parameter along the ray: its distance along the view axis.
-  static std::string where(double t, const PixelRay& pixel) {
-    char text[64];
-    std::snprintf(text, sizeof text, "distance %.9g", std::max(pixel.distance(t), pixel.distance(pixel.tNear)));
-    return text;
-  }
-  static void witnessNode(std::uint32_t node, std::string outcome, std::string detail, std::vector<PixelEvent>& history) {
-    history.push_back({conventions::kBackgroundId, std::move(outcome), std::move(detail),
-                       std::numeric_limits<double>::quiet_NaN(), false, "BVH node " + std::to_string(node)});
-  }
-  template <typename Pending>
-  static void witnessChildren(const Pending& node, const Pending& nearer, const Pending& farther, const PixelRay& pixel,
-                              std::vector<PixelEvent>& history) {
-    const auto child = [&](const Pending& which) {
-      return "node " + std::to_string(which.node) + (which.entry == kMiss ? " missed (or begins beyond the nearest hit)" : " entered at " + where(which.entry, pixel));
-    };
-    const std::string outcome = nearer.entry == kMiss    ? "entered: both children missed"
-                                : farther.entry == kMiss ? "entered: one child to go on with"
-                                                         : "entered: the nearer child first, the farther stacked";
-    witnessNode(node.node, outcome, "its box begins at " + where(node.entry, pixel) + "; " + child(nearer) + ", " + child(farther), history);
-  }
   const Bvh& bvh_;
   const std::vector<PackedTriangle>& triangles_;
 };
+
+// hsr why's words for a parameter along the ray: its distance along the view axis.
+std::string where(double t, const PixelRay& pixel) {
+  char text[64];
+  std::snprintf(text, sizeof text, "distance %.9g", std::max(pixel.distance(t), pixel.distance(pixel.tNear)));
+  return text;
+}
+
+void witnessNode(std::uint32_t node, std::string outcome, std::string detail, std::vector<PixelEvent>& history) {
+  history.push_back({conventions::kBackgroundId, std::move(outcome), std::move(detail), std::numeric_limits<double>::quiet_NaN(), false,
+                     "BVH node " + std::to_string(node)});
+}
+
+void witnessMissedScene(std::vector<PixelEvent>& history) {
+  witnessNode(0, "missed: the ray does not enter the scene's box", "", history);
+}
+
+void witnessLeaf(std::uint32_t node, std::uint32_t triangles, double entry, const PixelRay& pixel, std::vector<PixelEvent>& history) {
+  witnessNode(node, "entered a leaf: its " + std::to_string(triangles) + (triangles == 1 ? " triangle" : " triangles") + " tested",
+              "its box begins at " + where(entry, pixel), history);
+}
+
+void witnessChildren(std::uint32_t node, double entry, std::uint32_t nearer, double nearerEntry, std::uint32_t farther,
+                     double fartherEntry, const PixelRay& pixel, std::vector<PixelEvent>& history) {
+  const auto child = [&](std::uint32_t which, double whichEntry) {
+    return "node " + std::to_string(which) +
+           (whichEntry == kMiss ? " missed (or begins beyond the nearest hit)" : " entered at " + where(whichEntry, pixel));
+  };
+  const std::string outcome = nearerEntry == kMiss    ? "entered: both children missed"
+                              : fartherEntry == kMiss ? "entered: one child to go on with"
+                                                      : "entered: the nearer child first, the farther stacked";
+  witnessNode(node, outcome, "its box begins at " + where(entry, pixel) + "; " + child(nearer, nearerEntry) + ", " + child(farther, fartherEntry),
+              history);
+}
+
+void witnessDropped(std::uint32_t node, double entry, const Hit& nearest, const PixelRay& pixel, std::vector<PixelEvent>& history) {
+  witnessNode(node, "dropped (early exit): its box begins beyond the nearest hit",
+              "its box begins at " + where(entry, pixel) + "; the nearest hit is " +
+                  (nearest.id == conventions::kBackgroundId ? "none yet" : "at " + where(nearest.t, pixel)),
+              history);
+}
 
 }  // namespace
 

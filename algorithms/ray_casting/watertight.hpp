@@ -102,7 +102,7 @@ using PackedTriangle = PreparedScene::LeafTriangle;
 // `nearest` starts as {background, tFar}: the first hit up to the far plane is taken.
 // hsr why: the test of a triangle at a pixel asked about (history: its events; null
 // otherwise), recorded before the nearest hit changes: what the ray met, and the outcome.
-void witnessOffer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, const Hit& nearest,
+[[gnu::cold]] void witnessOffer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, const Hit& nearest,
                   bool met, double t, bool nearer, std::vector<PixelEvent>& history);
 
 inline void offer(const WatertightRay<double>& ray, const PackedTriangle& triangle, const PixelRay& pixel, Hit& nearest,
