@@ -115,6 +115,9 @@ struct AlgorithmEntry {
   // steps: where it records its steps, or null (renderer/steps/steps.hpp).
   std::function<LineSet(const PreparedScene&, const KnobValues&, int threads, Stats&, StepRecorder* steps)> drawLines;
   std::function<LineJudgement(const PreparedScene&, const KnobValues&, const LineSet&, int threads, Stats&)> judgeLines;
+  // Line algorithms that answer hsr why --edge: the same drawing, with what the walk met
+  // along edge witness.edge recorded (renderer/steps/why.hpp); null for the others.
+  std::function<LineSet(const PreparedScene&, const KnobValues&, Stats&, EdgeWitness&)> drawLinesWatchingEdge;
 
   // The reference: its whole image, visibility and effects both exact.
   std::function<Frame(const PreparedScene&, int threads, Stats&)> renderExactly;

@@ -41,6 +41,7 @@ int list();
 // (pipeline/why.hpp), as text or JSON on stdout.
 struct WhyOptions : ConfiguredScene {
   std::vector<std::string> pixels;  // "X,Y" each
+  std::string edge;                 // a line algorithm's edge: "N", or "X,Y" for the one nearest that pixel
   bool json = false;
 };
 int why(const WhyOptions& options);

@@ -80,7 +80,10 @@ int main(int argc, char** argv) {
   hsr::cli::WhyOptions why;
   CLI::App* whyCommand = app.add_subcommand("why", "how an algorithm decided a pixel, step by step, beside the exact reference's answer");
   configuredSceneOptions(whyCommand, why);
-  whyCommand->add_option("--pixel", why.pixels, "X,Y: a column and a row from the top left (repeatable)")->required();
+  CLI::Option* pixel = whyCommand->add_option("--pixel", why.pixels, "X,Y: a column and a row from the top left (repeatable)");
+  CLI::Option* edge = whyCommand->add_option(
+      "--edge", why.edge, "a line algorithm's edge: N (its number in the drawing) or X,Y (the edge passing nearest that pixel)");
+  pixel->excludes(edge);
   whyCommand->add_flag("--json", why.json, "print the answer as JSON");
 
   hsr::studies::CompareOptions compare;

@@ -12,7 +12,27 @@
 
 namespace hsr::cli {
 
+namespace {
+
+// hsr why --edge: how a line algorithm's walk decided one edge.
+int whyAlongEdge(const WhyOptions& options) {
+  pipeline::checkAnswersWhyAlongEdges(findAlgorithm(options.algorithm));
+  const pipeline::Configuration configuration = configurationOf(options);
+  const studies::LoadedScene scene = studies::loadPrepared(options.scene, options.size);
+  pipeline::checkRenders(configuration, scene.name, *scene.prepared);
+  Stats stats;
+  const pipeline::EdgeAnswer answer = pipeline::explainEdge(*scene.prepared, configuration, options.edge, options.threads, stats);
+  const std::string shown = options.json ? pipeline::edgeJson(*scene.prepared, scene.name, configuration, answer)
+                                         : pipeline::edgeText(*scene.prepared, scene.name, configuration, answer);
+  std::fputs(shown.c_str(), stdout);
+  return 0;
+}
+
+}  // namespace
+
 int why(const WhyOptions& options) {
+  if (!options.edge.empty()) return whyAlongEdge(options);
+  if (options.pixels.empty()) throw InputError("hsr why: --pixel X,Y or --edge E is required");
   pipeline::checkAnswersWhy(findAlgorithm(options.algorithm));
   const pipeline::Configuration configuration = configurationOf(options);
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/lines/line_drawing.hpp"
 #include "renderer/util/conventions.hpp"
 #include "renderer/util/error.hpp"
 #include "renderer/util/markup.hpp"
@@ -93,11 +94,24 @@ std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgrou
 
 }  // namespace
 
+void checkAnswersWhyAlongEdges(const AlgorithmEntry& algorithm) {
+  if (algorithm.drawLinesWatchingEdge) return;
+  std::string names;
+  for (const AlgorithmEntry& entry : algorithms())
+    if (entry.drawLinesWatchingEdge) names += (names.empty() ? "" : ", ") + entry.name;
+  if (algorithm.kind != AlgorithmKind::line)
+    throw InputError("--edge: " + algorithm.name + " draws no edges; expected --pixel X,Y, or --edge with --algo " + names);
+  throw InputError("--algo " + algorithm.name + ": hsr why --edge follows the walk of " + names + " so far; expected one of those");
+}
+
 void checkAnswersWhy(const AlgorithmEntry& algorithm) {
   if (algorithm.answersWhy) return;
   std::string names;
   for (const AlgorithmEntry& entry : algorithms())
     if (entry.answersWhy) names += (names.empty() ? "" : ", ") + entry.name;
+  if (algorithm.drawLinesWatchingEdge)
+    throw InputError("--algo " + algorithm.name + ": a line algorithm answers along an edge; expected --edge N or --edge X,Y (--pixel asks " +
+                     names + ")");
   throw InputError("--algo " + algorithm.name + ": hsr why follows the loops of " + names + " so far; expected one of those");
 }
 
@@ -110,6 +124,89 @@ PixelWitness::Pixel pixelOf(const std::string& text, int width, int height) {
     throw InputError("--pixel " + text + ": outside the " + std::to_string(width) + "x" + std::to_string(height) + " image; expected X in [0, " +
                      std::to_string(width - 1) + "] and Y in [0, " + std::to_string(height - 1) + "]");
   return {int(x), int(y)};
+}
+
+namespace {
+
+// The length of u where exactly one of two sorted, disjoint interval lists covers.
+double differingLength(const std::vector<Interval>& a, const std::vector<Interval>& b) {
+  std::vector<double> cuts = {0, 1};
+  for (const auto* list : {&a, &b})
+    for (const Interval& interval : *list) cuts.insert(cuts.end(), {interval.begin, interval.end});
+  std::sort(cuts.begin(), cuts.end());
+  const auto covers = [](const std::vector<Interval>& list, double u) {
+    return std::any_of(list.begin(), list.end(), [&](const Interval& interval) { return interval.begin <= u && u <= interval.end; });
+  };
+  double length = 0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double middle = 0.5 * (cuts[i] + cuts[i + 1]);
+    if (covers(a, middle) != covers(b, middle)) length += cuts[i + 1] - cuts[i];
+  }
+  return length;
+}
+
+// The edge "N" or nearest to pixel "X,Y" names, among the drawing's edges.
+std::uint32_t edgeAsked(const std::string& text, const LineSet& lines, double& pixelsAway) {
+  std::smatch match;
+  const std::string count = std::to_string(lines.edges.size());
+  if (std::regex_match(text, match, std::regex(R"(\s*(\d{1,9})\s*)"))) {
+    const long long edge = std::stoll(match[1]);
+    if (edge >= static_cast<long long>(lines.edges.size()))
+      throw InputError("--edge " + text + ": the drawing has " + count + " edges; expected an edge number in [0, " +
+                       std::to_string(lines.edges.size() - 1) + "] or a pixel X,Y near one");
+    pixelsAway = -1;
+    return static_cast<std::uint32_t>(edge);
+  }
+  if (!std::regex_match(text, match, std::regex(R"(\s*(\d{1,9})\s*,\s*(\d{1,9})\s*)")))
+    throw InputError("--edge " + text + ": expected an edge number, or X,Y for the edge passing nearest that pixel");
+  const dvec2 center(conventions::pixelCenter(int(std::stoll(match[1]))), conventions::pixelCenter(int(std::stoll(match[2]))));
+  constexpr double kNearEnough = 3;  // pixels
+  std::uint32_t nearest = 0;
+  pixelsAway = std::numeric_limits<double>::infinity();
+  for (std::uint32_t e = 0; e < lines.edges.size(); ++e) {
+    const FeatureEdge& edge = lines.edges[e];
+    const dvec2 along = edge.pixelTo - edge.pixelFrom;
+    const double squared = glm::dot(along, along);
+    const double u = squared > 0 ? std::clamp(glm::dot(center - edge.pixelFrom, along) / squared, 0.0, 1.0) : 0.0;
+    const double away = glm::length(center - edge.pixelAt(u));
+    if (away < pixelsAway) nearest = e, pixelsAway = away;
+  }
+  if (!(pixelsAway <= kNearEnough)) {
+    char away[64];
+    std::snprintf(away, sizeof away, "%.3g", pixelsAway);
+    throw InputError("--edge " + text + ": no edge of the drawing passes within 3 pixels of that pixel's center" +
+                     (lines.edges.empty() ? std::string(" (it has none)") : std::string(" (the nearest is ") + away + " pixels away)") +
+                     "; expected a pixel on a drawn edge, or an edge number");
+  }
+  return nearest;
+}
+
+}  // namespace
+
+EdgeAnswer explainEdge(const PreparedScene& scene, const Configuration& configuration, const std::string& edgeText, int threads,
+                       Stats& stats) {
+  const AlgorithmEntry& algorithm = *configuration.algorithm;
+  checkAnswersWhyAlongEdges(algorithm);
+  EdgeAnswer answer;
+  Stats findingStats;
+  const LineSet found = algorithm.drawLines(scene, configuration.knobs, threads, findingStats, nullptr);
+  EdgeWitness witness;
+  witness.edge = edgeAsked(edgeText, found, answer.pixelsAway);
+  const LineSet lines = algorithm.drawLinesWatchingEdge(scene, configuration.knobs, stats, witness);
+  answer.edge = witness.edge;
+  answer.drawn = lines.edges[answer.edge];
+  answer.walk = std::move(witness.events);
+  for (const LineSegment& segment : lines.segments)
+    if (segment.edge == answer.edge) answer.pieces.push_back(segment);
+  const LineJudgement judged = algorithm.judgeLines(scene, configuration.knobs, lines, threads, stats);
+  const std::vector<EdgeVisibility> exact = edgeVisibility(judged.exact), mine = edgeVisibility(lines);
+  answer.referenceVisible = exact[answer.edge].visible;
+  answer.differingPixels = differingLength(mine[answer.edge].visible, answer.referenceVisible) * exact[answer.edge].lengthPixels;
+  char text[160];
+  std::snprintf(text, sizeof text, "differs: it and the exact line reference disagree on %.3g of the edge's %.3g pixels",
+                answer.differingPixels, exact[answer.edge].lengthPixels);
+  answer.verdict = answer.differingPixels == 0 ? "agrees with the exact line reference" : text;
+  return answer;
 }
 
 std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configuration& configuration,
@@ -169,6 +266,60 @@ std::string whyText(const PreparedScene& scene, const std::string& sceneName, co
     text += "  => " + answer.verdict + "\n";
   }
   return text;
+}
+
+namespace {
+
+std::string intervalsText(const std::vector<Interval>& intervals) {
+  if (intervals.empty()) return "nowhere";
+  std::string text;
+  for (const Interval& interval : intervals) text += (text.empty() ? "" : ", ") + number(interval.begin) + " to " + number(interval.end);
+  return text;
+}
+
+std::string edgeTitle(const PreparedScene& scene, const EdgeAnswer& answer) {
+  const std::string named = edgeNamesOf(scene)(answer.drawn);
+  char ends[160];
+  std::snprintf(ends, sizeof ends, "from (%.6g, %.6g) to (%.6g, %.6g) in pixels", answer.drawn.pixelFrom.x, answer.drawn.pixelFrom.y,
+                answer.drawn.pixelTo.x, answer.drawn.pixelTo.y);
+  return "edge " + std::to_string(answer.edge) + (named.empty() ? "" : ", the " + named) + ", " + ends;
+}
+
+}  // namespace
+
+std::string edgeText(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration, const EdgeAnswer& answer) {
+  std::string text = "hsr why: " + sceneName + " at " + std::to_string(scene.width()) + "x" + std::to_string(scene.height()) + " with " +
+                     configuration.algorithm->name + " (" + configuration.knobs.described() + ")\n\n" + edgeTitle(scene, answer) +
+                     (answer.pixelsAway >= 0 ? " (" + number(answer.pixelsAway) + " pixels from the pixel's center)" : "") + "\n" +
+                     "  " + std::to_string(answer.walk.size()) + " events, in the order the walk met them (u: 0 at its start, 1 at its end)\n";
+  for (std::size_t i = 0; i < answer.walk.size(); ++i)
+    text += "  " + std::to_string(i + 1) + ". at u = " + number(answer.walk[i].u) + ": " + answer.walk[i].outcome + "\n     " +
+            answer.walk[i].detail + "\n";
+  text += "  its pieces:";
+  for (const LineSegment& piece : answer.pieces)
+    text += " " + number(piece.begin) + " to " + number(piece.end) + " QI " + std::to_string(piece.qi) + (piece.visible() ? " (visible);" : ";");
+  text += "\n  the exact line reference: visible " + intervalsText(answer.referenceVisible) + "\n  => " + answer.verdict + "\n";
+  return text;
+}
+
+std::string edgeJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration, const EdgeAnswer& answer) {
+  std::string json = "{\"scene\": " + jsonString(sceneName) + ", \"algorithm\": " + jsonString(configuration.algorithm->name) +
+                     ", \"knobs\": " + jsonString(configuration.knobs.described()) + ", \"edge\": " + std::to_string(answer.edge) +
+                     ", \"name\": " + jsonString(edgeTitle(scene, answer)) +
+                     ", \"pixels_away\": " + (answer.pixelsAway >= 0 ? jsonNumber(answer.pixelsAway) : "null") + ", \"walk\": [";
+  for (std::size_t i = 0; i < answer.walk.size(); ++i)
+    json += std::string(i ? ", " : "") + "\n  {\"u\": " + jsonNumber(answer.walk[i].u) + ", \"change\": " +
+            std::to_string(answer.walk[i].change) + ", \"outcome\": " + jsonString(answer.walk[i].outcome) +
+            ", \"detail\": " + jsonString(answer.walk[i].detail) + "}";
+  json += "],\n \"pieces\": [";
+  for (std::size_t i = 0; i < answer.pieces.size(); ++i)
+    json += std::string(i ? ", " : "") + "{\"begin\": " + jsonNumber(answer.pieces[i].begin) + ", \"end\": " + jsonNumber(answer.pieces[i].end) +
+            ", \"qi\": " + std::to_string(answer.pieces[i].qi) + "}";
+  json += "],\n \"reference_visible\": [";
+  for (std::size_t i = 0; i < answer.referenceVisible.size(); ++i)
+    json += std::string(i ? ", " : "") + "[" + jsonNumber(answer.referenceVisible[i].begin) + ", " + jsonNumber(answer.referenceVisible[i].end) + "]";
+  return json + "],\n \"differing_pixels\": " + jsonNumber(answer.differingPixels) + ", \"agrees\": " +
+         (answer.differingPixels == 0 ? "true" : "false") + ", \"verdict\": " + jsonString(answer.verdict) + "}\n";
 }
 
 std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,

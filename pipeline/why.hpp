@@ -47,9 +47,32 @@ std::string whyText(const PreparedScene& scene, const std::string& sceneName, co
 std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
                     const std::vector<PixelAnswer>& answers);
 
+// hsr why --edge: how a line algorithm decided one edge of its drawing, from its own walk
+// (AlgorithmEntry::drawLinesWatchingEdge), beside the exact line reference's answer for
+// the same edge.
+struct EdgeAnswer {
+  std::uint32_t edge = 0;
+  double pixelsAway = -1;            // asked by a pixel: how far the edge passes from its center; -1: asked by number
+  FeatureEdge drawn;                 // the edge, as the drawing has it
+  std::vector<EdgeEvent> walk;       // what the walk met along it, in order
+  std::vector<LineSegment> pieces;   // the algorithm's pieces of it, with their QI
+  std::vector<Interval> referenceVisible;  // where the exact line reference sees it (sorted, disjoint, in u)
+  double differingPixels = 0;        // the length, in pixels, where the two disagree on visibility
+  std::string verdict;
+};
+
+// The edge asked about: "N", an index into the drawing's edges, or "X,Y", the edge passing
+// nearest the center of pixel (X, Y) (within 3 pixels); InputError naming --edge otherwise.
+// Runs the algorithm twice: to find the edge, then with the walk watched.
+EdgeAnswer explainEdge(const PreparedScene& scene, const Configuration& configuration, const std::string& edgeText, int threads,
+                       Stats& stats);
+std::string edgeText(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration, const EdgeAnswer& answer);
+std::string edgeJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration, const EdgeAnswer& answer);
+
 // InputError ("--algo NAME: hsr why follows the loops of zbuffer so far; ...") for an
-// algorithm that does not answer why.
+// algorithm that does not answer why at a pixel (--pixel), or along an edge (--edge).
 void checkAnswersWhy(const AlgorithmEntry& algorithm);
+void checkAnswersWhyAlongEdges(const AlgorithmEntry& algorithm);
 // "X,Y" as a pixel of a width x height image, or InputError naming --pixel and what was
 // expected.
 PixelWitness::Pixel pixelOf(const std::string& text, int width, int height);

@@ -59,6 +59,9 @@ struct Crossing {
   double u;
   int change;
   bool recount = false;
+  // What made it, for hsr why --edge: a contour (an index into the contours), or a face
+  // the edge passes through (a piercing); kUnknown for the other.
+  std::uint32_t contour = kUnknown, face = kUnknown;
 };
 
 // Every change along an edge, sorted, and whether the QI at either end rests on a
@@ -70,8 +73,9 @@ struct Changes {
 
 class QuantitativeInvisibility {
  public:
-  QuantitativeInvisibility(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps)
+  QuantitativeInvisibility(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps, EdgeWitness* witness)
       : steps_(steps),
+        witness_(witness),
         scene_(scene),
         camera_(scene.camera()),
         viewer_(camera_),
@@ -197,6 +201,33 @@ class QuantitativeInvisibility {
 
   StepRecorder* steps_;
   std::size_t recorded_ = 0;
+  EdgeWitness* witness_;  // hsr why --edge's edge, or null
+
+  // hsr why --edge: the walk along the edge asked about, in the order it met it: where
+  // it started and with what QI, each change and what made it, where it arrived.
+  bool watched(std::uint32_t e) const { return witness_ && witness_->edge == e; }
+  void witnessChanges(const std::vector<Crossing>& crossings, bool forward) {
+    std::vector<Crossing> met(crossings);
+    if (!forward) std::reverse(met.begin(), met.end());
+    for (const Crossing& crossing : met) {
+      const int change = forward ? crossing.change : -crossing.change;  // as the walk meets it
+      const std::string by = crossing.contour != kUnknown
+                                 ? "the contour edge from vertex " + std::to_string(contours_[crossing.contour].from) + " to vertex " +
+                                       std::to_string(contours_[crossing.contour].to) + ", in front of it"
+                             : crossing.face != kUnknown ? "triangle " + std::to_string(crossing.face) + ", which the edge passes through"
+                                                         : "";
+      if (crossing.recount)
+        witness_->events.push_back({crossing.u, 0, "counted afresh by a ray cast",
+                                    crossing.face != kUnknown ? "it passes exactly through a side or corner of " + by
+                                                              : "a contour's projection runs along the edge's here"});
+      else
+        witness_->events.push_back({crossing.u, change, std::string(change > 0 ? "+" : "") + std::to_string(change) +
+                                                    (change > 0 ? ": it passes behind " : ": it comes out from behind ") + by,
+                                    crossing.contour != kUnknown ? "its projection crosses the contour's; the contour's faces "
+                                                                   "on the side it enters, less those on the side it leaves"
+                                                                 : "a piercing: one side of the edge lies behind the face"});
+    }
+  }
 
   const dvec3& position(std::uint32_t vertex) const { return scene_.positions()[vertex]; }
   std::uint32_t thirdCorner(std::uint32_t triangle, std::uint32_t a, std::uint32_t b) const {
@@ -334,8 +365,8 @@ class QuantitativeInvisibility {
         const auto at = [&](const dvec2& x) { return glm::dot(x - edge.pixelFrom, along) / glm::dot(along, along); };
         const double u0 = std::max(0.0, std::min(at(c.pixelFrom), at(c.pixelTo))), u1 = std::min(1.0, std::max(at(c.pixelFrom), at(c.pixelTo)));
         if (!(u0 < u1)) return;
-        found.push_back({u0, 0, true});
-        found.push_back({u1, 0, true});
+        found.push_back({u0, 0, true, index});
+        found.push_back({u1, 0, true, index});
         changes.conventionalStart |= u0 == 0;
         changes.conventionalEnd |= u1 == 1;
         return;
@@ -350,7 +381,7 @@ class QuantitativeInvisibility {
       const int order = viewer_.exact().orient3d(p, q, r, s);
       const int spread = sideOfR != 0 ? sideOfR : -sideOfS;
       if (order == 0 || order == spread) return;
-      found.push_back({crossingParameter(edge, c), change});
+      found.push_back({crossingParameter(edge, c), change, false, index});
     }); });
     if (edge.meshEdge != FeatureEdge::kNone) {
       addPiercings(edge, intersections_.byEdge[edge.meshEdge], edge.vertexFrom != adjacency_.edges[edge.meshEdge].a, found);
@@ -383,12 +414,12 @@ class QuantitativeInvisibility {
       if (!counted(piercing.face)) continue;
       const double u = edge.projectedParameter(reversed ? 1 - piercing.s : piercing.s);
       if (piercing.degenerate) {
-        found.push_back({u, 0, true});
+        found.push_back({u, 0, true, kUnknown, piercing.face});
         continue;
       }
       const bool firstBehind = piercing.first * facing_[piercing.face] < 0;
       const bool startBehind = reversed ? !firstBehind : firstBehind;
-      found.push_back({u, startBehind ? -1 : 1});
+      found.push_back({u, startBehind ? -1 : 1, false, kUnknown, piercing.face});
     }
   }
 
@@ -501,6 +532,22 @@ class QuantitativeInvisibility {
     const int hiding = vertexHiding(to, from, endOnASide);
     vertexCorrections_ += hiding != 0;
     const int base = arriving - hiding;
+    if (watched(e)) [[unlikely]] {
+      const int hidingStart = leaving - baseQi_[from];
+      witness_->events.push_back(
+          {forward ? 0.0 : 1.0, 0, "the walk starts at vertex " + std::to_string(from) + ", of QI " + std::to_string(baseQi_[from]),
+           carried ? "QI " + std::to_string(leaving) + " just after it: " + std::to_string(hidingStart) +
+                         (hidingStart == 1 ? " face" : " faces") + " around the vertex hide the edge's start"
+                   : "the QI just after it rests on a convention (a sight line along a side): counted afresh by a ray cast"});
+      witnessChanges(changes.crossings, forward);
+      witness_->events.push_back({forward ? 1.0 : 0.0, 0, "the walk arrives at vertex " + std::to_string(to),
+                                  "QI " + std::to_string(arriving) + " just before it, less " + std::to_string(hiding) +
+                                      (hiding == 1 ? " face" : " faces") + " around it hiding the edge's end: vertex QI " +
+                                      std::to_string(base) +
+                                      (baseQi_[to] == kUnknownQi ? " (new: the walk goes on from it)"
+                                       : baseQi_[to] == base     ? " (as it was already known)"
+                                                                 : " (it was known as " + std::to_string(baseQi_[to]) + ": a mismatch)")});
+    }
     if (baseQi_[to] == kUnknownQi) {
       baseQi_[to] = base;
       conventional_[to] = endOnASide;
@@ -514,7 +561,14 @@ class QuantitativeInvisibility {
   // of its longest piece is counted by a ray cast, not counting the two faces it lies on,
   // and changes along it as along any edge.
   void drawJunction(std::uint32_t e, const Junction& junction, std::vector<LineSegment>& pieces) {
-    appendPieces(e, changesAlong(e).crossings, 0, nullptr, [&](std::uint32_t face) { return onJunction(junction, face); }, pieces);
+    const Changes changes = changesAlong(e);
+    appendPieces(e, changes.crossings, 0, nullptr, [&](std::uint32_t face) { return onJunction(junction, face); }, pieces);
+    if (watched(e)) [[unlikely]] {
+      witness_->events.push_back({0.0, 0, "an intersection line: no walk reaches it",
+                                  "the QI of its longest piece is counted by a ray cast, not counting triangles " +
+                                      std::to_string(junction.faces[0]) + " and " + std::to_string(junction.faces[1]) + " it lies on"});
+      witnessChanges(changes.crossings, true);
+    }
   }
 
   const PreparedScene& scene_;
@@ -540,9 +594,9 @@ class QuantitativeInvisibility {
 
 }  // namespace
 
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps, EdgeWitness* edge) {
   PhaseTimer timer(stats, "appel");
-  return QuantitativeInvisibility(scene, knobs, stats, steps).run();
+  return QuantitativeInvisibility(scene, knobs, stats, steps, edge).run();
 }
 
 AlgorithmEntry entry() {
@@ -554,7 +608,12 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"feature edges", "contour edges", "crossings tested", "QI changes", "start-vertex ray casts",
                        "QI mismatches"};
   setRefusal(entry, refusal);
-  setDrawing(entry, run);
+  setDrawing<Knobs>(entry, [](const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
+    return run(scene, knobs, stats, steps);
+  });
+  entry.drawLinesWatchingEdge = [](const PreparedScene& scene, const KnobValues& knobs, Stats& stats, EdgeWitness& edge) {
+    return run(scene, knobs.as<Knobs>(), stats, nullptr, &edge);
+  };
   entry.judgeLines = judgedByLineReference;
   return entry;
 }

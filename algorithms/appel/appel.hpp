@@ -78,8 +78,10 @@ std::string refusal(const PreparedScene& scene, const Knobs& knobs);
 // corrections", "start-vertex ray casts", "recount ray casts" (steps 3 and 4),
 // "QI mismatches" (an edge's end disagreeing with the QI its vertex already has),
 // "degenerate start rays", "degenerate recounts", "negative QI", and the surface
-// intersections' counters on first use.
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr);
+// intersections' counters on first use. With an edge witness (hsr why --edge), what the
+// walk meets along that edge: where it starts and with what QI, each change of QI along
+// it and what made it, and the vertex it arrives at.
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr, EdgeWitness* edge = nullptr);
 
 // The registry's entry (algorithms/algorithm.hpp).
 AlgorithmEntry entry();

@@ -29,6 +29,19 @@ struct PixelEvent {
   std::string subject;
 };
 
+// hsr why --edge: what a line algorithm's walk met along one edge of its drawing, in the
+// order it met it. Handed to the algorithm only when asked, as PixelWitness is.
+struct EdgeEvent {
+  double u = 0;         // where along the edge's projection: 0 at its start, 1 at its end
+  int change = 0;       // the QI's change there, as the walk meets it (0: none, or counted afresh)
+  std::string outcome;  // what the walk did there, in the textbook's words
+  std::string detail;   // the numbers it decided by
+};
+struct EdgeWitness {
+  std::uint32_t edge = 0;  // the edge asked about: its index in the drawing's edges
+  std::vector<EdgeEvent> events;
+};
+
 class PixelWitness {
  public:
   struct Pixel {

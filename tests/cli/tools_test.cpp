@@ -535,6 +535,28 @@ TEST(Why, FollowsWeilerAthertonsClipPolygonsAndPieces) {
     EXPECT_NE(crossing.output.find(line), std::string::npos) << line << "\n" << crossing.output;
 }
 
+// Appel's walk along an edge of the blocks: edge 2, the slab's contour, walked from its
+// end at vertex 6 (QI 0), passes behind two contours in front of it and comes out from
+// behind one, arriving at vertex 2 with QI 1; asked by a pixel, the nearest edge.
+TEST(Why, FollowsAppelsWalkAlongAnEdge) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "blocks.toml --size 320x240 --algo appel --edge ";
+  const test::CommandResult walk = test::runCommand(why + "2");
+  ASSERT_EQ(walk.exitCode, 0) << walk.output;
+  for (const char* line : {"edge 2, the contour edge of \"slab\", from (142.018, 111.719) to (74.226, 135.645) in pixels",
+                           "1. at u = 1: the walk starts at vertex 6, of QI 0",
+                           "2. at u = 0.51675934: +1: it passes behind the contour edge from vertex 56 to vertex 66, in front of it",
+                           "4. at u = 0.120809212: -1: it comes out from behind the contour edge from vertex 61 to vertex 71",
+                           "5. at u = 0: the walk arrives at vertex 2",
+                           "its pieces: 0 to 0.120809212 QI 1; 0.120809212 to 0.196959777 QI 2; 0.196959777 to 0.51675934 QI 1; "
+                           "0.51675934 to 1 QI 0 (visible);",
+                           "the exact line reference: visible 0.51675934 to 1", "=> agrees with the exact line reference"})
+    EXPECT_NE(walk.output.find(line), std::string::npos) << line << "\n" << walk.output;
+  const test::CommandResult near = test::runCommand(why + "160,120 --json");
+  ASSERT_EQ(near.exitCode, 0) << near.output;
+  for (const char* part : {"\"edge\": 16,", "\"pixels_away\": 0.94", "\"agrees\": true"})
+    EXPECT_NE(near.output.find(part), std::string::npos) << part << "\n" << near.output;
+}
+
 // Culling before the z-buffer on hard/cull_off_center: the view-direction backface test
 // removes the left cube's inner side, which faces the eye; the history leads with each
 // stage's fate for the reference's triangle, and the verdict names the stage. The

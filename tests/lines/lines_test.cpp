@@ -2,6 +2,7 @@
 // Appel's QI invariants, and the line infrastructure's own rules.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -93,6 +94,53 @@ TEST(Appel, QuantitativeInvisibilityInvariants) {
       EXPECT_GE(check.maximum, 2);  // behind both near walls of the tube
     }
   }
+}
+
+// hsr why --edge (renderer/steps/why.hpp): Appel's walk along each edge, watched, leaves
+// the drawing as it was and accounts for the edge's pieces: a mesh edge's events start
+// at one end and arrive at the other, an intersection line's start with its ray cast, and
+// where nothing was counted afresh the changes met are the QI's steps between pieces.
+TEST(Appel, TheWalkWatchedAlongEachEdgeAccountsForItsPieces) {
+  std::int64_t changesChecked = 0;
+  for (const char* path : {"scenes/blocks.toml", "scenes/hard/box_junctions.toml"}) {
+    const test::LoadedScene loaded(test::sourcePath(path));
+    Stats plainStats;
+    const LineSet plain = appel::run(loaded.prepared, appel::Knobs{}, plainStats);
+    for (std::uint32_t e = 0; e < plain.edges.size(); ++e) {
+      const std::string where = std::string(path) + " edge " + std::to_string(e);
+      EdgeWitness witness{e, {}};
+      Stats stats;
+      const LineSet watched = appel::run(loaded.prepared, appel::Knobs{}, stats, nullptr, &witness);
+      ASSERT_EQ(watched.segments.size(), plain.segments.size()) << where;
+      std::vector<LineSegment> pieces;
+      for (std::size_t i = 0; i < watched.segments.size(); ++i) {
+        ASSERT_EQ(watched.segments[i].qi, plain.segments[i].qi) << where;
+        if (watched.segments[i].edge == e) pieces.push_back(watched.segments[i]);
+      }
+      const std::vector<EdgeEvent>& walk = witness.events;
+      ASSERT_FALSE(walk.empty()) << where;
+      const bool junction = plain.edges[e].kind == EdgeKind::junction;
+      if (junction) {
+        EXPECT_EQ(walk.front().outcome, "an intersection line: no walk reaches it") << where;
+      } else {
+        EXPECT_EQ(walk.front().outcome.rfind("the walk starts at vertex ", 0), 0u) << where;
+        EXPECT_EQ(walk.back().outcome.rfind("the walk arrives at vertex ", 0), 0u) << where;
+        EXPECT_EQ(std::abs(walk.front().u - walk.back().u), 1) << where;
+      }
+      const bool recounted = std::any_of(walk.begin(), walk.end(), [](const EdgeEvent& event) { return event.outcome == "counted afresh by a ray cast"; });
+      if (recounted) continue;
+      // In the walk's order: from u = 0 for an intersection line or a walk that starts there.
+      const bool forward = junction || walk.front().u == 0;
+      const int first = forward ? pieces.front().qi : pieces.back().qi, last = forward ? pieces.back().qi : pieces.front().qi;
+      int changes = 0, sum = 0;
+      for (const EdgeEvent& event : walk)
+        if (event.change != 0) ++changes, sum += event.change;
+      EXPECT_EQ(sum, last - first) << where;
+      EXPECT_EQ(std::size_t(changes), pieces.size() - 1) << where;
+      changesChecked += changes;
+    }
+  }
+  EXPECT_GT(changesChecked, 20) << "too few changes of QI to test anything";
 }
 
 TEST(LineHardCases, TouchingBoxesDrawNoJunctionAndLoseNothing) {

@@ -127,9 +127,15 @@ try {
         `Warnock's answer to why, its windows down to the pixel, as hsr why's (pixel ${subdivided.pixel})`);
   await page.selectOption("#algorithm", "watkins");
   result = await renderWith();
+  const spans = await clickPixel("color", 98, 44);
+  check(spans.shown === nativeWhy("hard/cyclic_overlap.toml", spans.pixel, ["--algo", "watkins"]) && spans.shown.includes(": cut into spans where the polygons"),
+        `Watkins's answer to why, its row and span, as hsr why's (pixel ${spans.pixel})`);
+  await page.selectOption("#algorithm", "appel");
+  await page.selectOption("#scene", "cube.toml");
+  result = await renderWith();
   await clickPixel("color", 10, 10);
-  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo watkins: hsr why follows the loops of zbuffer, painter, warnock") &&
-        (await text("#message")) === "", `why for an algorithm whose loops it does not follow: the command line's line, in the box (${await text("#why")})`);
+  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo appel: a line algorithm answers along an edge") &&
+        (await text("#message")) === "", `why at a pixel of a line drawing: the command line's line, in the box (${await text("#why")})`);
 
   await page.selectOption("#algorithm", "zbuffer");
   await page.selectOption('[id="zbuffer.depth-format"]', "unorm16");
