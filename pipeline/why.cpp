@@ -78,7 +78,12 @@ std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling:
     const VisibleSet& kept = keptByStage[s];
     const bool keeps = std::binary_search(kept.triangles.begin(), kept.triangles.end(), id - 1);
     const std::ptrdiff_t keptOfObject = ofObject(kept);
-    events.push_back({id, keeps ? "kept the reference's triangle" : "removed the reference's triangle: " + stages[s].stage->summary,
+    // The variant's own test, in its line of help (hsr list), else the stage's summary.
+    const KnobSpec& variants = stages[s].stage->variantKnob();
+    const auto variant = std::find(variants.choices.begin(), variants.choices.end(), stages[s].variant());
+    const std::size_t which = std::size_t(variant - variants.choices.begin());
+    const std::string test = which < variants.choiceHelp.size() ? variants.choiceHelp[which] : stages[s].stage->summary;
+    events.push_back({id, keeps ? "kept the reference's triangle" : "removed the reference's triangle; its test: " + test,
                       "of its object's " + std::to_string(given) + " triangles given to the stage, it kept " + std::to_string(keptOfObject),
                       std::numeric_limits<double>::quiet_NaN(), false, "culling stage " + stages[s].name()});
     if (!keeps) {
@@ -101,7 +106,7 @@ void checkAnswersWhyAlongEdges(const AlgorithmEntry& algorithm) {
     if (entry.drawLinesWatchingEdge) names += (names.empty() ? "" : ", ") + entry.name;
   if (algorithm.kind != AlgorithmKind::line)
     throw InputError("--edge: " + algorithm.name + " draws no edges; expected --pixel X,Y, or --edge with --algo " + names);
-  throw InputError("--algo " + algorithm.name + ": hsr why --edge follows the walk of " + names + " so far; expected one of those");
+  throw InputError("--algo " + algorithm.name + ": hsr why --edge follows the walk of " + names + " so far; expected --algo " + names);
 }
 
 void checkAnswersWhy(const AlgorithmEntry& algorithm) {
@@ -249,7 +254,9 @@ std::string whyText(const PreparedScene& scene, const std::string& sceneName, co
   for (const PixelAnswer& answer : answers) {
     const std::size_t count = answer.history.size();
     text += "\npixel (" + std::to_string(answer.pixel.x) + ", " + std::to_string(answer.pixel.y) + "): " + std::to_string(count) +
-            (count == 1 ? " event" : " events") + ", in the order the algorithm's loop met them\n";
+            (count == 1 ? " event" : " events") +
+            (configuration.culling.empty() ? ", in the order the algorithm's loop met them\n"
+                                           : ", in the order they happened: the culling stages', then the algorithm's loop's\n");
     for (std::size_t i = 0; i < count; ++i) {
       const PixelEvent& event = answer.history[i];
       text += "  " + std::to_string(i + 1) + ". " + (event.subject.empty() ? triangleOf(scene, event.id) : event.subject) + ": " + event.outcome +
@@ -296,8 +303,11 @@ std::string edgeText(const PreparedScene& scene, const std::string& sceneName, c
     text += "  " + std::to_string(i + 1) + ". at u = " + number(answer.walk[i].u) + ": " + answer.walk[i].outcome + "\n     " +
             answer.walk[i].detail + "\n";
   text += "  its pieces:";
-  for (const LineSegment& piece : answer.pieces)
-    text += " " + number(piece.begin) + " to " + number(piece.end) + " QI " + std::to_string(piece.qi) + (piece.visible() ? " (visible);" : ";");
+  for (std::size_t i = 0; i < answer.pieces.size(); ++i) {
+    const LineSegment& piece = answer.pieces[i];
+    text += std::string(i ? "; " : " ") + number(piece.begin) + " to " + number(piece.end) + " QI " + std::to_string(piece.qi) +
+            (piece.visible() ? " (visible)" : "");
+  }
   text += "\n  the exact line reference: visible " + intervalsText(answer.referenceVisible) + "\n  => " + answer.verdict + "\n";
   return text;
 }

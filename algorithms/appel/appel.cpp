@@ -213,7 +213,7 @@ class QuantitativeInvisibility {
       const int change = forward ? crossing.change : -crossing.change;  // as the walk meets it
       const std::string by = crossing.contour != kUnknown
                                  ? "the contour edge from vertex " + std::to_string(contours_[crossing.contour].from) + " to vertex " +
-                                       std::to_string(contours_[crossing.contour].to) + ", in front of it"
+                                       std::to_string(contours_[crossing.contour].to) + ", which lies in front of this edge there"
                              : crossing.face != kUnknown ? "triangle " + std::to_string(crossing.face) + ", which the edge passes through"
                                                          : "";
       if (crossing.recount)
@@ -223,8 +223,8 @@ class QuantitativeInvisibility {
       else
         witness_->events.push_back({crossing.u, change, std::string(change > 0 ? "+" : "") + std::to_string(change) +
                                                     (change > 0 ? ": it passes behind " : ": it comes out from behind ") + by,
-                                    crossing.contour != kUnknown ? "its projection crosses the contour's; the contour's faces "
-                                                                   "on the side it enters, less those on the side it leaves"
+                                    crossing.contour != kUnknown ? "its projection crosses the contour's: the change is the contour's "
+                                                                   "counted faces on the side the walk enters, less those on the side it leaves"
                                                                  : "a piercing: one side of the edge lies behind the face"});
     }
   }
@@ -537,12 +537,12 @@ class QuantitativeInvisibility {
       witness_->events.push_back(
           {forward ? 0.0 : 1.0, 0, "the walk starts at vertex " + std::to_string(from) + ", of QI " + std::to_string(baseQi_[from]),
            carried ? "QI " + std::to_string(leaving) + " just after it: " + std::to_string(hidingStart) +
-                         (hidingStart == 1 ? " face" : " faces") + " around the vertex hide the edge's start"
+                         (hidingStart == 1 ? " face" : " faces") + " around the vertex hide the edge where the walk leaves it"
                    : "the QI just after it rests on a convention (a sight line along a side): counted afresh by a ray cast"});
       witnessChanges(changes.crossings, forward);
       witness_->events.push_back({forward ? 1.0 : 0.0, 0, "the walk arrives at vertex " + std::to_string(to),
                                   "QI " + std::to_string(arriving) + " just before it, less " + std::to_string(hiding) +
-                                      (hiding == 1 ? " face" : " faces") + " around it hiding the edge's end: vertex QI " +
+                                      (hiding == 1 ? " face" : " faces") + " around it hiding the edge where the walk reaches it: vertex QI " +
                                       std::to_string(base) +
                                       (baseQi_[to] == kUnknownQi ? " (new: the walk goes on from it)"
                                        : baseQi_[to] == base     ? " (as it was already known)"

@@ -175,11 +175,11 @@ class RowResolver {
         "one polygon present: it fills the span",
         "nearest at both ends by more than rounding: it fills the span (two planes' depths differ linearly along it)",
         "one pixel: the nearest at its center fills it",
-        "not decided at both ends; split=none takes the nearest at its left end",
+        "its two ends have different nearest polygons (or are within rounding); split=none takes the nearest at its left end",
         "the nearest differs between its ends (or is within rounding): split"};
     const auto atEnds = [&](std::uint32_t i) {
       char text[100];
-      std::snprintf(text, sizeof text, "at distance %.9g at its first pixel, %.9g at its last", DepthOrder::distanceAt(camera_, triangles_[i], a, y),
+      std::snprintf(text, sizeof text, "at distance %.9g at the span's first pixel, %.9g at its last", DepthOrder::distanceAt(camera_, triangles_[i], a, y),
                     DepthOrder::distanceAt(camera_, triangles_[i], b - 1, y));
       return std::string(text);
     };

@@ -213,7 +213,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"why-edge-on-a-surface-algorithm", kCube + " --edge 3", "--edge: zbuffer draws no edges; expected --pixel X,Y, or --edge with --algo appel",
              "why"},
         Case{"why-edge-not-followed", kCube + " --edge 3 --algo roberts",
-             "--algo roberts: hsr why --edge follows the walk of appel so far; expected one of those", "why"},
+             "--algo roberts: hsr why --edge follows the walk of appel so far; expected --algo appel", "why"},
         Case{"why-edge-not-in-the-drawing", kCube + " --edge 12 --algo appel",
              "--edge 12: the drawing has 12 edges; expected an edge number in [0, 11] or a pixel X,Y near one", "why"},
         Case{"why-edge-near-no-pixel", kCube + " --edge 0,0 --algo appel",

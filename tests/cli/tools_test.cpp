@@ -544,11 +544,11 @@ TEST(Why, FollowsAppelsWalkAlongAnEdge) {
   ASSERT_EQ(walk.exitCode, 0) << walk.output;
   for (const char* line : {"edge 2, the contour edge of \"slab\", from (142.018, 111.719) to (74.226, 135.645) in pixels",
                            "1. at u = 1: the walk starts at vertex 6, of QI 0",
-                           "2. at u = 0.51675934: +1: it passes behind the contour edge from vertex 56 to vertex 66, in front of it",
+                           "2. at u = 0.51675934: +1: it passes behind the contour edge from vertex 56 to vertex 66, which lies in front of this edge there",
                            "4. at u = 0.120809212: -1: it comes out from behind the contour edge from vertex 61 to vertex 71",
                            "5. at u = 0: the walk arrives at vertex 2",
                            "its pieces: 0 to 0.120809212 QI 1; 0.120809212 to 0.196959777 QI 2; 0.196959777 to 0.51675934 QI 1; "
-                           "0.51675934 to 1 QI 0 (visible);",
+                           "0.51675934 to 1 QI 0 (visible)\n",
                            "the exact line reference: visible 0.51675934 to 1", "=> agrees with the exact line reference"})
     EXPECT_NE(walk.output.find(line), std::string::npos) << line << "\n" << walk.output;
   const test::CommandResult near = test::runCommand(why + "160,120 --json");
@@ -565,7 +565,9 @@ TEST(Why, NamesTheCullingStageThatRemovedTheReferencesTriangle) {
   const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/cull_off_center.toml --pixel 72,120 --cull ";
   const test::CommandResult wrong = test::runCommand(why + "backface:view-direction,frustum");
   ASSERT_EQ(wrong.exitCode, 0) << wrong.output;
-  for (const char* line : {"1. culling stage backface:view-direction: removed the reference's triangle: drop triangles facing away from the eye",
+  for (const char* line : {"1. culling stage backface:view-direction: removed the reference's triangle; its test: the normal against the view direction "
+                           "only: wrong under perspective, kept to show why",
+                           "pixel (72, 120): 1 event, in the order they happened: the culling stages', then the algorithm's loop's",
                            "of its object's 12 triangles given to the stage, it kept 4", "shows the background",
                            "=> differs: the reference shows triangle 3 of \"left\", which the culling stage backface:view-direction removed "
                            "before the algorithm ran"})
