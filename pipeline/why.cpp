@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <regex>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -133,23 +134,6 @@ PixelWitness::Pixel pixelOf(const std::string& text, int width, int height) {
 
 namespace {
 
-// The length of u where exactly one of two sorted, disjoint interval lists covers.
-double differingLength(const std::vector<Interval>& a, const std::vector<Interval>& b) {
-  std::vector<double> cuts = {0, 1};
-  for (const auto* list : {&a, &b})
-    for (const Interval& interval : *list) cuts.insert(cuts.end(), {interval.begin, interval.end});
-  std::sort(cuts.begin(), cuts.end());
-  const auto covers = [](const std::vector<Interval>& list, double u) {
-    return std::any_of(list.begin(), list.end(), [&](const Interval& interval) { return interval.begin <= u && u <= interval.end; });
-  };
-  double length = 0;
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-    const double middle = 0.5 * (cuts[i] + cuts[i + 1]);
-    if (covers(a, middle) != covers(b, middle)) length += cuts[i + 1] - cuts[i];
-  }
-  return length;
-}
-
 // The edge "N" or nearest to pixel "X,Y" names, among the drawing's edges.
 std::uint32_t edgeAsked(const std::string& text, const LineSet& lines, double& pixelsAway) {
   std::smatch match;
@@ -206,7 +190,9 @@ EdgeAnswer explainEdge(const PreparedScene& scene, const Configuration& configur
   const LineJudgement judged = algorithm.judgeLines(scene, configuration.knobs, lines, threads, stats);
   const std::vector<EdgeVisibility> exact = edgeVisibility(judged.exact), mine = edgeVisibility(lines);
   answer.referenceVisible = exact[answer.edge].visible;
-  answer.differingPixels = differingLength(mine[answer.edge].visible, answer.referenceVisible) * exact[answer.edge].lengthPixels;
+  // The line error (renderer/reference/metrics.hpp) of this one edge: drawn but hidden, and hidden but visible.
+  const LineError error = lineError(std::span(&mine[answer.edge], 1), std::span(&exact[answer.edge], 1));
+  answer.differingPixels = error.wronglyDrawn + error.wronglyHidden;
   char text[160];
   std::snprintf(text, sizeof text, "differs: it and the exact line reference disagree on %.3g of the edge's %.3g pixels",
                 answer.differingPixels, exact[answer.edge].lengthPixels);
