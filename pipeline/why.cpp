@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <regex>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "renderer/lines/line_drawing.hpp"
+#include "renderer/steps/steps.hpp"
 #include "renderer/util/conventions.hpp"
 #include "renderer/util/error.hpp"
 #include "renderer/util/markup.hpp"
@@ -27,6 +29,14 @@ std::string triangleOf(const PreparedScene& scene, std::uint32_t id) {
   return id == conventions::kBackgroundId ? "the background" : scene.triangleName(id - 1);
 }
 
+// The triangles of a certified tie: "triangle 3 of "a" and triangle 7 of "b"".
+std::string tiedOf(const PreparedScene& scene, const std::vector<std::uint32_t>& tied) {
+  std::string text;
+  for (std::size_t i = 0; i < tied.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == tied.size() ? " and " : ", ") + triangleOf(scene, tied[i]);
+  return text;
+}
+
 // Why the algorithm's answer differs from the reference's, from the history: the
 // reference's triangle lost there (the depth test, a tie kept by drawing order), or was
 // shown and then replaced, or was culled, or never reached the pixel (the rasterizer's
@@ -35,7 +45,8 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
   const std::string expected = triangleOf(scene, answer.reference.id);
   if (answer.shown == answer.reference.id) return "agrees with the exact reference";
   if (answer.reference.ambiguous)
-    return "a certified tie: two or more triangles are exactly nearest here, so any of them is right (the reference names " + expected + ")";
+    return "a certified tie: " + tiedOf(scene, answer.tied) + " are exactly nearest here, so any of them is right (the reference names " +
+           expected + ")";
   const std::string differs = "differs: the reference shows " + expected + ", ";
   if (answer.culled) return differs + "which the culling stage " + answer.culledBy + " removed before the algorithm ran";
   const auto& history = answer.history;
@@ -97,6 +108,13 @@ std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling:
 }
 
 std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgroundId ? "null" : std::to_string(id - 1); }
+// The triangles of a certified tie (or the one winner) as JSON objects: each one's index and name.
+std::string tiedJson(const PreparedScene& scene, const std::vector<std::uint32_t>& tied) {
+  std::string json;
+  for (std::size_t i = 0; i < tied.size(); ++i)
+    json += std::string(i ? ", " : "") + "{\"triangle\": " + jsonTriangle(tied[i]) + ", \"name\": " + jsonString(triangleOf(scene, tied[i])) + "}";
+  return json;
+}
 
 }  // namespace
 
@@ -201,11 +219,36 @@ EdgeAnswer explainEdge(const PreparedScene& scene, const Configuration& configur
 }
 
 std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configuration& configuration,
-                                       const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats) {
+                                       const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats,
+                                       StepAsked* step) {
   PixelWitness witness(pixels, scene.width());
   Visibility visibility;
   std::vector<VisibleSet> keptByStage;
-  const VisibleSet kept = renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness, &keptByStage);
+  // With a step asked about: each step's mark, the events each pixel's history held when
+  // it was recorded (on one thread, so that no loop adds to a history meanwhile).
+  std::vector<std::vector<std::size_t>> marks;
+  std::optional<StepRecorder> steps;
+  if (step) {
+    steps.emplace(step->every, [&](const Step& recorded) {
+      if (marks.size() + 1 == step->number) step->caption = recorded.caption;
+      std::vector<std::size_t>& mark = marks.emplace_back();
+      for (std::size_t asked = 0; asked < witness.count(); ++asked) mark.push_back(witness.history(asked).size());
+    });
+    threads = 1;
+  }
+  const VisibleSet kept =
+      renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness, &keptByStage, steps ? &*steps : nullptr);
+  if (step) {
+    // The last step hsr render --steps records: the finished image, every event behind it.
+    if (marks.size() + 1 == step->number) step->caption = kFinishedImageStep;
+    marks.emplace_back();
+    for (std::size_t asked = 0; asked < witness.count(); ++asked) marks.back().push_back(witness.history(asked).size());
+    step->recorded = marks.size();
+    if (step->number < 1 || step->number > marks.size())
+      throw InputError("--step " + std::to_string(step->number) + ": " + configuration.algorithm->name + " records " +
+                       std::to_string(marks.size()) + " steps here (as hsr render --steps numbers them, with the same size, knobs and --every); expected 1 to " +
+                       std::to_string(marks.size()));
+  }
   Stats referenceStats;
   const SurfaceReference reference(scene, referenceStats);
   const CameraTransform& camera = scene.camera();
@@ -218,12 +261,14 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
     answer.distance = visibility.frame.depth[at];
     SurfaceReference::Counters counters;
     answer.reference = reference.trace(
-        camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters);
+        camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters,
+        &answer.tied);
     answer.culled = answer.reference.id != conventions::kBackgroundId &&
                     !std::binary_search(kept.triangles.begin(), kept.triangles.end(), answer.reference.id - 1);
     // The culling stages ran first: their fate for the reference's triangle leads the history.
     answer.history = cullingEvents(scene, configuration.culling, keptByStage, answer.reference.id, answer.culledBy);
     const std::vector<PixelEvent>& loop = witness.history(asked);
+    answer.eventsByStep = answer.history.size() + (step ? marks[step->number - 1][asked] : loop.size());
     answer.history.insert(answer.history.end(), loop.begin(), loop.end());
     answer.agrees = answer.shown == answer.reference.id || answer.reference.ambiguous;
     answer.verdict = verdictOf(scene, answer);
@@ -233,14 +278,16 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
 }
 
 std::string whyText(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
-                    const std::vector<PixelAnswer>& answers) {
+                    const std::vector<PixelAnswer>& answers, const StepAsked* step) {
   std::string text = "hsr why: " + sceneName + " at " + std::to_string(scene.width()) + "x" + std::to_string(scene.height()) +
                      " with " + configuration.algorithm->name + " (" + configuration.knobs.described() + ")" +
                      (configuration.culling.empty() ? "" : " after culling") + "\n";
+  const std::string stepName = step ? "step " + std::to_string(step->number) : "";
+  if (step) text += "up to " + stepName + " of " + std::to_string(step->recorded) + ": " + step->caption + "\n";
   for (const PixelAnswer& answer : answers) {
-    const std::size_t count = answer.history.size();
+    const std::size_t count = step ? answer.eventsByStep : answer.history.size();
     text += "\npixel (" + std::to_string(answer.pixel.x) + ", " + std::to_string(answer.pixel.y) + "): " + std::to_string(count) +
-            (count == 1 ? " event" : " events") +
+            (count == 1 ? " event" : " events") + (step ? " by " + stepName + " (of " + std::to_string(answer.history.size()) + " in all)" : "") +
             (configuration.culling.empty() ? ", in the order the algorithm's loop met them\n"
                                            : ", in the order they happened: the culling stages', then the algorithm's loop's\n");
     for (std::size_t i = 0; i < count; ++i) {
@@ -249,13 +296,21 @@ std::string whyText(const PreparedScene& scene, const std::string& sceneName, co
               "\n     " + event.detail +
               (std::isnan(event.distance) ? "" : "; distance " + number(event.distance)) + "\n";
     }
-    text += "  shows " + triangleOf(scene, answer.shown) +
+    if (step) {
+      std::uint32_t then = conventions::kBackgroundId;  // what the pixel showed by the step: the last event that showed one
+      for (std::size_t i = 0; i < count; ++i)
+        if (answer.history[i].shown) then = answer.history[i].id;
+      const std::size_t after = answer.history.size() - count;
+      text += "  by " + stepName + " it shows " + triangleOf(scene, then) + "; " + std::to_string(after) +
+              (after == 1 ? " event follows\n" : " events follow\n");
+    }
+    text += std::string(step ? "  in the end it shows " : "  shows ") + triangleOf(scene, answer.shown) +
             (answer.shown == conventions::kBackgroundId ? "" : " at distance " + number(answer.distance)) + "\n";
     const ReferenceHit& hit = answer.reference;
     text += "  the exact reference: " + triangleOf(scene, hit.id) +
             (hit.id == conventions::kBackgroundId ? "" : " at distance " + number(hit.distance)) + ", decided " +
             (hit.usedExact ? "with exact arithmetic (floating point could not)" : "in floating point within its error bounds") +
-            (hit.ambiguous ? "; a certified tie" : "") + "\n";
+            (hit.ambiguous ? "; a certified tie of " + tiedOf(scene, answer.tied) : "") + "\n";
     text += "  => " + answer.verdict + "\n";
   }
   return text;
@@ -319,14 +374,18 @@ std::string edgeJson(const PreparedScene& scene, const std::string& sceneName, c
 }
 
 std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
-                    const std::vector<PixelAnswer>& answers) {
+                    const std::vector<PixelAnswer>& answers, const StepAsked* step) {
   std::string json = "{\"scene\": " + jsonString(sceneName) + ", \"algorithm\": " + jsonString(configuration.algorithm->name) +
                      ", \"knobs\": " + jsonString(configuration.knobs.described()) + ", \"width\": " + std::to_string(scene.width()) +
-                     ", \"height\": " + std::to_string(scene.height()) + ", \"pixels\": [";
+                     ", \"height\": " + std::to_string(scene.height()) + ", \"step\": " +
+                     (step ? "{\"number\": " + std::to_string(step->number) + ", \"of\": " + std::to_string(step->recorded) +
+                                 ", \"caption\": " + jsonString(step->caption) + "}"
+                           : "null") +
+                     ", \"pixels\": [";
   for (std::size_t p = 0; p < answers.size(); ++p) {
     const PixelAnswer& answer = answers[p];
     json += std::string(p ? ", " : "") + "\n  {\"x\": " + std::to_string(answer.pixel.x) + ", \"y\": " + std::to_string(answer.pixel.y) +
-            ", \"history\": [";
+            ", \"events_by_step\": " + std::to_string(answer.eventsByStep) + ", \"history\": [";
     for (std::size_t i = 0; i < answer.history.size(); ++i) {
       const PixelEvent& event = answer.history[i];
       const bool aboutTriangle = event.subject.empty();
@@ -339,8 +398,8 @@ std::string whyJson(const PreparedScene& scene, const std::string& sceneName, co
     json += "],\n   \"shows\": {\"triangle\": " + jsonTriangle(answer.shown) + ", \"name\": " + jsonString(triangleOf(scene, answer.shown)) +
             ", \"distance\": " + jsonNumber(answer.distance) + "},\n   \"reference\": {\"triangle\": " + jsonTriangle(hit.id) +
             ", \"name\": " + jsonString(triangleOf(scene, hit.id)) + ", \"distance\": " + jsonNumber(hit.distance) +
-            ", \"ambiguous\": " + (hit.ambiguous ? "true" : "false") + ", \"exact_fallback\": " + (hit.usedExact ? "true" : "false") +
-            "},\n   \"culled\": " + (answer.culled ? "true" : "false") + ", \"agrees\": " + (answer.agrees ? "true" : "false") +
+            ", \"ambiguous\": " + (hit.ambiguous ? "true" : "false") + ", \"tied\": [" + tiedJson(scene, answer.tied) +
+            "], \"exact_fallback\": " + (hit.usedExact ? "true" : "false") + "},\n   \"culled\": " + (answer.culled ? "true" : "false") + ", \"agrees\": " + (answer.agrees ? "true" : "false") +
             ", \"verdict\": " + jsonString(answer.verdict) + "}";
   }
   return json + "\n]}\n";

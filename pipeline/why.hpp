@@ -25,27 +25,48 @@ struct PixelAnswer {
   std::uint32_t shown = 0;          // the id the algorithm's frame holds there (0: background)
   double distance = 0;              // and its depth (+infinity for the background)
   ReferenceHit reference;           // the exact reference's certified answer
+  std::vector<std::uint32_t> tied;  // the triangles exactly nearest there: its winner, or all of a certified tie
   bool culled = false;              // the reference's triangle was removed by the culling stages
   std::string culledBy;             // and the stage that removed it ("frustum:object")
   // Whether the algorithm is right here: it shows the reference's triangle, or the pixel
-  // is a certified tie (any of the tied triangles is right; the reference names the lowest).
+  // is a certified tie, which the error metrics leave out (any of the tied triangles is
+  // right; the reference names the lowest).
   bool agrees = false;
   std::string verdict;              // one sentence: agreement, or what made the difference
+  std::size_t eventsByStep = 0;     // hsr why --step: how many of the history's events had happened by the step
+};
+
+// hsr why --step N: the histories as they stood when the algorithm recorded the Nth of
+// the steps hsr render --steps records with the same options (--every as there), the
+// finished image the last. The steps are recorded on one thread, their pictures drawn and
+// let go: a step is marked by how many events each history held when it was recorded
+// (the culling stages' events count from the first step).
+struct StepAsked {
+  std::size_t number = 0;  // from 1
+  std::size_t every = 0;   // StepRecorder's stride: 0, about kFramesPerRun per run
+  // What explainPixels found: the steps recorded, and the Nth's caption.
+  std::size_t recorded = 0;
+  std::string caption;
 };
 
 // The algorithm (it must answer why: AlgorithmEntry::answersWhy) run once on the scene at
 // its size with the pixels watched (each inside the image, each once), and the reference
-// traced through each. Stats: the render's, with "why: events recorded".
+// traced through each. Stats: the render's, with "why: events recorded". `step`: hsr why
+// --step's (each answer's eventsByStep set), or null; InputError naming --step when the
+// algorithm recorded fewer steps.
 std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configuration& configuration,
-                                       const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats);
+                                       const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats,
+                                       StepAsked* step = nullptr);
 
 // The answers as a person reads them, and as JSON (one object: the scene, the algorithm
-// and its knobs, the size, and per pixel the history, what it shows, the reference's
-// answer, agrees and the verdict; a triangle is its global index, null for none).
+// and its knobs, the size, the step asked about, and per pixel the history, what it
+// shows, the reference's answer with its tied triangles, agrees and the verdict; a
+// triangle is its global index, null for none). With a step, the text lists the events
+// up to it and what the pixel showed then; the JSON gives each pixel's count up to it.
 std::string whyText(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
-                    const std::vector<PixelAnswer>& answers);
+                    const std::vector<PixelAnswer>& answers, const StepAsked* step = nullptr);
 std::string whyJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration,
-                    const std::vector<PixelAnswer>& answers);
+                    const std::vector<PixelAnswer>& answers, const StepAsked* step = nullptr);
 
 // hsr why --edge: how a line algorithm decided one edge of its drawing, from its own walk
 // (AlgorithmEntry::drawLinesWatchingEdge), beside the exact line reference's answer for

@@ -164,19 +164,22 @@ class NearestHitSearch {
   // The nearest hit among the candidates: the one candidate, or the exact nearest of
   // several (every exact tie kept: the pixel is ambiguous, the lowest id recorded).
   // distance(t) is the ray's view distance at t; query() gives its RayQuery, asked for
-  // only when the exact comparison is needed.
+  // only when the exact comparison is needed. `tied`, when given, receives the winner and
+  // every triangle exactly tied with it, ascending (hsr why's certified answers).
   template <typename Distance, typename Query>
   ReferenceHit nearest(const std::vector<PreparedScene::LeafTriangle>& triangles, SurfaceReference::Counters& counters, Distance&& distance,
-                       Query&& query) {
+                       Query&& query, std::vector<std::uint32_t>* tied = nullptr) {
     decideUndecided(triangles, counters, query);
     ReferenceHit result;
     result.usedExact = usedExact_;
     eraseBeyondHorizon();
     const Candidate* first = spilling_ ? rare_->spilled.data() : inPlace_.data();
     const std::size_t count = spilling_ ? rare_->spilled.size() : std::size_t(count_);
+    if (tied) tied->clear();
     if (count == 0) return result;
     std::uint32_t winner = triangles[first->slot].id;
     double winnerT = first->t;
+    if (tied) tied->push_back(winner);
     if (count > 1) {
       // Depths too close for their bounds: compare exactly, and keep every exact tie.
       ++counters.exactComparisons;
@@ -192,13 +195,16 @@ class NearestHitSearch {
           nearestT = t;
           winner = tri.id;
           ties = 1;
+          if (tied) tied->assign(1, tri.id);
         } else if (*t == *nearestT) {
           winner = std::min(winner, tri.id);
           ++ties;
+          if (tied) tied->push_back(tri.id);
         }
       }
       winnerT = nearestT->truncated();
       result.ambiguous = ties > 1;
+      if (tied) std::sort(tied->begin(), tied->end());
     }
     result.id = winner;
     result.distance = distance(winnerT);

@@ -51,7 +51,8 @@ void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, in
   }
 }
 
-ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const {
+ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& ray, Counters& counters,
+                                     std::vector<std::uint32_t>* tied) const {
   if (bvh_.empty()) return {};
   RayQuery query(ray, camera);
   const RayBoxTest boxes(ray.origin, ray.direction);
@@ -86,7 +87,7 @@ ReferenceHit SurfaceReference::trace(const CameraTransform& camera, const Ray& r
     if (second.entry < kInfinity) stack[size++] = second;
     if (first.entry < kInfinity) stack[size++] = first;
   }
-  return search.nearest(triangles_, counters, [&](double t) { return query.distance(t); }, [&]() -> RayQuery& { return query; });
+  return search.nearest(triangles_, counters, [&](double t) { return query.distance(t); }, [&]() -> RayQuery& { return query; }, tied);
 }
 
 SurfaceReference::Layers SurfaceReference::traceAll(const CameraTransform& camera, const Ray& ray, Counters& counters) const {

@@ -54,7 +54,10 @@ class SurfaceReference {
   struct Counters {
     std::int64_t nodesVisited = 0, triangleTests = 0, exactTriangleTests = 0, exactComparisons = 0;
   };
-  ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters) const;
+  // `tied`, when given, receives the triangles exactly nearest (global index + 1, ascending):
+  // the one winner, every triangle of a certified tie, or none where nothing is met.
+  ReferenceHit trace(const CameraTransform& camera, const Ray& ray, Counters& counters,
+                     std::vector<std::uint32_t>* tied = nullptr) const;
   // trace() for the rays through pixels x0 .. x0 + count - 1 of row y
   // (CameraTransform::rayThroughPixel), by the traversal chosen.
   void traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const;

@@ -231,6 +231,11 @@ TEST(RandomScenes, WhyHistoriesEndOnTheImagesPixelAndTheReferenceAnswersAsTheWho
         ASSERT_EQ(answer.shown, plain.ids[at]) << where;
         ASSERT_EQ(answer.reference.id, judged.truth.frame.ids[at]) << where;
         ASSERT_EQ(answer.reference.ambiguous, judged.truth.ambiguous[at] != 0) << where;
+        // The tied set: the winner alone, every triangle of a certified tie (the reference
+        // naming the lowest), or nothing where nothing is met.
+        ASSERT_TRUE(std::is_sorted(answer.tied.begin(), answer.tied.end())) << where;
+        ASSERT_EQ(answer.tied.size() > 1, answer.reference.ambiguous) << where;
+        ASSERT_EQ(answer.tied.empty() ? conventions::kBackgroundId : answer.tied.front(), answer.reference.id) << where;
         ambiguous += answer.reference.ambiguous;
         exact += answer.reference.usedExact;
         events += long(answer.history.size());
