@@ -43,6 +43,8 @@ struct WhyOptions : ConfiguredScene {
   std::vector<std::string> pixels;  // "X,Y" each
   std::string edge;                 // a line algorithm's edge: "N", or "X,Y" for the one nearest that pixel
   bool json = false;
+  int step = -1;  // hsr why --step N: the histories up to the Nth step hsr render --steps records; -1: not asked
+  int every = 0;  // with --step: as hsr render --every
 };
 int why(const WhyOptions& options);
 

@@ -85,6 +85,12 @@ int main(int argc, char** argv) {
       "--edge", why.edge, "a line algorithm's edge: N (its number in the drawing) or X,Y (the edge passing nearest that pixel)");
   pixel->excludes(edge);
   whyCommand->add_flag("--json", why.json, "print the answer as JSON");
+  whyCommand
+      ->add_option("--step", why.step,
+                   "N: the pixel's history up to the Nth step `hsr render --steps` records with the same options (its steps page's numbers)")
+      ->check(CLI::NonNegativeNumber)
+      ->excludes(edge);
+  whyCommand->add_option("--every", why.every, "with --step: as hsr render --every")->check(CLI::NonNegativeNumber);
 
   hsr::studies::CompareOptions compare;
   CLI::App* compareCommand = app.add_subcommand(

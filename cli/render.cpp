@@ -149,8 +149,8 @@ class StepsFolder {
 
   StepsWriter& writer() { return writer_; }
 
-  void finish(const std::string& title) {
-    writer_.finish(title);
+  void finish(const std::string& title, const PixelQuestion& question) {
+    writer_.finish(title, question);
     written_ = true;
     std::error_code error;
     for (std::size_t stale = writer_.count();; ++stale)
@@ -163,18 +163,30 @@ class StepsFolder {
   bool made_ = false, written_ = false;
 };
 
-// The steps page's title: the command that records the same steps again (its words as
-// they were given, unquoted).
+// The scene and the options that configure its render, as they were given (unquoted):
+// what hsr render and hsr why share.
+std::string configuredWords(const ConfiguredScene& options) {
+  std::string words = options.scene + " --algo " + options.algorithm;
+  if (!options.variant.empty()) words += " --variant " + options.variant;
+  if (!options.depthFormat.empty()) words += " --depth-format " + options.depthFormat;
+  for (const std::string& knob : options.knobs) words += " --knob " + knob;
+  if (!options.cull.empty()) words += " --cull " + options.cull;
+  if (!options.size.empty()) words += " --size " + options.size;
+  return words;
+}
+
+// The steps page's title: the command that records the same steps again.
 std::string stepsTitle(const RenderOptions& options) {
-  std::string command = "hsr render " + options.scene + " --algo " + options.algorithm;
-  if (!options.variant.empty()) command += " --variant " + options.variant;
-  if (!options.depthFormat.empty()) command += " --depth-format " + options.depthFormat;
-  for (const std::string& knob : options.knobs) command += " --knob " + knob;
-  if (!options.cull.empty()) command += " --cull " + options.cull;
-  if (!options.size.empty()) command += " --size " + options.size;
-  if (!options.lineStyle.empty()) command += " --line-style " + options.lineStyle;
-  if (options.every > 0) command += " --every " + std::to_string(options.every);
-  return command + " -o " + options.output + " --steps " + options.steps;
+  return "hsr render " + configuredWords(options) + (options.lineStyle.empty() ? "" : " --line-style " + options.lineStyle) +
+         (options.every > 0 ? " --every " + std::to_string(options.every) : "") + " -o " + options.output + " --steps " + options.steps;
+}
+
+// What a click on a step's pixel asks (the page adds --pixel and --step): hsr why on the
+// same render, for an algorithm that answers why at a pixel.
+PixelQuestion stepsQuestion(const RenderOptions& options, const AlgorithmEntry& algorithm, const PreparedScene& scene) {
+  if (!algorithm.answersWhy) return {};
+  return {"hsr why " + configuredWords(options) + (options.every > 0 ? " --every " + std::to_string(options.every) : ""), scene.width(),
+          scene.height()};
 }
 
 }  // namespace
@@ -235,9 +247,9 @@ int render(const RenderOptions& options) {
   const Frame& frame = rendered.frame;
   if (stepsFolder) {
     const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
-    steps->record(lines ? "the finished drawing" : "the finished image, after the passes that follow visibility (hsr render --explain)",
+    steps->record(lines ? "the finished drawing" : pipeline::kFinishedImageStep,
                   Image{shown.width, shown.height, 4, shown.color});
-    stepsFolder->finish(stepsTitle(options));
+    stepsFolder->finish(stepsTitle(options), stepsQuestion(options, algorithm, *scene.prepared));
   }
   // Why the image or drawing may be wrong somewhere, as the algorithm says.
   const std::string& partial = lines ? rendered.drawing.partial : frame.partial;

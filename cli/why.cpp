@@ -1,6 +1,7 @@
 // hsr why: a pixel's history in an algorithm, beside the exact reference's answer
 // (pipeline/why.hpp).
 #include <cstdio>
+#include <optional>
 #include <set>
 
 #include "algorithms/registry.hpp"
@@ -45,15 +46,23 @@ int why(const WhyOptions& options) {
     if (!seen.insert({pixel.x, pixel.y}).second) throw InputError("--pixel " + text + ": given twice; expected each pixel once");
     pixels.push_back(pixel);
   }
+  std::optional<pipeline::StepAsked> step;
+  if (options.step < 0 && options.every > 0) throw InputError("--every " + std::to_string(options.every) + ": applies only with --step N");
+  if (options.step >= 0) {
+    step.emplace();
+    step->number = std::size_t(options.step);
+    step->every = std::size_t(options.every);
+  }
   Stats stats;
   std::vector<pipeline::PixelAnswer> answers;
   try {
-    answers = pipeline::explainPixels(*scene.prepared, configuration, pixels, options.threads, stats);
+    answers = pipeline::explainPixels(*scene.prepared, configuration, pixels, options.threads, stats, step ? &*step : nullptr);
   } catch (const std::bad_alloc&) {
     throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), configuration.algorithm->name));
   }
-  const std::string shown = options.json ? pipeline::whyJson(*scene.prepared, scene.name, configuration, answers)
-                                         : pipeline::whyText(*scene.prepared, scene.name, configuration, answers);
+  const pipeline::StepAsked* asked = step ? &*step : nullptr;
+  const std::string shown = options.json ? pipeline::whyJson(*scene.prepared, scene.name, configuration, answers, asked)
+                                         : pipeline::whyText(*scene.prepared, scene.name, configuration, answers, asked);
   std::fputs(shown.c_str(), stdout);
   return 0;
 }

@@ -357,10 +357,10 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
                             Visibility& visibility, const culling::PreviousFrame* previous, PixelWitness* why,
-                            std::vector<VisibleSet>* keptByStage) {
+                            std::vector<VisibleSet>* keptByStage, StepRecorder* steps) {
   HSR_CHECK(configuration.algorithm->kind == AlgorithmKind::surface);
   HSR_CHECK(!why || configuration.algorithm->answersWhy);
-  Context context{scene, scene.camera(), configuration, threads, stats, previous, nullptr, std::nullopt, visibility};
+  Context context{scene, scene.camera(), configuration, threads, stats, previous, steps, std::nullopt, visibility};
   context.why = why;
   context.keptByStage = keptByStage;
   runPasses(context, kVisibilityPasses);

@@ -88,9 +88,14 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 // whose histories an algorithm that answers why (AlgorithmEntry::answersWhy) records, and
 // the counter "why: events recorded"; null: none asked, and no provenance work done.
 // keptByStage: where the culling stages' kept sets go, one per stage in order, or null.
+// `steps`: where their steps go, as render()'s (hsr why --step).
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
                             Visibility& visibility, const culling::PreviousFrame* previous = nullptr, PixelWitness* why = nullptr,
-                            std::vector<VisibleSet>* keptByStage = nullptr);
+                            std::vector<VisibleSet>* keptByStage = nullptr, StepRecorder* steps = nullptr);
+
+// The caption of the last step hsr render --steps records for a surface algorithm, after
+// the algorithm's own: the finished image.
+inline constexpr const char* kFinishedImageStep = "the finished image, after the passes that follow visibility (hsr render --explain)";
 
 // The time of each pass that ran, in pipeline order, from a render's Stats.
 struct PassTime {

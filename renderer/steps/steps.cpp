@@ -274,7 +274,7 @@ void StepsWriter::add(const Step& step) {
   frames_.push_back(withCaption(atMostWide(step.picture, kAnimationWidth), step.caption));
 }
 
-void StepsWriter::finish(const std::string& title) {
+void StepsWriter::finish(const std::string& title, const PixelQuestion& question) {
   std::string captions;
   std::vector<PageStep> pageSteps;
   // A loop's steps share their recording place: its lines are read once.
@@ -287,7 +287,7 @@ void StepsWriter::finish(const std::string& title) {
     pageSteps.push_back({stepPictureName(s), caption, place->second});
   }
   files_.addText(folder_ / "captions.txt", captions);
-  files_.addText(folder_ / "steps.html", stepsPage(title, pageSteps));
+  files_.addText(folder_ / "steps.html", stepsPage(title, pageSteps, question));
   // An animation's frames share one size: each is padded with white to the largest.
   int width = 0, height = 0;
   for (const Image& frame : frames_) width = std::max(width, frame.width), height = std::max(height, frame.height);

@@ -22,6 +22,7 @@
 #include "renderer/geometry/camera.hpp"
 #include "renderer/image/frame.hpp"
 #include "renderer/scene/prepare.hpp"
+#include "renderer/steps/steps_page.hpp"
 #include "renderer/util/math.hpp"
 #include "renderer/util/source_location.hpp"
 
@@ -122,8 +123,9 @@ class StepsWriter {
       : folder_(std::move(folder)), framesPerSecond_(framesPerSecond) {}
   void add(const Step& step);
   std::size_t count() const { return frames_.size(); }
-  // `title` heads the steps page: what was run (the command that records these steps again).
-  void finish(const std::string& title);
+  // `title` heads the steps page: what was run (the command that records these steps
+  // again); `question`: what a click on a pixel of its pictures asks (steps_page.hpp).
+  void finish(const std::string& title, const PixelQuestion& question = {});
 
  private:
   std::filesystem::path folder_;

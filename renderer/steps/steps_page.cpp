@@ -57,9 +57,17 @@ button:disabled { color: #aaa; border-color: #ddd; cursor: default; }
 #slider { flex: 1; min-width: 10em; }
 #caption { font-size: 1.05em; margin: .7em 0; min-height: 2.9em; }
 main { display: flex; gap: 1.2em; align-items: flex-start; flex-wrap: wrap; }
-figure { margin: 0; flex: 1 1 520px; min-width: 0; overflow-x: auto; }
-#picture { width: 100%; border: 1px solid #ccc; cursor: zoom-in; image-rendering: pixelated; }
-#picture.actual { width: auto; max-width: none !important; cursor: zoom-out; }
+figure { margin: 0; flex: 1 1 520px; min-width: 0; overflow-x: auto; position: relative; }
+#picture { width: 100%; border: 1px solid #ccc; image-rendering: pixelated; }
+#picture.actual { width: auto; max-width: none !important; }
+#picture.asks { cursor: crosshair; }
+#ring { position: absolute; width: 12px; height: 12px; margin: -8px 0 0 -8px; border: 2px solid #e0e; border-radius: 50%;
+        box-shadow: 0 0 0 1px #fff, inset 0 0 0 1px #fff; pointer-events: none; }
+#pixel { margin: .6em 0; padding: .3em .8em; border-left: 5px solid #e0e; background: #fdf6fd; }
+#pixel h2 { font-size: .95em; margin: .2em 0; }
+#pixel p { margin: .2em 0; }
+#whyCommand { display: block; white-space: pre-wrap; overflow-wrap: anywhere; font-size: 12.5px; background: #fff; border: 1px solid #ddd;
+              padding: .3em .5em; margin: .3em 0; }
 #source { flex: 1 1 480px; min-width: 0; }
 #source h2 { font-size: .95em; font-weight: 600; margin: 0 0 .3em; }
 #source .function { color: #555; font-size: .85em; margin: 0 0 .4em; word-break: break-all; }
@@ -73,6 +81,7 @@ pre span.marked { background: #ffe9a8; }
 constexpr const char* kScript = R"(
 const steps = JSON.parse(document.getElementById("steps").textContent);
 const sources = JSON.parse(document.getElementById("sources").textContent);
+const question = JSON.parse(document.getElementById("question").textContent);
 const $ = (id) => document.getElementById(id);
 const slider = $("slider");
 slider.max = steps.length;
@@ -109,6 +118,7 @@ function show(index) {
   $("next").disabled = $("last").disabled = current === steps.length - 1;
   showSource(sources[step.source]);
   history.replaceState(null, "", `#step=${current + 1}`);
+  showAsked();
   // The next picture is fetched now, so that "next" shows it at once.
   if (current + 1 < steps.length) new Image().src = steps[current + 1].picture;
 }
@@ -132,18 +142,62 @@ $("next").onclick = () => { stop(); show(current + 1); };
 $("last").onclick = () => { stop(); show(steps.length - 1); };
 $("play").onclick = play;
 slider.oninput = () => { stop(); show(Number(slider.value) - 1); };
-// A small picture is shown up to twice its size, each pixel a square of pixels; a click
-// shows it at its actual size.
-$("picture").onload = () => { $("picture").style.maxWidth = `${2 * $("picture").naturalWidth}px`; };
-$("picture").onclick = () => $("picture").classList.toggle("actual");
+// A small picture is shown up to twice its size, each pixel a square of pixels; a double
+// click shows it at its actual size.
+$("picture").onload = () => { $("picture").style.maxWidth = `${2 * $("picture").naturalWidth}px`; placeRing(); };
+$("picture").ondblclick = () => { $("picture").classList.toggle("actual"); placeRing(); };
+
+// A click on a pixel: the command that shows its history up to the step shown. A picture
+// holds the render's pixels from its top left, or side by side panels of the render's
+// size (6 pixels apart); a click elsewhere asks nothing.
+let asked = null;  // [x, y, the picture's x, its y]
+const kPanelGap = 6;
+function pixelUnder(event) {
+  const picture = $("picture"), box = picture.getBoundingClientRect();
+  const [left, top] = [box.left + picture.clientLeft, box.top + picture.clientTop];  // inside its border
+  const [width, height] = [box.width - 2 * picture.clientLeft, box.height - 2 * picture.clientTop];
+  const px = Math.floor(((event.clientX - left) * picture.naturalWidth) / width);
+  const py = Math.floor(((event.clientY - top) * picture.naturalHeight) / height);
+  const panels = (picture.naturalWidth + kPanelGap) / (question.width + kPanelGap);
+  const x = Number.isInteger(panels) ? px % (question.width + kPanelGap) : px;
+  if (px < 0 || py < 0 || x >= question.width || py >= question.height) return null;
+  return [x, py, px, py];
+}
+function placeRing() {
+  const picture = $("picture"), ring = $("ring");
+  ring.hidden = !asked || !picture.naturalWidth;
+  if (ring.hidden) return;
+  const box = picture.getBoundingClientRect();
+  const [width, height] = [box.width - 2 * picture.clientLeft, box.height - 2 * picture.clientTop];
+  ring.style.left = `${picture.offsetLeft + picture.clientLeft + ((asked[2] + 0.5) * width) / picture.naturalWidth}px`;
+  ring.style.top = `${picture.offsetTop + picture.clientTop + ((asked[3] + 0.5) * height) / picture.naturalHeight}px`;
+}
+function showAsked() {
+  $("pixel").hidden = !asked;
+  placeRing();
+  if (!asked) return;
+  $("pixelTitle").textContent = `Pixel (${asked[0]}, ${asked[1]}) up to step ${current + 1}`;
+  $("whyCommand").textContent = `${question.command} --pixel ${asked[0]},${asked[1]} --step ${current + 1}`;
+}
+if (question.command) {
+  $("picture").classList.add("asks");
+  $("picture").onclick = (event) => {
+    const pixel = pixelUnder(event);
+    if (!pixel) return;
+    asked = pixel;
+    showAsked();
+  };
+  $("copy").onclick = () => navigator.clipboard && navigator.clipboard.writeText($("whyCommand").textContent);
+}
+window.addEventListener("resize", placeRing);
 document.addEventListener("keydown", (event) => {
   if (event.target === slider || event.altKey || event.ctrlKey || event.metaKey) return;
   const moves = { ArrowLeft: current - 1, ArrowRight: current + 1, Home: 0, End: steps.length - 1 };
   if (event.key in moves) { stop(); show(moves[event.key]); event.preventDefault(); }
   else if (event.key === " ") { play(); event.preventDefault(); }
 });
-const asked = /^#step=(\d+)$/.exec(location.hash);
-if (steps.length > 0) show(asked ? Number(asked[1]) - 1 : 0);
+const fromAddress = /^#step=(\d+)$/.exec(location.hash);
+if (steps.length > 0) show(fromAddress ? Number(fromAddress[1]) - 1 : 0);
 else {
   $("caption").textContent = "No step was recorded.";
   for (const id of ["first", "previous", "next", "last", "play", "slider"]) $(id).disabled = true;
@@ -197,7 +251,7 @@ SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::
   return excerpt;
 }
 
-std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps) {
+std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps, const PixelQuestion& question) {
   // One excerpt per recording place: a loop's steps share theirs.
   std::map<std::tuple<std::string, int>, std::size_t> places;
   std::string sources = "[", list = "[";
@@ -216,7 +270,9 @@ std::string stepsPage(const std::string& title, const std::vector<PageStep>& ste
          "<header>\n<h1>" + escapedMarkup(title) + "</h1>\n"
          "<p>The algorithm's own state at its textbook steps, and the lines of its code that recorded each. "
          "Also here: <a href=\"steps.gif\">the animation</a>, <a href=\"captions.txt\">the captions</a>. "
-         "<span class=\"hint\">Keys: &larr; &rarr; Home End, space to play; click the picture for its actual size and back.</span></p>\n"
+         "<span class=\"hint\">Keys: &larr; &rarr; Home End, space to play; double-click the picture for its actual size and back" +
+         (question.command.empty() ? std::string(".") : "; click a pixel for the command that shows its history up to the step.") +
+         "</span></p>\n"
          "</header>\n"
          "<nav aria-label=\"steps\">\n"
          "<button id=\"first\" title=\"the first step (Home)\">first</button>\n"
@@ -228,11 +284,19 @@ std::string stepsPage(const std::string& title, const std::vector<PageStep>& ste
          "<input id=\"slider\" type=\"range\" min=\"1\" value=\"1\" aria-label=\"step\">\n"
          "</nav>\n"
          "<p id=\"caption\"></p>\n"
-         "<main>\n<figure><img id=\"picture\" alt=\"\"></figure>\n"
+         "<main>\n<figure><img id=\"picture\" alt=\"\"><div id=\"ring\" hidden></div>\n"
+         "<section id=\"pixel\" hidden aria-live=\"polite\">\n<h2 id=\"pixelTitle\"></h2>\n"
+         "<p>Every event the algorithm's own loops met at this pixel up to this step, and the exact reference's answer "
+         "beside the algorithm's, from the suite's folder:</p>\n"
+         "<code id=\"whyCommand\"></code>\n<button id=\"copy\" title=\"copy the command\">copy</button>\n</section></figure>\n"
          "<section id=\"source\" aria-label=\"the code that recorded the step\">\n<h2 id=\"sourceTitle\"></h2>\n"
          "<p class=\"function\" id=\"function\"></p>\n<pre id=\"code\"></pre>\n</section>\n</main>\n"
          "<script type=\"application/json\" id=\"steps\">" + jsonInScript(list) + "</script>\n"
          "<script type=\"application/json\" id=\"sources\">" + jsonInScript(sources) + "</script>\n"
+         "<script type=\"application/json\" id=\"question\">" +
+         jsonInScript("{\"command\":" + jsonString(question.command) + ",\"width\":" + std::to_string(question.width) +
+                      ",\"height\":" + std::to_string(question.height) + "}") +
+         "</script>\n"
          "<script>" + kScript + "</script>\n</body>\n</html>\n";
 }
 

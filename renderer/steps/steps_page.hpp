@@ -2,8 +2,9 @@
 // a student goes through an algorithm's steps by hand, first / previous / next / last,
 // a slider, "step N of M", the caption, and beside each picture the lines of the
 // algorithm's code that recorded it, read from the file at the line the recording call
-// captured (std::source_location, or its stand-in: renderer/util/source_location.hpp).
-// One self-contained HTML file: it opens from the folder with no server and nothing to
+// captured (std::source_location, or its stand-in: renderer/util/source_location.hpp);
+// and, for an algorithm that answers why, a click on a pixel gives the hsr why command
+// that shows the pixel's history up to the step. One self-contained HTML file: it opens from the folder with no server and nothing to
 // install.
 #pragma once
 
@@ -39,7 +40,17 @@ struct PageStep {
   SourceExcerpt source;
 };
 
+// What a click on a pixel of a step's picture asks about: `command` is hsr why's for the
+// render the steps are of, without --pixel and --step (which the page adds: the pixel's
+// history up to the step shown), and the render is width x height, whose pixels each
+// panel of a picture shows from its top left. An empty command: the algorithm does not
+// answer why at a pixel, and a click asks nothing.
+struct PixelQuestion {
+  std::string command;
+  int width = 0, height = 0;
+};
+
 // The page: `title` heads it; the steps in order.
-std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps);
+std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps, const PixelQuestion& question = {});
 
 }  // namespace hsr

@@ -420,6 +420,28 @@ TEST(Why, FollowsTheZbuffersFragmentsAndSaysWhatLostTheReferencesTriangle) {
   EXPECT_NE(finer.output.find("=> agrees with the exact reference"), std::string::npos) << finer.output;
 }
 
+// hsr why --step N: on far_layers the z-buffer records a step per triangle drawn, then its
+// overdraw and the finished image, as hsr render --steps does; by the first step only the
+// front layer's fragment has reached the pixel, by the third the back's tie too.
+TEST(Why, AtAStepShowsTheEventsBeforeItUnderThatStepsCaption) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/far_layers.toml --pixel 160,120 --size 320x240 --step ";
+  const test::CommandResult first = test::runCommand(why + "1");
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  for (const char* line : {"up to step 1 of 5: step 2, depth test: triangle 1 of 3 drawn (red)",
+                           "pixel (160, 120): 1 event by step 1 (of 2 in all), in the order the algorithm's loop met them",
+                           "1. triangle 0 of \"front\": written: nearer than what the pixel held",
+                           "by step 1 it shows triangle 0 of \"front\"; 1 event follows", "in the end it shows triangle 0 of \"front\" at distance",
+                           "=> agrees with the exact reference"})
+    EXPECT_NE(first.output.find(line), std::string::npos) << line << "\n" << first.output;
+  EXPECT_EQ(first.output.find("2. triangle 2"), std::string::npos) << "the back layer's fragment comes after step 1\n" << first.output;
+  const test::CommandResult third = test::runCommand(why + "3 --json");
+  ASSERT_EQ(third.exitCode, 0) << third.output;
+  for (const char* part : {"\"step\": {\"number\": 3, \"of\": 5, \"caption\": \"step 2, depth test: triangle 3 of 3 drawn", "\"events_by_step\": 2"})
+    EXPECT_NE(third.output.find(part), std::string::npos) << part << "\n" << third.output;
+  const test::CommandResult finished = test::runCommand(why + "5");
+  EXPECT_NE(finished.output.find("up to step 5 of 5: the finished image"), std::string::npos) << finished.output;
+}
+
 // The painter on the cyclic overlap: the depth sort paints "third" (farther) over
 // "second", which the verdict names; Newell's order, with "third" cut, paints them right.
 TEST(Why, FollowsThePaintersPiecesAndSaysWhichPaintedOverTheReferencesTriangle) {

@@ -8,10 +8,12 @@
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/registry.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/why.hpp"
 #include "renderer/image/image_library.hpp"
 #include "renderer/lines/line_drawing.hpp"
 #include "renderer/steps/steps.hpp"
 #include "renderer/steps/steps_page.hpp"
+#include "renderer/util/error.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -156,6 +158,54 @@ INSTANTIATE_TEST_SUITE_P(
                     Configured{"scenes/blocks.toml", "appel", {}, ""},
                     Configured{"scenes/ripple.toml", "floating_horizon", {}, ""},
                     Configured{"scenes/city.toml", "zbuffer", {}, "backface,frustum,occlusion:pyramid=on"}));
+
+// hsr why --step N: each pixel's history up to the Nth step grows with N and is whole at
+// the last, the finished image; the steps are numbered and captioned as hsr render
+// --steps records them (on any number of threads: hsr why records on one).
+TEST_P(EveryAlgorithmsSteps, AskedAtAStepAPixelsHistoryHoldsTheEventsBeforeIt) {
+  const Configured& c = GetParam();
+  const AlgorithmEntry& algorithm = findAlgorithm(c.algorithm);
+  if (!algorithm.answersWhy) {  // a line algorithm: asked at a pixel, it refuses
+    EXPECT_THROW(pipeline::checkAnswersWhy(algorithm), InputError);
+    return;
+  }
+  pipeline::Configuration configuration = pipeline::configurationOf(algorithm, c.knobs);
+  if (!c.cull.empty()) configuration.culling = culling::parsePipeline(c.cull);
+  const test::LoadedScene loaded(test::sourcePath(c.scene), 160);
+  Stats stats;
+  StepRecorder recorder;
+  pipeline::render(loaded.prepared, configuration, 2, stats, nullptr, &recorder);
+  const std::vector<Step>& recorded = recorder.steps();
+  const std::size_t count = recorded.size() + 1;  // and the finished image
+  std::vector<PixelWitness::Pixel> pixels;  // every ninth pixel of every ninth row
+  for (int y = 4; y < loaded.prepared.height(); y += 9)
+    for (int x = 4; x < loaded.prepared.width(); x += 9) pixels.push_back({x, y});
+  const auto eventsBy = [&](std::size_t number) {
+    pipeline::StepAsked step;
+    step.number = number;
+    const std::vector<pipeline::PixelAnswer> answers = pipeline::explainPixels(loaded.prepared, configuration, pixels, 2, stats, &step);
+    EXPECT_EQ(step.recorded, count);
+    EXPECT_EQ(step.caption, number == count ? pipeline::kFinishedImageStep : recorded[number - 1].caption) << number;
+    std::vector<std::size_t> events;
+    for (const pipeline::PixelAnswer& answer : answers) events.push_back(answer.eventsByStep);
+    return std::pair(events, answers);
+  };
+  const auto [first, answers] = eventsBy(1);
+  const std::vector<std::size_t> half = eventsBy((count + 1) / 2).first;
+  const auto [last, whole] = eventsBy(count);
+  std::size_t before = 0, all = 0;
+  for (std::size_t p = 0; p < pixels.size(); ++p) {
+    EXPECT_LE(first[p], half[p]) << p;
+    EXPECT_LE(half[p], last[p]) << p;
+    EXPECT_EQ(last[p], whole[p].history.size()) << p;
+    EXPECT_EQ(answers[p].history.size(), whole[p].history.size()) << "the same run, whatever step is asked";
+    before += first[p], all += last[p];
+  }
+  EXPECT_LT(before, all) << "the first step comes before the loops are done";
+  pipeline::StepAsked beyond;
+  beyond.number = count + 1;
+  EXPECT_THROW(pipeline::explainPixels(loaded.prepared, configuration, pixels, 1, stats, &beyond), InputError);
+}
 
 // What each algorithm records, in its own words.
 std::vector<Step> stepsOf(const std::string& scene, const std::string& algorithm, const KnobSettings& knobs = {},

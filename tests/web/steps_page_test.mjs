@@ -5,6 +5,8 @@
 //     picture, the buttons that cannot go further disabled;
 //   - every step's code is the algorithm's own line that recorded it, marked;
 //   - play runs through the steps and pauses;
+//   - a click on a pixel of a step's picture gives the hsr why command for its history
+//     up to the step, which the native program answers with that step's caption;
 //   - a scene whose names hold markup and a closing </script> shows them as text;
 //   - a screenshot into out/web/steps.png (README's figure).
 //   node tests/web/steps_page_test.mjs            (build/hsr must be built)
@@ -57,6 +59,20 @@ async function expectStep(page, n, captions, how) {
 const browser = await launchBrowser();
 try {
   const { page, consoleErrors } = await openPage(browser);
+  // Clicks pixel (x, y) of the step's picture as shown (inside its border, at least one
+  // CSS pixel a pixel), at the whole CSS pixel nearest its center that lies in it: a
+  // mouse event's position is whole CSS pixels.
+  const clickPicture = async (x, y) => {
+    const [left, top, scale] = await page.$eval("#picture", (picture) => {
+      const r = picture.getBoundingClientRect();
+      return [r.left + picture.clientLeft, r.top + picture.clientTop, (r.width - 2 * picture.clientLeft) / picture.naturalWidth];
+    });
+    const within = (start, n) => {
+      const from = start + n * scale, nearest = Math.round(from + scale / 2);
+      return Math.min(Math.max(nearest, Math.ceil(from)), Math.ceil(from + scale) - 1);
+    };
+    await page.mouse.click(within(left, x), within(top, y));
+  };
 
   // Newell's algorithm on the cyclic overlap: reorders and splits (newell.cpp), pieces
   // painted (painter.cpp), the finished image (cli/render.cpp).
@@ -113,8 +129,37 @@ try {
   await page.waitForTimeout(1000);
   check(at >= 2 && at < m && (await shown(page)).position === paused.position && (await page.textContent("#play")) === "play",
         `play went on to step ${at}, and pause stayed there`);
-  await page.click("#picture");
-  check(await page.$eval("#picture", (picture) => picture.classList.contains("actual")), "a click on the picture shows it at its actual size");
+  await page.dblclick("#picture");
+  check(await page.$eval("#picture", (picture) => picture.classList.contains("actual")), "a double click on the picture shows it at its actual size");
+  await page.dblclick("#picture");
+
+  // A click on a pixel of a step's picture: the hsr why command for that pixel up to the
+  // step, which answers with the events before the step and the step's caption.
+  const askAt = async (n, x, y) => {
+    await page.goto(`${newell.url}#step=${n}`);
+    await page.reload();
+    await page.waitForFunction(() => document.getElementById("picture").complete);
+    await clickPicture(x, y);
+    return page.evaluate(() => ({ hidden: document.getElementById("pixel").hidden, title: document.getElementById("pixelTitle").textContent,
+                                  command: document.getElementById("whyCommand").textContent, ring: !document.getElementById("ring").hidden }));
+  };
+  const middle = Math.ceil(m / 2);
+  const asked = await askAt(middle, 98, 44);
+  const expectedCommand = `hsr why scenes/hard/cyclic_overlap.toml --algo painter --variant newell --pixel 98,44 --step ${middle}`;
+  check(!asked.hidden && asked.ring && asked.title === `Pixel (98, 44) up to step ${middle}` && asked.command === expectedCommand,
+        `a click on pixel (98, 44) at step ${middle} gives its command (${asked.command})`);
+  const answered = spawnSync(join(root, "build", "hsr"), asked.command.split(" ").slice(1), { encoding: "utf8", cwd: root });
+  check(answered.status === 0 && answered.stdout.includes(`up to step ${middle} of ${m}: ${newell.captions[middle - 1]}\n`) &&
+        /pixel \(98, 44\): \d+ events? by step \d+ \(of \d+ in all\)/.test(answered.stdout) && answered.stdout.includes(`  by step ${middle} it shows `),
+        `the command answers with the history up to step ${middle} and that step's caption${answered.status === 0 ? "" : ": " + answered.stderr}`);
+  await page.click("#next");
+  check((await page.textContent("#whyCommand")).endsWith(`--pixel 98,44 --step ${middle + 1}`), "the next step asks the same pixel up to that step");
+  // A picture of panels side by side: a click on the second asks about the same pixel.
+  const panels = await page.$eval("#picture", (picture) => picture.naturalWidth);
+  if (panels > 2 * 200) {
+    const second = await askAt(middle, 200 + 6 + 98, 44);
+    check(second.command === expectedCommand, `a click on the second panel asks about the same pixel (${second.command})`);
+  }
 
   // Names with markup: shown as written, the page still working.
   const folder = join(out, "steps-markup-scene");
@@ -133,7 +178,12 @@ try {
   const zbuffer = recordSteps("steps-zbuffer", ["scenes/counters.toml", "--size", "320x180"]);
   await page.goto(`${zbuffer.url}#step=6`);
   await expectStep(page, 6, zbuffer.captions, "the z-buffer's steps");
-  await page.setViewportSize({ width: 1300, height: 480 });
+  await page.setViewportSize({ width: 1300, height: 560 });
+  await page.dblclick("#picture");  // at its actual size: a CSS pixel is one of its pixels
+  await clickPicture(160, 90);
+  const zbufferCommand = await page.textContent("#whyCommand");
+  check(zbufferCommand === "hsr why scenes/counters.toml --algo zbuffer --size 320x180 --pixel 160,90 --step 6",
+        `the z-buffer's steps: a click asks about the pixel at the step shown (${zbufferCommand})`);
   await page.screenshot({ path: join(out, "steps.png") });
   check(consoleErrors.length === 0, `no error in the console${consoleErrors.length ? ": " + consoleErrors.join("; ") : ""}`);
 } finally {

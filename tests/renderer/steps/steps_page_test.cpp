@@ -78,11 +78,13 @@ TEST(StepsPage, AFileThatIsNotThereIsNamedWithoutLines) {
 TEST(StepsPage, CaptionsAndCodeWithMarkupStayText) {
   SourceExcerpt source = sourceExcerpt(SourceLocation::current());
   source.lines.push_back("  const char* s = \"</script><b>\";");
-  const std::string page = stepsPage("hsr render a<b>.toml", {{"step-0001.png", "caption </script><script>alert(1)</script> & \"quotes\"", source}});
-  // The one script of the page's own and its two JSON blocks, nothing more closed early.
+  const std::string page = stepsPage("hsr render a<b>.toml", {{"step-0001.png", "caption </script><script>alert(1)</script> & \"quotes\"", source}},
+                                     {"hsr why a</script>.toml", 64, 48});
+  // The one script of the page's own and its three JSON blocks, nothing more closed early.
   std::size_t closings = 0;
   for (std::size_t at = page.find("</script>"); at != std::string::npos; at = page.find("</script>", at + 1)) ++closings;
-  EXPECT_EQ(closings, 3u);
+  EXPECT_EQ(closings, 4u);
+  EXPECT_NE(page.find(R"({"command":"hsr why a\u003c/script>.toml","width":64,"height":48})"), std::string::npos);
   EXPECT_NE(page.find(R"(caption \u003c/script>\u003cscript>alert(1)\u003c/script> & \"quotes\")"), std::string::npos);
   EXPECT_NE(page.find("<title>Steps: hsr render a&lt;b&gt;.toml</title>"), std::string::npos);
 }
