@@ -212,6 +212,7 @@ rm -r "$study"
 bash scripts/web_test.sh > /dev/null
 cp out/web/page.png images/figures/web.png
 cp out/web/why.png images/figures/web-why.png  # a pixel asked why about (README "Asking why")
+cp out/web/quiz.png images/figures/web-quiz.png  # quiz me: predict, then reveal (README "Asking why")
 cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Watching an algorithm work")
 cp out/web/report.png images/figures/report.png     # hsr compare's report.html (README "report.html")
 # The speed-up of every algorithm's visibility pass against threads (README "On more

@@ -2,8 +2,9 @@
 # The browser edition: builds the core, every algorithm, the culling stages, the exact
 # reference and the pipeline into WebAssembly with Debian's emscripten (no emscripten
 # "ports": nothing is downloaded), single-threaded, and lays out a static site in
-# web/dist/: index.html, app.js, style.css, hsr_web.js and .wasm, the shipped scenes and
-# models, and scenes.json (each scene's files). Serve it with any static file server:
+# web/dist/: index.html, app.js, quiz.js, style.css, hsr_web.js and .wasm, the shipped
+# scenes and models, and scenes.json (each scene's files). Serve it with any static file
+# server:
 #   python3 -m http.server -d web/dist     then open http://localhost:8000
 #   bash scripts/web.sh            the site
 #   bash scripts/web.sh --node     also hsr_identity for Node.js, the same-bits check without
@@ -22,7 +23,7 @@ cmake --build build-web -j"$(nproc)" --target "${targets[@]}"
 dist=web/dist
 rm -rf "$dist"
 mkdir -p "$dist"
-cp web/index.html web/app.js web/style.css build-web/web/hsr_web.js build-web/web/hsr_web.wasm "$dist/"
+cp web/index.html web/app.js web/quiz.js web/style.css build-web/web/hsr_web.js build-web/web/hsr_web.wasm "$dist/"
 # The shipped scenes (the study levels aside: too large for a page) and the models they
 # name, and the list of each scene's files, the scene first.
 python3 - "$dist" <<'PYTHON'

@@ -327,8 +327,10 @@ function pixelUnder(canvas, event) {
           clamp(((event.clientY - box.top) * canvas.height) / box.height, canvas.height)];
 }
 
-// Asks the module why pixel (x, y) came out as it did, and shows the answer; an algorithm
-// whose loops it does not follow gets the command line's line, in the box.
+// Asks the module why pixel (x, y) came out as it did (for a line drawing, the edge
+// nearest it), and shows the answer, or with "quiz me" ticked asks the student to predict
+// it first (quiz.js); an algorithm whose loops it does not follow gets the command
+// line's line, in the box.
 function why(x, y) {
   const result = JSON.parse(hsr.module.why(x, y));
   for (const canvas of document.querySelectorAll(".images canvas")) {
@@ -340,12 +342,15 @@ function why(x, y) {
   $("whyBox").hidden = false;
   $("whyPixel").textContent = `(${x}, ${y})`;
   if (result.message) {
+    stopQuiz();
     $("why").textContent = asTheStudentNamesIt(result.message);
     $("whyBox").className = "";
     return result;
   }
   $("why").textContent = asTheStudentNamesIt(result.text);
-  $("whyBox").className = result.answer.pixels[0].agrees ? "agrees" : "differs";
+  $("whyBox").className = (result.edge ? result.edge.agrees : result.answer.pixels[0].agrees) ? "agrees" : "differs";
+  if ($("quizMode").checked) startQuiz(result);
+  else stopQuiz();
   return result;
 }
 

@@ -12,7 +12,8 @@
 //                         compare prints, as JSON, the error heat map, and the
 //                         reference's ids (the page toggles between them and the render's)
 //   why(x, y)             how that render decided pixel (x, y), beside the exact
-//                         reference's answer: what hsr why prints, and its --json
+//                         reference's answer: what hsr why prints, and its --json (for
+//                         a line drawing, the edge nearest the pixel: hsr why --edge X,Y)
 //   identity(width, N)    every render's line of hashes (tests/identity): the same bits
 //                         as native, checked in the page
 //
@@ -205,11 +206,21 @@ std::string compare() {
 }
 
 // The last render's pixel (x, y) asked about as hsr why asks (pipeline/why.hpp): {"text":
-// the lines hsr why prints, "answer": its --json}; or the command line's line of error.
+// the lines hsr why prints, "answer": its --json}; for a line drawing, the edge passing
+// nearest the pixel's center, as hsr why --edge X,Y asks ({"text", "edge": its --json});
+// or the command line's line of error.
 std::string why(int x, int y) {
   Shown& last = shown();
   if (!last.algorithm) return messageJson("nothing rendered to ask about");
   try {
+    if (last.algorithm->kind == AlgorithmKind::line) {
+      pipeline::checkAnswersWhyAlongEdges(*last.algorithm);
+      const std::string edge = std::to_string(x) + "," + std::to_string(y);
+      Stats stats;
+      const pipeline::EdgeAnswer answer = pipeline::explainEdge(*last.prepared, last.configuration, edge, 1, stats);
+      return "{\"text\":" + jsonString(pipeline::edgeText(*last.prepared, last.sceneName, last.configuration, answer)) +
+             ",\"edge\":" + pipeline::edgeJson(*last.prepared, last.sceneName, last.configuration, answer) + "}";
+    }
     pipeline::checkAnswersWhy(*last.algorithm);
     const PixelWitness::Pixel pixel = pipeline::pixelOf(std::to_string(x) + "," + std::to_string(y), last.prepared->width(), last.prepared->height());
     Stats stats;

@@ -4,7 +4,11 @@
 //   - the first render (counters at 640x360) drawn, then its error against the exact
 //     reference, each with the time it took from asking for the page (reported, not
 //     asserted: speed is for benchmarks, and this machine is shared);
-//   - a pixel clicked: the page's answer to "why" is hsr why's, line for line;
+//   - a pixel clicked: the page's answer to "why" is hsr why's, line for line (a line
+//     drawing's, hsr why --edge's for the edge nearest the pixel);
+//   - "quiz me": each question judged as the algorithm decided (the native hsr why
+//     --json's answer), a wrong answer said to be wrong, any tied triangle right at a
+//     certified tie, then the whole answer;
 //   - the controls clicked through: another algorithm and its variant, a knob, a culling
 //     stage, each rendering without an error;
 //   - bad input (a broken TOML, an OBJ with a bad face, an absurd size): the one-line
@@ -130,12 +134,125 @@ try {
   const spans = await clickPixel("color", 98, 44);
   check(spans.shown === nativeWhy("hard/cyclic_overlap.toml", spans.pixel, ["--algo", "watkins"]) && spans.shown.includes(": cut into spans where the polygons"),
         `Watkins's answer to why, its row and span, as hsr why's (pixel ${spans.pixel})`);
-  await page.selectOption("#algorithm", "appel");
-  await page.selectOption("#scene", "cube.toml");
+
+  // Predict, then reveal: with "quiz me" ticked a click asks before it shows. Each answer
+  // is judged by what the algorithm recorded; the test answers from the native program's
+  // hsr why --json for the same pixel, wrongly once on purpose.
+  const nativeJson = (scene, pixel, extra) => {
+    const run = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", scene), "--pixel", pixel, "--json", ...extra], { encoding: "utf8" });
+    return JSON.parse(run.stdout).pixels[0];
+  };
+  const quizShown = () => page.evaluate(() => ({
+    progress: document.getElementById("quizProgress").textContent,
+    prompt: document.getElementById("quizQuestion").textContent,
+    choices: [...document.querySelectorAll("#quizChoices button")].map((button) => button.textContent),
+    feedback: document.getElementById("quizFeedback").textContent,
+    whyHidden: document.getElementById("why").hidden,
+    quizHidden: document.getElementById("quiz").hidden,
+  }));
+  // The choice the native answer makes right for the question shown: the triangle shown
+  // (or a tied one), whether the pixel shows the event's triangle after it, or the
+  // decision at the event.
+  const rightChoices = (asked, pixel) => {
+    if (asked.prompt.startsWith("Which triangle")) {
+      return [pixel.shows.name, ...(pixel.reference.ambiguous ? pixel.reference.tied.map((t) => t.name) : [])];
+    }
+    const event = pixel.history[Number(/event (\d+)/.exec(asked.prompt)[1]) - 1];
+    if (asked.prompt.startsWith("After event")) return [event.shown ? "yes" : "no"];
+    return [event.outcome.split(": ")[0]];
+  };
+  // Answers the questions left, each rightly, after `before` were answered (and `wrong`
+  // of them wrongly): how many were asked in all, and what went differently from the
+  // native answer.
+  const takeQuiz = async (pixel, before, wrongBefore) => {
+    const problems = [];
+    let asked = before, wrong = wrongBefore;
+    for (;;) {
+      const now = await quizShown();
+      if (now.choices.length === 0) break;
+      asked += 1;
+      const right = rightChoices(now, pixel);
+      const choice = now.choices.find((c) => right.includes(c));
+      if (choice === undefined) { problems.push(`no right choice offered for "${now.prompt}" (${now.choices.join(" | ")})`); break; }
+      await page.click(`#quizChoices button:nth-child(${now.choices.indexOf(choice) + 1})`);
+      const judged = (await quizShown()).feedback;
+      const meant = right.includes(choice) ? "Right." : "Not quite.";
+      wrong += meant === "Not quite.";
+      if (!judged.startsWith(meant)) problems.push(`"${now.prompt}" answered "${choice}": ${judged}`);
+      await page.click("#quizNext");
+    }
+    const end = await quizShown();
+    if (end.progress !== `${asked - wrong} of ${asked} predicted right` || end.whyHidden) problems.push(`the end: ${end.progress}`);
+    return { asked, wrong, problems };
+  };
+  await page.check("#quizMode");
+  await page.selectOption("#algorithm", "warnock");
   result = await renderWith();
-  await clickPixel("color", 10, 10);
-  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo appel: a line algorithm answers along an edge") &&
-        (await text("#message")) === "", `why at a pixel of a line drawing: the command line's line, in the box (${await text("#why")})`);
+  await page.dblclick("#color");  // at its own size: the click asks about the pixel under it exactly
+  const quizzed = await clickPixel("color", 98, 44);
+  const warnockPixel = nativeJson("hard/cyclic_overlap.toml", "98,44", ["--algo", "warnock"]);
+  const opened = await quizShown();
+  check(quizzed.pixel === "98,44" && !opened.quizHidden && opened.whyHidden && opened.progress === "question 1 of 9" &&
+        opened.prompt === "Which triangle will pixel (98, 44) show?" && opened.choices.includes(warnockPixel.shows.name),
+        `quiz me: a click asks first which triangle the pixel will show, then about 8 of Warnock's 9 events (${opened.progress})`);
+  await page.click(`#quizChoices button:nth-child(${opened.choices.findIndex((c) => c !== warnockPixel.shows.name) + 1})`);
+  const wrongly = await quizShown();
+  check(wrongly.feedback === `Not quite. It shows ${warnockPixel.shows.name}, as the exact reference does.` &&
+        (await page.$$eval("#quizChoices button", (buttons) => buttons.every((b) => b.disabled))),
+        `a wrong answer is said to be wrong, with what the algorithm did (${wrongly.feedback})`);
+  check(await page.$eval("#whyBox", (box) => box.className === ""), "the box does not say whether the algorithm agrees with the reference until the end");
+  await page.locator("#whyBox").screenshot({ path: join(out, "quiz.png") });
+  await page.click("#quizNext");
+  const warnockQuiz = await takeQuiz(warnockPixel, 1, 1);
+  const kinds = await page.evaluate(() => document.getElementById("quizEvents").textContent);
+  check(warnockQuiz.problems.length === 0 && warnockQuiz.asked === 9 && (await text("#quizProgress")) === "8 of 9 predicted right" &&
+        (await text("#why")).split("\n").slice(1).join("\n").trim() === nativeWhy("hard/cyclic_overlap.toml", "98,44", ["--algo", "warnock"]) &&
+        kinds.includes("rule 3, surrounded") && (await page.$eval("#whyBox", (box) => box.className)) === "agrees",
+        `Warnock's windows and its rule asked one by one, each judged as the algorithm decided, then hsr why's answer (${warnockQuiz.problems.join("; ") || "8 of 9"})`);
+  // At a certified tie any of the tied triangles is right: the coplanar case's left pair.
+  await page.selectOption("#algorithm", "zbuffer");
+  await page.selectOption("#scene", "hard/coplanar.toml");
+  await page.fill("#size", "320x180");
+  result = await renderWith();
+  const tie = await clickPixel("color", 125, 95);
+  const tiedPixel = nativeJson("hard/coplanar.toml", "125,95", ["--size", "320x180"]);
+  const other = tiedPixel.reference.tied.map((t) => t.name).find((name) => name !== tiedPixel.shows.name);
+  const tieQuestion = await quizShown();
+  await page.click(`#quizChoices button:nth-child(${tieQuestion.choices.indexOf(other) + 1})`);
+  const tieAnswer = (await quizShown()).feedback;
+  check(tie.pixel === "125,95" && tiedPixel.reference.ambiguous && tieQuestion.choices.includes(other) && tieAnswer.startsWith("Right.") && tieAnswer.includes("a certified tie"),
+        `at a certified tie the tied triangle the z-buffer did not show is right too (${other}: ${tieAnswer})`);
+  await page.click("#quizNext");
+  const zbufferQuiz = await takeQuiz(tiedPixel, 1, 0);
+  check(zbufferQuiz.problems.length === 0 && zbufferQuiz.asked === 1 + tiedPixel.history.length,
+        `and each fragment: does the pixel show it after the depth test (${zbufferQuiz.problems.join("; ") || zbufferQuiz.asked + " asked"})`);
+  await page.uncheck("#quizMode");
+  await page.dblclick("#color");
+
+  // A line drawing answers along the edge nearest the pixel clicked, as hsr why --edge
+  // X,Y does; an algorithm whose walk it does not follow, with the command line's line.
+  await page.selectOption("#algorithm", "appel");
+  await page.selectOption("#scene", "blocks.toml");
+  await page.fill("#size", "320x240");
+  result = await renderWith();
+  const edgeAnswer = await clickPixel("color", 108, 123);
+  const nativeEdge = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", "blocks.toml"), "--size", "320x240", "--algo", "appel",
+                                                           "--edge", edgeAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
+  check(result.message === "" && edgeAnswer.shown === nativeEdge && edgeAnswer.shown.includes("edge 2, the contour edge of \"slab\""),
+        `a click on Appel's drawing answers along the edge nearest it, as hsr why --edge ${edgeAnswer.pixel} does`);
+  await page.check("#quizMode");
+  await clickPixel("color", 108, 123);
+  const crossing = await quizShown();
+  check(crossing.progress === "question 1 of 3" && crossing.prompt.includes("How does the edge's QI change?") &&
+        crossing.choices.join(" | ") === "+1: it passes behind | -1: it comes out from behind",
+        `quiz me on an edge: how its QI changes at each of the walk's 3 crossings (${crossing.prompt})`);
+  await page.uncheck("#quizMode");
+  await page.selectOption("#algorithm", "roberts");
+  result = await renderWith();
+  await clickPixel("color", 108, 123);
+  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo roberts: hsr why --edge follows the walk of appel so far") &&
+        (await text("#message")) === "", `why on a drawing whose walk is not followed: the command line's line, in the box (${await text("#why")})`);
+  await page.fill("#size", "");
 
   await page.selectOption("#algorithm", "zbuffer");
   await page.selectOption('[id="zbuffer.depth-format"]', "unorm16");

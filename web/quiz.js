@@ -1,0 +1,164 @@
+// Predict, then reveal: the page's quiz. With "quiz me" ticked, a click on a pixel asks
+// the student what the algorithm decides there before showing it, one decision at a
+// time, and checks each answer against what the algorithm's own loops recorded when it
+// ran (hsr why's --json, from the module): never a second implementation that could
+// disagree with the algorithm.
+//
+// The questions, built from that answer:
+//   - first, which triangle the pixel will show (at a certified tie, where the exact
+//     reference finds two or more triangles exactly nearest, any of them is right);
+//   - then, event by event in the order the loop met them, with the numbers the loop
+//     decided by: for an event about a triangle, whether the pixel shows that triangle
+//     after it (the depth test, the painter's overdraw, a span's rule, a resolve); for an
+//     event about something else (Warnock's window, a BVH node, a culling stage), which of
+//     the decisions made at this pixel the loop made there;
+//   - for a line drawing, along the edge nearest the pixel (hsr why --edge X,Y): at each
+//     crossing of a contour, how the edge's quantitative invisibility changes.
+// At most kStepQuestions events are asked about (those about triangles first, then the
+// last of the others); the rest are revealed as the quiz passes them. At the end, the whole answer, as hsr why prints it.
+"use strict";
+
+const kStepQuestions = 8;
+
+// "lost the depth test: farther than ..." -> "lost the depth test": a decision without the
+// reasons that follow it, so that one choice does not give the next away.
+const decisionOf = (outcome) => outcome.split(": ")[0];
+
+// The choices of a question: each a label and whether it is right; in the order given,
+// without repeats.
+function choicesOf(labels, isRight) {
+  return [...new Set(labels)].map((label) => ({ label, right: isRight(label) }));
+}
+
+// A pixel's quiz, from hsr why's answer for one pixel of a surface algorithm.
+function pixelQuiz(pixel) {
+  const history = pixel.history;
+  const named = history.filter((event) => event.triangle !== null).map((event) => event.name);
+  const tied = pixel.reference.ambiguous ? pixel.reference.tied.map((t) => t.name) : [];
+  const rightTriangle = (name) => name === pixel.shows.name || tied.includes(name);
+  const first = {
+    prompt: `Which triangle will pixel (${pixel.x}, ${pixel.y}) show?`,
+    context: `The algorithm met ${history.length} ${history.length === 1 ? "event" : "events"} here; the triangles among them are the choices.`,
+    choices: choicesOf([...named, ...tied, pixel.reference.name, "the background"], rightTriangle),
+    answer: `It shows ${pixel.shows.name}` +
+            (tied.length ? `: a certified tie of ${tied.join(" and ")}, exactly nearest, so any of them is right.`
+                         : pixel.agrees ? ", as the exact reference does." : `; the exact reference shows ${pixel.reference.name}.`),
+  };
+  // The decisions made here about things that are not triangles (windows, nodes, stages).
+  const otherDecisions = history.filter((event) => event.triangle === null).map((event) => decisionOf(event.outcome));
+  // The events about triangles first, then the others from the last back (the last
+  // window, node or stage is the one that decided), kStepQuestions of them in the loop's order.
+  const aboutTriangles = history.flatMap((event, index) => (event.triangle !== null ? [index] : []));
+  const aboutOthers = new Set(otherDecisions).size > 1 ? history.flatMap((event, index) => (event.triangle === null ? [index] : [])).reverse() : [];
+  const asked = [...aboutTriangles, ...aboutOthers].slice(0, kStepQuestions).sort((a, b) => a - b);
+  const steps = asked.map((index) => {
+    const event = history[index];
+    const at = `Event ${index + 1} of ${history.length}: ${event.name}. ${event.detail}.`;
+    if (event.triangle !== null) {
+      return {
+        event: index,
+        prompt: `After event ${index + 1}, does the pixel show ${event.name}?`,
+        context: at,
+        choices: [{ label: "yes", right: event.shown }, { label: "no", right: !event.shown }],
+        answer: `${event.shown ? "Yes" : "No"}: ${event.outcome}.`,
+      };
+    }
+    const decision = decisionOf(event.outcome);
+    const others = otherDecisions.filter((other) => other !== decision);
+    return {
+      event: index,
+      prompt: `What does the loop decide at event ${index + 1}?`,
+      context: at,
+      choices: choicesOf([decision, ...others].slice(0, 4).sort(), (label) => label === decision),
+      answer: `${event.outcome}.`,
+    };
+  });
+  return { events: history.map((event) => `${event.name}: ${event.outcome}`), questions: [first, ...steps] };
+}
+
+// An edge's quiz, from hsr why --edge's answer: its quantitative invisibility at each
+// crossing the walk met.
+function edgeQuiz(edge) {
+  const change = (value) => (value > 0 ? `+${value}: it passes behind` : `${value}: it comes out from behind`);
+  const steps = edge.walk.map((event, index) => ({ event, index })).filter(({ event }) => event.change !== 0).slice(0, kStepQuestions)
+    .map(({ event, index }) => ({
+      event: index,
+      prompt: `At u = ${event.u.toPrecision(4)} the walk crosses a contour's projection. How does the edge's QI change?`,
+      context: `Event ${index + 1} of ${edge.walk.length} along ${edge.name}. ${event.detail}.`,
+      choices: choicesOf([change(1), change(-1), change(event.change)].sort(), (label) => label === change(event.change)),
+      answer: `${event.outcome}.`,
+    }));
+  return { events: edge.walk.map((event) => `at u = ${event.u.toPrecision(4)}: ${event.outcome}`), questions: steps };
+}
+
+// The quiz in progress: its questions, the one shown, the answers right so far, and
+// whether the algorithm agrees with the reference there (shown only at the end).
+const quiz = { questions: [], events: [], current: 0, right: 0, answered: false, verdict: "" };
+
+// The events the quiz has passed: every one before the question shown, each with what
+// the loop decided (what is asked stays hidden until answered).
+function showPassedEvents(upTo) {
+  const passed = quiz.events.slice(0, upTo);
+  $("quizEvents").replaceChildren(...passed.map((text, i) => element("li", { textContent: `${i + 1}. ${asTheStudentNamesIt(text)}` })));
+}
+
+function showQuestion() {
+  quiz.answered = false;
+  const question = quiz.questions[quiz.current];
+  showPassedEvents(question.event ?? 0);
+  $("quizProgress").textContent = `question ${quiz.current + 1} of ${quiz.questions.length}`;
+  $("quizContext").textContent = asTheStudentNamesIt(question.context);
+  $("quizQuestion").textContent = asTheStudentNamesIt(question.prompt);
+  $("quizChoices").replaceChildren(...question.choices.map((choice) => {
+    const button = element("button", { type: "button", textContent: asTheStudentNamesIt(choice.label) });
+    button.addEventListener("click", () => answer(choice, button));
+    return button;
+  }));
+  $("quizFeedback").textContent = "";
+  $("quizFeedback").className = "";
+  $("quizNext").hidden = true;
+}
+
+// Checks a choice against what the algorithm did, says so, and offers the next question.
+function answer(choice, button) {
+  if (quiz.answered) return;
+  quiz.answered = true;
+  quiz.right += choice.right;
+  for (const other of $("quizChoices").children) other.disabled = true;
+  button.classList.add("chosen");
+  const question = quiz.questions[quiz.current];
+  $("quizFeedback").textContent = `${choice.right ? "Right." : "Not quite."} ${asTheStudentNamesIt(question.answer)}`;
+  $("quizFeedback").className = choice.right ? "right" : "wrong";
+  $("quizNext").textContent = quiz.current + 1 < quiz.questions.length ? "next question" : "see the whole answer";
+  $("quizNext").hidden = false;
+  $("quizNext").focus();
+}
+
+function nextQuestion() {
+  if (++quiz.current < quiz.questions.length) return showQuestion();
+  showPassedEvents(quiz.events.length);
+  $("quizProgress").textContent = `${quiz.right} of ${quiz.questions.length} predicted right`;
+  for (const part of ["quizContext", "quizQuestion", "quizChoices", "quizFeedback"]) $(part).replaceChildren();
+  $("quizNext").hidden = true;
+  $("why").hidden = false;
+  $("whyBox").className = quiz.verdict;
+}
+
+// Starts the quiz on the module's answer to why (a pixel's, or an edge's); an answer with
+// nothing to ask is shown at once.
+function startQuiz(result) {
+  const built = result.edge ? edgeQuiz(result.edge) : pixelQuiz(result.answer.pixels[0]);
+  Object.assign(quiz, built, { current: 0, right: 0, verdict: $("whyBox").className });
+  $("quiz").hidden = quiz.questions.length === 0;
+  $("why").hidden = quiz.questions.length > 0;
+  if (quiz.questions.length === 0) return;
+  $("whyBox").className = "";  // agreeing or not is for the end
+  showQuestion();
+}
+
+function stopQuiz() {
+  $("quiz").hidden = true;
+  $("why").hidden = false;
+}
+
+$("quizNext").addEventListener("click", nextQuestion);
