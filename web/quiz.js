@@ -73,7 +73,8 @@ function pixelQuiz(pixel) {
       answer: `${event.outcome}.`,
     };
   });
-  return { events: history.map((event) => `${event.name}: ${event.outcome}`), questions: [first, ...steps] };
+  // A pixel where nothing was met offers one choice: nothing to predict there.
+  return { events: history.map((event) => `${event.name}: ${event.outcome}`), questions: [...(first.choices.length > 1 ? [first] : []), ...steps] };
 }
 
 // An edge's quiz, from hsr why --edge's answer: its quantitative invisibility at each
