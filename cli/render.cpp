@@ -182,10 +182,11 @@ std::string stepsTitle(const RenderOptions& options) {
 }
 
 // What a click on a step's pixel asks (the page adds --pixel and --step): hsr why on the
-// same render, for an algorithm that answers why at a pixel.
+// same render, for an algorithm that answers why at a pixel, as README's commands run it
+// from the suite's folder.
 PixelQuestion stepsQuestion(const RenderOptions& options, const AlgorithmEntry& algorithm, const PreparedScene& scene) {
   if (!algorithm.answersWhy) return {};
-  return {"hsr why " + configuredWords(options) + (options.every > 0 ? " --every " + std::to_string(options.every) : ""), scene.width(),
+  return {"./build/hsr why " + configuredWords(options) + (options.every > 0 ? " --every " + std::to_string(options.every) : ""), scene.width(),
           scene.height()};
 }
 

@@ -332,6 +332,7 @@ function pixelUnder(canvas, event) {
 // it first (quiz.js); an algorithm whose loops it does not follow gets the command
 // line's line, in the box.
 function why(x, y) {
+  if ($("quizMode").checked && quizUnderWayAt(x, y)) return null;  // a double click's second click: the quiz goes on
   const result = JSON.parse(hsr.module.why(x, y));
   for (const canvas of document.querySelectorAll(".images canvas")) {
     const marker = canvas.nextElementSibling;  // the pixel asked about, ringed on every image
@@ -349,7 +350,7 @@ function why(x, y) {
   }
   $("why").textContent = asTheStudentNamesIt(result.text);
   $("whyBox").className = (result.edge ? result.edge.agrees : result.answer.pixels[0].agrees) ? "agrees" : "differs";
-  if ($("quizMode").checked) startQuiz(result);
+  if ($("quizMode").checked) startQuiz(result, [x, y]);
   else stopQuiz();
   return result;
 }
@@ -393,6 +394,11 @@ async function start() {
   for (const figure of document.querySelectorAll(".images figure")) {
     const canvas = figure.querySelector("canvas");
     canvas.addEventListener("click", (event) => { if (hsr.module && canvas.width > 1) why(...pixelUnder(canvas, event)); });
+    // The pixel under the pointer, named, so that a student can aim at one.
+    canvas.addEventListener("mousemove", (event) => {
+      if (canvas.width > 1) $("hover").textContent = `pixel (${pixelUnder(canvas, event).join(", ")}) under the pointer`;
+    });
+    canvas.addEventListener("mouseleave", () => { $("hover").textContent = ""; });
     figure.addEventListener("dblclick", () => figure.classList.toggle("large"));
   }
   for (const button of document.querySelectorAll("#against .toggle button")) {

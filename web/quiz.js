@@ -23,6 +23,11 @@ const kStepQuestions = 8;
 // "lost the depth test: farther than ..." -> "lost the depth test": a decision without the
 // reasons that follow it, so that one choice does not give the next away.
 const decisionOf = (outcome) => outcome.split(": ")[0];
+// "6 polygons meet it (...); more than one meets it and none surrounds it" -> its numbers,
+// without the conclusion drawn from them after the semicolon: what the student decides from.
+const numbersOf = (detail) => detail.split("; ")[0];
+// A triangle with its distance along the view axis where the loop met it, when it has one.
+const withDistance = (name, distance) => (Number.isFinite(distance) ? `${name}, ${distance.toPrecision(6)} away` : name);
 
 // The choices of a question: each a label and whether it is right; in the order given,
 // without repeats.
@@ -36,10 +41,15 @@ function pixelQuiz(pixel) {
   const named = history.filter((event) => event.triangle !== null).map((event) => event.name);
   const tied = pixel.reference.ambiguous ? pixel.reference.tied.map((t) => t.name) : [];
   const rightTriangle = (name) => name === pixel.shows.name || tied.includes(name);
+  // Each triangle's distance where the loop first met it here (a choice's label shows it).
+  const distances = new Map();
+  for (const event of history) if (event.triangle !== null && !distances.has(event.name)) distances.set(event.name, event.distance);
+  const names = [...new Set([...named, ...tied, pixel.reference.name, "the background"])];
   const first = {
     prompt: `Which triangle will pixel (${pixel.x}, ${pixel.y}) show?`,
-    context: `The algorithm met ${history.length} ${history.length === 1 ? "event" : "events"} here; the triangles among them are the choices.`,
-    choices: choicesOf([...named, ...tied, pixel.reference.name, "the background"], rightTriangle),
+    context: `The algorithm met ${history.length} ${history.length === 1 ? "event" : "events"} here; the triangles among them are the choices, ` +
+             "each with its distance along the view axis where it was met.",
+    choices: names.map((name) => ({ label: withDistance(name, distances.get(name)), right: rightTriangle(name) })),
     answer: `It shows ${pixel.shows.name}` +
             (tied.length ? `: a certified tie of ${tied.join(" and ")}, exactly nearest, so any of them is right.`
                          : pixel.agrees ? ", as the exact reference does." : `; the exact reference shows ${pixel.reference.name}.`),
@@ -53,7 +63,7 @@ function pixelQuiz(pixel) {
   const asked = [...aboutTriangles, ...aboutOthers].slice(0, kStepQuestions).sort((a, b) => a - b);
   const steps = asked.map((index) => {
     const event = history[index];
-    const at = `Event ${index + 1} of ${history.length}: ${event.name}. ${event.detail}.`;
+    const at = `Event ${index + 1} of ${history.length}: ${event.name}. ${numbersOf(event.detail)}.`;
     if (event.triangle !== null) {
       return {
         event: index,
@@ -94,7 +104,7 @@ function edgeQuiz(edge) {
 
 // The quiz in progress: its questions, the one shown, the answers right so far, and
 // whether the algorithm agrees with the reference there (shown only at the end).
-const quiz = { questions: [], events: [], current: 0, right: 0, answered: false, verdict: "" };
+const quiz = { questions: [], events: [], current: 0, right: 0, answered: false, verdict: "", at: null };
 
 // The events the quiz has passed: every one before the question shown, each with what
 // the loop decided (what is asked stays hidden until answered).
@@ -137,25 +147,33 @@ function answer(choice, button) {
 
 function nextQuestion() {
   if (++quiz.current < quiz.questions.length) return showQuestion();
-  showPassedEvents(quiz.events.length);
-  $("quizProgress").textContent = `${quiz.right} of ${quiz.questions.length} predicted right`;
-  for (const part of ["quizContext", "quizQuestion", "quizChoices", "quizFeedback"]) $(part).replaceChildren();
+  $("quizProgress").textContent = `${quiz.right} of ${quiz.questions.length} predicted right; the whole answer:`;
+  for (const part of ["quizEvents", "quizContext", "quizQuestion", "quizChoices", "quizFeedback"]) $(part).replaceChildren();
   $("quizNext").hidden = true;
   $("why").hidden = false;
   $("whyBox").className = quiz.verdict;
 }
 
-// Starts the quiz on the module's answer to why (a pixel's, or an edge's); an answer with
-// nothing to ask is shown at once.
-function startQuiz(result) {
+// Starts the quiz on the module's answer to why (a pixel's, or an edge's) for the pixel
+// clicked, `at` ([x, y]); an answer with nothing to ask is shown at once.
+function startQuiz(result, at) {
   const built = result.edge ? edgeQuiz(result.edge) : pixelQuiz(result.answer.pixels[0]);
-  Object.assign(quiz, built, { current: 0, right: 0, verdict: $("whyBox").className });
-  $("quiz").hidden = quiz.questions.length === 0;
+  Object.assign(quiz, built, { current: 0, right: 0, verdict: $("whyBox").className, at });
+  $("quiz").hidden = false;
   $("why").hidden = quiz.questions.length > 0;
-  if (quiz.questions.length === 0) return;
+  if (quiz.questions.length === 0) {
+    for (const part of ["quizEvents", "quizContext", "quizQuestion", "quizChoices", "quizFeedback"]) $(part).replaceChildren();
+    $("quizNext").hidden = true;
+    $("quizProgress").textContent = "Nothing to predict here: the algorithm met at most one thing at this pixel. Its answer:";
+    return;
+  }
   $("whyBox").className = "";  // agreeing or not is for the end
   showQuestion();
 }
+
+// Whether a quiz is under way at pixel (x, y): a second click there (a double click's)
+// leaves it as it is.
+const quizUnderWayAt = (x, y) => !$("quiz").hidden && quiz.current < quiz.questions.length && quiz.at?.[0] === x && quiz.at?.[1] === y;
 
 function stopQuiz() {
   $("quiz").hidden = true;

@@ -187,7 +187,15 @@ if (question.command) {
     asked = pixel;
     showAsked();
   };
-  $("copy").onclick = () => navigator.clipboard && navigator.clipboard.writeText($("whyCommand").textContent);
+  $("copy").onclick = async () => {
+    try {
+      await navigator.clipboard.writeText($("whyCommand").textContent);
+      $("copy").textContent = "copied";
+    } catch {
+      $("copy").textContent = "select the command to copy it";  // a page opened from a file may not reach the clipboard
+    }
+    setTimeout(() => { $("copy").textContent = "copy"; }, 1500);
+  };
 }
 window.addEventListener("resize", placeRing);
 document.addEventListener("keydown", (event) => {
@@ -202,6 +210,11 @@ else {
   $("caption").textContent = "No step was recorded.";
   for (const id of ["first", "previous", "next", "last", "play", "slider"]) $(id).disabled = true;
 }
+// A link to another step followed in the open page (or #step=N typed into its address).
+window.addEventListener("hashchange", () => {
+  const asked = /^#step=(\d+)$/.exec(location.hash);
+  if (asked && steps.length > 0 && Number(asked[1]) - 1 !== current) { stop(); show(Number(asked[1]) - 1); }
+});
 )";
 
 }  // namespace

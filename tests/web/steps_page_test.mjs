@@ -102,6 +102,9 @@ try {
   await page.goto(`${newell.url}#step=5`);
   await page.reload();
   await expectStep(page, 5, newell.captions, "a link to step 5");
+  await page.evaluate(() => { location.hash = "#step=9"; });
+  await page.waitForFunction(() => document.getElementById("position").textContent.startsWith("step 9 "));
+  await expectStep(page, 9, newell.captions, "#step=9 put into the open page's address");
 
   // Every step's code: the algorithm's line that recorded it, marked, in the file it names.
   const wrongSources = [];
@@ -145,10 +148,10 @@ try {
   };
   const middle = Math.ceil(m / 2);
   const asked = await askAt(middle, 98, 44);
-  const expectedCommand = `hsr why scenes/hard/cyclic_overlap.toml --algo painter --variant newell --pixel 98,44 --step ${middle}`;
+  const expectedCommand = `./build/hsr why scenes/hard/cyclic_overlap.toml --algo painter --variant newell --pixel 98,44 --step ${middle}`;
   check(!asked.hidden && asked.ring && asked.title === `Pixel (98, 44) up to step ${middle}` && asked.command === expectedCommand,
         `a click on pixel (98, 44) at step ${middle} gives its command (${asked.command})`);
-  const answered = spawnSync(join(root, "build", "hsr"), asked.command.split(" ").slice(1), { encoding: "utf8", cwd: root });
+  const answered = spawnSync(asked.command.split(" ")[0], asked.command.split(" ").slice(1), { encoding: "utf8", cwd: root });
   check(answered.status === 0 && answered.stdout.includes(`up to step ${middle} of ${m}: ${newell.captions[middle - 1]}\n`) &&
         /pixel \(98, 44\): \d+ events? by step \d+ \(of \d+ in all\)/.test(answered.stdout) && answered.stdout.includes(`  by step ${middle} it shows `),
         `the command answers with the history up to step ${middle} and that step's caption${answered.status === 0 ? "" : ": " + answered.stderr}`);
@@ -182,7 +185,7 @@ try {
   await page.dblclick("#picture");  // at its actual size: a CSS pixel is one of its pixels
   await clickPicture(160, 90);
   const zbufferCommand = await page.textContent("#whyCommand");
-  check(zbufferCommand === "hsr why scenes/counters.toml --algo zbuffer --size 320x180 --pixel 160,90 --step 6",
+  check(zbufferCommand === "./build/hsr why scenes/counters.toml --algo zbuffer --size 320x180 --pixel 160,90 --step 6",
         `the z-buffer's steps: a click asks about the pixel at the step shown (${zbufferCommand})`);
   await page.screenshot({ path: join(out, "steps.png") });
   check(consoleErrors.length === 0, `no error in the console${consoleErrors.length ? ": " + consoleErrors.join("; ") : ""}`);
