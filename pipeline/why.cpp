@@ -356,7 +356,9 @@ std::string edgeText(const PreparedScene& scene, const std::string& sceneName, c
 std::string edgeJson(const PreparedScene& scene, const std::string& sceneName, const Configuration& configuration, const EdgeAnswer& answer) {
   std::string json = "{\"scene\": " + jsonString(sceneName) + ", \"algorithm\": " + jsonString(configuration.algorithm->name) +
                      ", \"knobs\": " + jsonString(configuration.knobs.described()) + ", \"edge\": " + std::to_string(answer.edge) +
-                     ", \"name\": " + jsonString(edgeTitle(scene, answer)) +
+                     ", \"name\": " + jsonString(edgeTitle(scene, answer)) + ", \"from\": [" + jsonNumber(answer.drawn.pixelFrom.x) + ", " +
+                     jsonNumber(answer.drawn.pixelFrom.y) + "], \"to\": [" + jsonNumber(answer.drawn.pixelTo.x) + ", " +
+                     jsonNumber(answer.drawn.pixelTo.y) + "]" +
                      ", \"pixels_away\": " + (answer.pixelsAway >= 0 ? jsonNumber(answer.pixelsAway) : "null") + ", \"walk\": [";
   for (std::size_t i = 0; i < answer.walk.size(); ++i)
     json += std::string(i ? ", " : "") + "\n  {\"u\": " + jsonNumber(answer.walk[i].u) + ", \"change\": " +

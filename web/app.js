@@ -282,6 +282,7 @@ async function render() {
     Object.assign(against, { width, height, views: {} });
     showAgainst(against.chosen);
     $("whyBox").hidden = true;  // it answered for the render before
+    showEdge(null);
     for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
     showMetrics(result, null);
     $("note").textContent = result.kind === "line" ? "A line drawing: its colour is the drawing, and it has no ids or depth." : "";
@@ -340,6 +341,7 @@ function why(x, y) {
     marker.style.top = `${(100 * (y + 0.5)) / canvas.height}%`;
     marker.hidden = canvas.width <= 1;
   }
+  showEdge(result.edge);
   $("whyBox").hidden = false;
   $("whyPixel").textContent = `(${x}, ${y})`;
   if (result.message) {
@@ -353,6 +355,33 @@ function why(x, y) {
   if ($("quizMode").checked) startQuiz(result, [x, y]);
   else stopQuiz();
   return result;
+}
+
+// The edge a line drawing's answer is about, drawn over the drawing and its difference
+// with the reference: a line from where the walk starts (a dot) to where it arrives, and a
+// tick at each place its QI changed; none for a pixel's answer.
+function showEdge(edge) {
+  for (const overlay of document.querySelectorAll(".images svg.edge")) overlay.remove();
+  if (!edge) return;
+  const start = edge.walk.length ? edge.walk[0].u : 0;
+  const at = (u) => [edge.from[0] + u * (edge.to[0] - edge.from[0]), edge.from[1] + u * (edge.to[1] - edge.from[1])];
+  for (const id of ["color", "error"]) {
+    const canvas = $(id);
+    if (canvas.width <= 1) continue;
+    const svg = document.createElementNS("http://www.w3.org/2000/svg", "svg");
+    svg.setAttribute("class", "edge");
+    svg.setAttribute("viewBox", `0 0 ${canvas.width} ${canvas.height}`);
+    const shape = (name, attributes) => {
+      const made = document.createElementNS("http://www.w3.org/2000/svg", name);
+      for (const [key, value] of Object.entries(attributes)) made.setAttribute(key, value);
+      svg.append(made);
+    };
+    const [x0, y0] = at(start), [x1, y1] = at(1 - start);
+    shape("line", { x1: x0, y1: y0, x2: x1, y2: y1 });
+    shape("circle", { cx: x0, cy: y0, r: 3, class: "start" });
+    for (const event of edge.walk) if (event.change !== 0) shape("circle", { cx: at(event.u)[0], cy: at(event.u)[1], r: 2.5, class: "change" });
+    canvas.parentElement.append(svg);
+  }
 }
 
 // ---- The same bits as native: every render's line of hashes (tests/identity), which a

@@ -575,7 +575,7 @@ TEST(Why, FollowsAppelsWalkAlongAnEdge) {
     EXPECT_NE(walk.output.find(line), std::string::npos) << line << "\n" << walk.output;
   const test::CommandResult near = test::runCommand(why + "160,120 --json");
   ASSERT_EQ(near.exitCode, 0) << near.output;
-  for (const char* part : {"\"edge\": 16,", "\"pixels_away\": 0.94", "\"agrees\": true"})
+  for (const char* part : {"\"edge\": 16,", "\"pixels_away\": 0.94", "\"agrees\": true", "\"from\": [159.586396", "\"to\": [159.557976"})
     EXPECT_NE(near.output.find(part), std::string::npos) << part << "\n" << near.output;
 }
 

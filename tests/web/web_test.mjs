@@ -260,6 +260,14 @@ try {
                                                            "--edge", edgeAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
   check(result.message === "" && edgeAnswer.shown === nativeEdge && edgeAnswer.shown.includes("edge 2, the contour edge of \"slab\""),
         `a click on Appel's drawing answers along the edge nearest it, as hsr why --edge ${edgeAnswer.pixel} does`);
+  const drawnEdge = await page.$eval("#color + .marker + svg.edge", (svg) => ({
+    line: ["x1", "y1", "x2", "y2"].map((name) => Number(svg.querySelector("line").getAttribute(name))),
+    changes: svg.querySelectorAll("circle.change").length,
+  }));
+  // blocks' edge 2 runs from (142.018, 111.719) to (74.226, 135.645), and the walk starts at its end (u = 1).
+  check(Math.abs(drawnEdge.line[0] - 74.226) < 0.01 && Math.abs(drawnEdge.line[1] - 135.645) < 0.01 && Math.abs(drawnEdge.line[2] - 142.018) < 0.01 &&
+        drawnEdge.changes === 3, `the edge is drawn over the drawing from where the walk starts, a ring at each of its 3 changes (${drawnEdge.line.join(", ")})`);
+  await page.locator("#results .images figure").first().screenshot({ path: join(out, "edge.png") });
   await page.check("#quizMode");
   await clickPixel("color", 108, 123);
   const crossing = await quizShown();
