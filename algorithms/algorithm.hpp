@@ -105,6 +105,10 @@ struct AlgorithmEntry {
   bool takesTriangleSubsets = false;
   // It records the history of the pixels hsr why asks about (VisibilityRequest::why).
   bool answersWhy = false;
+  // Every decision its loops can record about what is not a triangle (Warnock's windows),
+  // as an event's outcome begins, before its first ": ". The browser edition's quiz offers
+  // them all when it asks what the loop decided; empty: it offers those taken at the pixel.
+  std::vector<std::string> whyDecisions;
   // It decides with a depth buffer: the format its knobs chose (what a tie is a tie of:
   // hsr render's note on depth ties, and its advice).
   std::function<DepthFormat(const KnobValues&)> depthFormat;

@@ -108,6 +108,13 @@ std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling:
 }
 
 std::string jsonTriangle(std::uint32_t id) { return id == conventions::kBackgroundId ? "null" : std::to_string(id - 1); }
+// The algorithm's decisions about what is not a triangle (AlgorithmEntry::whyDecisions), as JSON strings.
+std::string decisionsJson(const Configuration& configuration) {
+  std::string json;
+  for (const std::string& decision : configuration.algorithm->whyDecisions) json += (json.empty() ? "" : ", ") + jsonString(decision);
+  return json;
+}
+
 // The triangles of a certified tie (or the one winner) as JSON objects: each one's index and name.
 std::string tiedJson(const PreparedScene& scene, const std::vector<std::uint32_t>& tied) {
   std::string json;
@@ -379,7 +386,7 @@ std::string whyJson(const PreparedScene& scene, const std::string& sceneName, co
                     const std::vector<PixelAnswer>& answers, const StepAsked* step) {
   std::string json = "{\"scene\": " + jsonString(sceneName) + ", \"algorithm\": " + jsonString(configuration.algorithm->name) +
                      ", \"knobs\": " + jsonString(configuration.knobs.described()) + ", \"width\": " + std::to_string(scene.width()) +
-                     ", \"height\": " + std::to_string(scene.height()) + ", \"step\": " +
+                     ", \"height\": " + std::to_string(scene.height()) + ", \"decisions\": [" + decisionsJson(configuration) + "], \"step\": " +
                      (step ? "{\"number\": " + std::to_string(step->number) + ", \"of\": " + std::to_string(step->recorded) +
                                  ", \"caption\": " + jsonString(step->caption) + "}"
                            : "null") +

@@ -59,7 +59,8 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
                                        StepAsked* step = nullptr);
 
 // The answers as a person reads them, and as JSON (one object: the scene, the algorithm
-// and its knobs, the size, the step asked about, and per pixel the history, what it
+// and its knobs, the size, its decisions (AlgorithmEntry::whyDecisions), the step asked
+// about, and per pixel the history, what it
 // shows, the reference's answer with its tied triangles, agrees and the verdict; a
 // triangle is its global index, null for none). With a step, the text lists the events
 // up to it and what the pixel showed then; the JSON gives each pixel's count up to it.

@@ -10,8 +10,9 @@
 //   - then, event by event in the order the loop met them, with the numbers the loop
 //     decided by: for an event about a triangle, whether the pixel shows that triangle
 //     after it (the depth test, the painter's overdraw, a span's rule, a resolve); for an
-//     event about something else (Warnock's window, a BVH node, a culling stage), which of
-//     the decisions made at this pixel the loop made there;
+//     event about something else (Warnock's window, a BVH node, a culling stage), which
+//     decision the loop made there, among all the algorithm declares (Warnock's rules) or
+//     else those made at this pixel;
 //   - for a line drawing, along the edge nearest the pixel (hsr why --edge X,Y): at each
 //     crossing of a contour, how the edge's quantitative invisibility changes.
 // At most kStepQuestions events are asked about (those about triangles first, then the
@@ -35,8 +36,9 @@ function choicesOf(labels, isRight) {
   return [...new Set(labels)].map((label) => ({ label, right: isRight(label) }));
 }
 
-// A pixel's quiz, from hsr why's answer for one pixel of a surface algorithm.
-function pixelQuiz(pixel) {
+// A pixel's quiz, from hsr why's answer for one pixel of a surface algorithm, whose
+// decisions about what is not a triangle are `declared` (all of Warnock's rules).
+function pixelQuiz(pixel, declared) {
   const history = pixel.history;
   const named = history.filter((event) => event.triangle !== null).map((event) => event.name);
   const tied = pixel.reference.ambiguous ? pixel.reference.tied.map((t) => t.name) : [];
@@ -59,7 +61,7 @@ function pixelQuiz(pixel) {
   // The events about triangles first, then the others from the last back (the last
   // window, node or stage is the one that decided), kStepQuestions of them in the loop's order.
   const aboutTriangles = history.flatMap((event, index) => (event.triangle !== null ? [index] : []));
-  const aboutOthers = new Set(otherDecisions).size > 1 ? history.flatMap((event, index) => (event.triangle === null ? [index] : [])).reverse() : [];
+  const aboutOthers = declared.length > 1 || new Set(otherDecisions).size > 1 ? history.flatMap((event, index) => (event.triangle === null ? [index] : [])).reverse() : [];
   const asked = [...aboutTriangles, ...aboutOthers].slice(0, kStepQuestions).sort((a, b) => a - b);
   const steps = asked.map((index) => {
     const event = history[index];
@@ -73,13 +75,15 @@ function pixelQuiz(pixel) {
         answer: `${event.shown ? "Yes" : "No"}: ${event.outcome}.`,
       };
     }
+    // Every decision the algorithm can take there when it declares them, else those it
+    // took at this pixel (at most four).
     const decision = decisionOf(event.outcome);
-    const others = otherDecisions.filter((other) => other !== decision);
+    const offered = declared.includes(decision) ? declared : [decision, ...otherDecisions.filter((other) => other !== decision)].slice(0, 4).sort();
     return {
       event: index,
       prompt: `What does the loop decide at event ${index + 1}?`,
       context: at,
-      choices: choicesOf([decision, ...others].slice(0, 4).sort(), (label) => label === decision),
+      choices: choicesOf(offered, (label) => label === decision),
       answer: `${event.outcome}.`,
     };
   });
@@ -157,7 +161,7 @@ function nextQuestion() {
 // Starts the quiz on the module's answer to why (a pixel's, or an edge's) for the pixel
 // clicked, `at` ([x, y]); an answer with nothing to ask is shown at once.
 function startQuiz(result, at) {
-  const built = result.edge ? edgeQuiz(result.edge) : pixelQuiz(result.answer.pixels[0]);
+  const built = result.edge ? edgeQuiz(result.edge) : pixelQuiz(result.answer.pixels[0], result.answer.decisions);
   Object.assign(quiz, built, { current: 0, right: 0, verdict: $("whyBox").className, at });
   $("quiz").hidden = false;
   $("why").hidden = quiz.questions.length > 0;

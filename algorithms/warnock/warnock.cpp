@@ -254,8 +254,8 @@ class Subdivision {
           break;
         case Rule::smallest: {
           const auto [cx, cy] = centralPixel(window);
-          event.outcome = "the smallest window (--knob smallest-window=" + std::to_string(knobs_.smallestWindow) +
-                          "): decided by the polygon nearest at its central pixel (" + std::to_string(cx) + ", " + std::to_string(cy) + ")";
+          event.outcome = "the smallest window: decided by the polygon nearest at its central pixel (" + std::to_string(cx) + ", " +
+                          std::to_string(cy) + ") (--knob smallest-window=" + std::to_string(knobs_.smallestWindow) + ")";
           break;
         }
         case Rule::subdivided:
@@ -464,6 +464,7 @@ AlgorithmEntry entry() {
   entry.studyConfigurations = {{}, {{"smallest-window", "4"}}, {{"smallest-window", "16"}}};
   entry.takesTriangleSubsets = true;
   entry.answersWhy = true;
+  entry.whyDecisions = {"rule 1, empty", "rule 2, one polygon", "rule 3, surrounded", "the smallest window", "subdivided into four"};
   setVisibility(entry, visibility);
   return entry;
 }

@@ -469,8 +469,8 @@ TEST(Why, FollowsWarnocksWindowsDownToThePixelAndNamesTheRuleThatDecidedIt) {
   ASSERT_EQ(coarse.exitCode, 0) << coarse.output;
   for (const char* line : {"1. window 160 x 90 at (0, 0): subdivided into four: no rule decides it",
                            "5. window 10 x 6 at (10, 34): subdivided into four",
-                           "6. window 5 x 3 at (10, 37): the smallest window (--knob smallest-window=8): decided by the polygon nearest at its "
-                           "central pixel (12, 38)",
+                           "6. window 5 x 3 at (10, 37): the smallest window: decided by the polygon nearest at its central pixel (12, 38) "
+                           "(--knob smallest-window=8)",
                            "=> differs: the reference shows triangle 2305 of \"counter\" copy 3, not shown after event ",
                            ": does not cover the window's central pixel (12, 38): at the smallest size only the central pixel's center is tested"})
     EXPECT_NE(coarse.output.find(line), std::string::npos) << line << "\n" << coarse.output;

@@ -229,6 +229,13 @@ TEST(RandomScenes, WhyHistoriesEndOnTheImagesPixelAndTheReferenceAnswersAsTheWho
           if (event.shown) last = event.id;
         ASSERT_EQ(last, plain.ids[at]) << where << ", pixel " << answer.pixel.x << "," << answer.pixel.y;
         ASSERT_EQ(answer.shown, plain.ids[at]) << where;
+        // Each decision about what is not a triangle is one the algorithm declares (the quiz's choices).
+        const std::vector<std::string>& declared = configuration.algorithm->whyDecisions;
+        for (const PixelEvent& event : answer.history) {
+          const std::string decision = event.outcome.substr(0, event.outcome.find(": "));
+          ASSERT_TRUE(event.subject.empty() || declared.empty() || std::find(declared.begin(), declared.end(), decision) != declared.end())
+              << where << ": " << event.outcome;
+        }
         ASSERT_EQ(answer.reference.id, judged.truth.frame.ids[at]) << where;
         ASSERT_EQ(answer.reference.ambiguous, judged.truth.ambiguous[at] != 0) << where;
         // The tied set: the winner alone, every triangle of a certified tie (the reference

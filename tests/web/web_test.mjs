@@ -207,6 +207,10 @@ try {
   check(await page.$eval("#whyBox", (box) => box.className === ""), "the box does not say whether the algorithm agrees with the reference until the end");
   await page.locator("#whyBox").screenshot({ path: join(out, "quiz.png") });
   await page.click("#quizNext");
+  const windowQuestion = await quizShown();
+  check(windowQuestion.prompt === "What does the loop decide at event 2?" &&
+        windowQuestion.choices.join(" | ") === "rule 1, empty | rule 2, one polygon | rule 3, surrounded | the smallest window | subdivided into four",
+        `a window's question offers every rule of Warnock's (${windowQuestion.choices.join(" | ")})`);
   // A double click on the quiz's pixel (it enlarges the image, and back) leaves the quiz as it was.
   const before = await quizShown();
   // At the whole CSS pixel nearest the pixel's center that lies in it (a mouse event's
