@@ -286,6 +286,7 @@ async function render() {
     for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
     showMetrics(result, null);
     $("note").textContent = result.kind === "line" ? "A line drawing: its colour is the drawing, and it has no ids or depth." : "";
+    hsr.lineDrawing = result.kind === "line";
     hsr.lastPicture = performance.now();
     if ($("reference").checked || result.kind === "line") {
       $("status").textContent = `${what}; comparing with the exact reference…`;
@@ -336,10 +337,10 @@ function why(x, y) {
   if ($("quizMode").checked && quizUnderWayAt(x, y)) return null;  // a double click's second click: the quiz goes on
   const result = JSON.parse(hsr.module.why(x, y));
   for (const canvas of document.querySelectorAll(".images canvas")) {
-    const marker = canvas.nextElementSibling;  // the pixel asked about, ringed on every image
+    const marker = canvas.nextElementSibling;  // the pixel asked about, ringed on every image that has one
     marker.style.left = `${(100 * (x + 0.5)) / canvas.width}%`;
     marker.style.top = `${(100 * (y + 0.5)) / canvas.height}%`;
-    marker.hidden = canvas.width <= 1;
+    marker.hidden = canvas.width <= 1 || (hsr.lineDrawing && (canvas.id === "ids" || canvas.id === "depth"));
   }
   showEdge(result.edge);
   $("whyBox").hidden = false;

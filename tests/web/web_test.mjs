@@ -272,6 +272,8 @@ try {
   check(Math.abs(drawnEdge.line[0] - 74.226) < 0.01 && Math.abs(drawnEdge.line[1] - 135.645) < 0.01 && Math.abs(drawnEdge.line[2] - 142.018) < 0.01 &&
         drawnEdge.changes === 3, `the edge is drawn over the drawing from where the walk starts, a ring at each of its 3 changes (${drawnEdge.line.join(", ")})`);
   await page.locator("#results .images figure").first().screenshot({ path: join(out, "edge.png") });
+  const ringed = await page.$$eval(".marker:not([hidden])", (markers) => markers.map((m) => m.previousElementSibling.id));
+  check(JSON.stringify(ringed) === '["color","error"]', `a line drawing's pixel is ringed on the drawing and its difference only, which have it (${ringed.join(", ")})`);
   await page.check("#quizMode");
   await clickPixel("color", 108, 123);
   const crossing = await quizShown();
