@@ -53,14 +53,14 @@ int why(const WhyOptions& options) {
     step->number = std::size_t(options.step);
     step->every = std::size_t(options.every);
   }
+  pipeline::StepAsked* asked = step ? &*step : nullptr;
   Stats stats;
   std::vector<pipeline::PixelAnswer> answers;
   try {
-    answers = pipeline::explainPixels(*scene.prepared, configuration, pixels, options.threads, stats, step ? &*step : nullptr);
+    answers = pipeline::explainPixels(*scene.prepared, configuration, pixels, options.threads, stats, asked);
   } catch (const std::bad_alloc&) {
     throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), configuration.algorithm->name));
   }
-  const pipeline::StepAsked* asked = step ? &*step : nullptr;
   const std::string shown = options.json ? pipeline::whyJson(*scene.prepared, scene.name, configuration, answers, asked)
                                          : pipeline::whyText(*scene.prepared, scene.name, configuration, answers, asked);
   std::fputs(shown.c_str(), stdout);

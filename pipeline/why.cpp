@@ -234,22 +234,20 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
   // With a step asked about: each step's mark, the events each pixel's history held when
   // it was recorded (on one thread, so that no loop adds to a history meanwhile).
   std::vector<std::vector<std::size_t>> marks;
+  const auto mark = [&](const std::string& caption) {
+    if (marks.size() + 1 == step->number) step->caption = caption;
+    std::vector<std::size_t>& counts = marks.emplace_back();
+    for (std::size_t asked = 0; asked < witness.count(); ++asked) counts.push_back(witness.history(asked).size());
+  };
   std::optional<StepRecorder> steps;
   if (step) {
-    steps.emplace(step->every, [&](const Step& recorded) {
-      if (marks.size() + 1 == step->number) step->caption = recorded.caption;
-      std::vector<std::size_t>& mark = marks.emplace_back();
-      for (std::size_t asked = 0; asked < witness.count(); ++asked) mark.push_back(witness.history(asked).size());
-    });
+    steps.emplace(step->every, [&](const Step& recorded) { mark(recorded.caption); });
     threads = 1;
   }
   const VisibleSet kept =
       renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness, &keptByStage, steps ? &*steps : nullptr);
   if (step) {
-    // The last step hsr render --steps records: the finished image, every event behind it.
-    if (marks.size() + 1 == step->number) step->caption = kFinishedImageStep;
-    marks.emplace_back();
-    for (std::size_t asked = 0; asked < witness.count(); ++asked) marks.back().push_back(witness.history(asked).size());
+    mark(kFinishedImageStep);  // the last step hsr render --steps records: the finished image, every event behind it
     step->recorded = marks.size();
     if (step->number < 1 || step->number > marks.size())
       throw InputError("--step " + std::to_string(step->number) + ": " + configuration.algorithm->name + " records " +

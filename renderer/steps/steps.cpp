@@ -157,14 +157,13 @@ Image heatMapPicture(std::span<const double> values, int width, int height, cons
 }
 
 Image besideEachOther(const std::vector<Image>& pictures) {
-  constexpr int kGap = 6;
   int width = 0, height = 0;
-  for (const Image& picture : pictures) width += picture.width + (width ? kGap : 0), height = std::max(height, picture.height);
+  for (const Image& picture : pictures) width += picture.width + (width ? kPanelGap : 0), height = std::max(height, picture.height);
   Image combined = blankPicture(width, height);
   int left = 0;
   for (const Image& picture : pictures) {
     paste(combined, picture, left, 0);
-    left += picture.width + kGap;
+    left += picture.width + kPanelGap;
   }
   return combined;
 }

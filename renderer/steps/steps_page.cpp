@@ -149,17 +149,19 @@ $("picture").ondblclick = () => { $("picture").classList.toggle("actual"); place
 
 // A click on a pixel: the command that shows its history up to the step shown. A picture
 // holds the render's pixels from its top left, or side by side panels of the render's
-// size (6 pixels apart); a click elsewhere asks nothing.
+// size (question.panelGap pixels apart); a click elsewhere asks nothing.
 let asked = null;  // [x, y, the picture's x, its y]
-const kPanelGap = 6;
+// How large the picture is shown, inside its border: CSS pixels per pixel of it.
+function scaleOf(picture) {
+  const box = picture.getBoundingClientRect();
+  return [(box.width - 2 * picture.clientLeft) / picture.naturalWidth, (box.height - 2 * picture.clientTop) / picture.naturalHeight];
+}
 function pixelUnder(event) {
-  const picture = $("picture"), box = picture.getBoundingClientRect();
-  const [left, top] = [box.left + picture.clientLeft, box.top + picture.clientTop];  // inside its border
-  const [width, height] = [box.width - 2 * picture.clientLeft, box.height - 2 * picture.clientTop];
-  const px = Math.floor(((event.clientX - left) * picture.naturalWidth) / width);
-  const py = Math.floor(((event.clientY - top) * picture.naturalHeight) / height);
-  const panels = (picture.naturalWidth + kPanelGap) / (question.width + kPanelGap);
-  const x = Number.isInteger(panels) ? px % (question.width + kPanelGap) : px;
+  const picture = $("picture"), box = picture.getBoundingClientRect(), [sx, sy] = scaleOf(picture);
+  const px = Math.floor((event.clientX - box.left - picture.clientLeft) / sx);
+  const py = Math.floor((event.clientY - box.top - picture.clientTop) / sy);
+  const panels = (picture.naturalWidth + question.panelGap) / (question.width + question.panelGap);
+  const x = Number.isInteger(panels) ? px % (question.width + question.panelGap) : px;
   if (px < 0 || py < 0 || x >= question.width || py >= question.height) return null;
   return [x, py, px, py];
 }
@@ -167,10 +169,9 @@ function placeRing() {
   const picture = $("picture"), ring = $("ring");
   ring.hidden = !asked || !picture.naturalWidth;
   if (ring.hidden) return;
-  const box = picture.getBoundingClientRect();
-  const [width, height] = [box.width - 2 * picture.clientLeft, box.height - 2 * picture.clientTop];
-  ring.style.left = `${picture.offsetLeft + picture.clientLeft + ((asked[2] + 0.5) * width) / picture.naturalWidth}px`;
-  ring.style.top = `${picture.offsetTop + picture.clientTop + ((asked[3] + 0.5) * height) / picture.naturalHeight}px`;
+  const [sx, sy] = scaleOf(picture);
+  ring.style.left = `${picture.offsetLeft + picture.clientLeft + (asked[2] + 0.5) * sx}px`;
+  ring.style.top = `${picture.offsetTop + picture.clientTop + (asked[3] + 0.5) * sy}px`;
 }
 function showAsked() {
   $("pixel").hidden = !asked;
@@ -308,7 +309,7 @@ std::string stepsPage(const std::string& title, const std::vector<PageStep>& ste
          "<script type=\"application/json\" id=\"sources\">" + jsonInScript(sources) + "</script>\n"
          "<script type=\"application/json\" id=\"question\">" +
          jsonInScript("{\"command\":" + jsonString(question.command) + ",\"width\":" + std::to_string(question.width) +
-                      ",\"height\":" + std::to_string(question.height) + "}") +
+                      ",\"height\":" + std::to_string(question.height) + ",\"panelGap\":" + std::to_string(kPanelGap) + "}") +
          "</script>\n"
          "<script>" + kScript + "</script>\n</body>\n</html>\n";
 }

@@ -49,6 +49,9 @@ struct PixelQuestion {
   std::string command;
   int width = 0, height = 0;
 };
+// The white gap between pictures placed side by side (besideEachOther), which a click on
+// a later panel steps over.
+inline constexpr int kPanelGap = 6;
 
 // The page: `title` heads it; the steps in order.
 std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps, const PixelQuestion& question = {});

@@ -84,7 +84,7 @@ TEST(StepsPage, CaptionsAndCodeWithMarkupStayText) {
   std::size_t closings = 0;
   for (std::size_t at = page.find("</script>"); at != std::string::npos; at = page.find("</script>", at + 1)) ++closings;
   EXPECT_EQ(closings, 4u);
-  EXPECT_NE(page.find(R"({"command":"hsr why a\u003c/script>.toml","width":64,"height":48})"), std::string::npos);
+  EXPECT_NE(page.find(R"({"command":"hsr why a\u003c/script>.toml","width":64,"height":48,"panelGap":6})"), std::string::npos);
   EXPECT_NE(page.find(R"(caption \u003c/script>\u003cscript>alert(1)\u003c/script> & \"quotes\")"), std::string::npos);
   EXPECT_NE(page.find("<title>Steps: hsr render a&lt;b&gt;.toml</title>"), std::string::npos);
 }
