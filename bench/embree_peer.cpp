@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -159,7 +160,7 @@ int main(int argc, char** argv) try {
     struct Side {
       std::string name;
       std::function<void()> run;
-      const std::vector<std::uint32_t>* ids;
+      std::span<const std::uint32_t> ids;
       Timing milliseconds;
     };
     std::vector<Side> sides;
@@ -174,12 +175,12 @@ int main(int argc, char** argv) try {
                          hsr::Stats stats;
                          hsr::ray_casting::visibility({prepared, camera, nullptr, threads, stats}, knobs, visibility);
                        },
-                       &visibility.frame.ids, {}});
+                       visibility.frame.ids, {}});
     }
     std::vector<std::vector<std::uint32_t>> theirs(3, std::vector<std::uint32_t>(std::size_t(kWidth) * kHeight));
     for (const int width : {1, 8, 16}) {
       std::vector<std::uint32_t>& ids = theirs[width == 1 ? 0 : width == 8 ? 1 : 2];
-      sides.push_back({"Embree rtcIntersect" + std::to_string(width), [&, width] { embree.trace(camera, threads, width, ids); }, &ids, {}});
+      sides.push_back({"Embree rtcIntersect" + std::to_string(width), [&, width] { embree.trace(camera, threads, width, ids); }, ids, {}});
     }
     for (Side& side : sides) side.run();
     for (int run = 0; run < runs; ++run)  // interleaved, so every side sees the same machine load
@@ -190,11 +191,11 @@ int main(int argc, char** argv) try {
                 prepared.triangleCount(), hsrBuild, prepared.wideTriangleBvh(buildStats).nodes().size(), embree.buildMilliseconds());
     for (Side& side : sides) {
       std::int64_t agree = 0, covered = 0;
-      const std::vector<std::uint32_t>& textbook = *sides.front().ids;
+      const std::span<const std::uint32_t> textbook = sides.front().ids;
       for (std::size_t i = 0; i < textbook.size(); ++i) {
-        if ((*side.ids)[i] == 0 && textbook[i] == 0) continue;
+        if (side.ids[i] == 0 && textbook[i] == 0) continue;
         ++covered;
-        agree += (*side.ids)[i] == textbook[i];
+        agree += side.ids[i] == textbook[i];
       }
       std::printf("  %-22s median %7.2f ms [%.2f-%.2f]  %6.2f Mrays/s  same triangle as path=scalar: %.4f%% of %lld\n", side.name.c_str(),
                   side.milliseconds.median(), side.milliseconds.min(), side.milliseconds.max(), rays / side.milliseconds.median() / 1e3,

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -130,9 +131,9 @@ class MesaRenderer {
 };
 
 // Where the two disagree, and why.
-void compareIds(const std::vector<std::uint32_t>& ours, const std::vector<std::uint32_t>& mesa) {
+void compareIds(std::span<const std::uint32_t> ours, std::span<const std::uint32_t> mesa) {
   long covered = 0, agree = 0, silhouette = 0, sharedEdge = 0, other = 0;
-  const auto neighbourHolds = [&](const std::vector<std::uint32_t>& image, int x, int y, std::uint32_t id) {
+  const auto neighbourHolds = [&](std::span<const std::uint32_t> image, int x, int y, std::uint32_t id) {
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const int nx = x + dx, ny = y + dy;

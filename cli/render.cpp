@@ -249,7 +249,7 @@ int render(const RenderOptions& options) {
   if (stepsFolder) {
     const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
     steps->record(lines ? "the finished drawing" : pipeline::kFinishedImageStep,
-                  Image{shown.width, shown.height, 4, shown.color});
+                  Image{shown.width, shown.height, 4, {shown.color.begin(), shown.color.end()}});
     stepsFolder->finish(stepsTitle(options), stepsQuestion(options, algorithm, *scene.prepared));
   }
   // Why the image or drawing may be wrong somewhere, as the algorithm says.

@@ -117,7 +117,7 @@ void runVisibility(Context& context) {
       if (Facts{scene, context.configuration}.opaqueFirst) triangles = &opaque.emplace(trianglesByOpacity(scene, triangles, true));
       if (context.visibility.frame.width != scene.width() || context.visibility.frame.height != scene.height()) {
         PhaseTimer timer(context.stats, "frame buffers");
-        context.visibility.frame = Frame(scene.width(), scene.height());
+        context.visibility.frame = Frame(scene.width(), scene.height(), context.threads);
       }
       context.visibility.polygons.clear();  // what only some algorithms answer, never left from another's
       context.visibility.coverage.reset();

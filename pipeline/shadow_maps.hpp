@@ -20,6 +20,7 @@
 #include "renderer/geometry/camera.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/shading/shading.hpp"
+#include "renderer/util/memory.hpp"
 #include "renderer/util/stats.hpp"
 
 namespace hsr::pipeline {
@@ -37,7 +38,7 @@ class ShadowMaps : public ShadowTest {
   // One view of one light.
   struct View {
     CameraTransform camera;
-    std::vector<float> depth;  // the z-buffer's frame.depth: view distance, +infinity where nothing was drawn
+    PixelBuffer<float> depth;  // the z-buffer's frame.depth: view distance, +infinity where nothing was drawn
     double texelsPerUnit;      // orthographic: texels per world unit; perspective: per unit at distance 1
   };
   const PreparedScene& scene_;

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <span>
 #include <sstream>
 #include <utility>
 
@@ -75,7 +76,7 @@ class Gallery {
   }
 
   // One tile: the row's figures, its picture and the map of where it is wrong.
-  void add(const ResultRow& row, const std::vector<std::uint8_t>& picture, const std::vector<std::uint8_t>& errorMap, const std::string& errorLegend) {
+  void add(const ResultRow& row, std::span<const std::uint8_t> picture, std::span<const std::uint8_t> errorMap, const std::string& errorLegend) {
     const std::string name = folder_ + "/" + std::to_string(++entries_);
     files_.addRgbaPng(out_ / (name + ".png"), row.width, row.height, picture);
     files_.addRgbaPng(out_ / (name + "-error.png"), row.width, row.height, errorMap);
@@ -172,7 +173,7 @@ int compare(const CompareOptions& options) {
     section.heatMaps.push_back({prepared.width(), prepared.height(), std::move(ambiguity),
                                 {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
 
-    std::vector<std::vector<std::uint8_t>> exactDrawingsShown;  // the line references' tiles so far
+    std::vector<PixelBuffer<std::uint8_t>> exactDrawingsShown;  // the line references' tiles so far
     for (const pipeline::Configuration& configuration : configurations) {
       const AlgorithmEntry& algorithm = *configuration.algorithm;
       if (const std::string refusal = pipeline::refusal(prepared, configuration); !refusal.empty()) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,8 +13,8 @@
 namespace hsr::studies {
 
 struct SheetImage {
-  SheetImage(int width, int height, std::vector<std::uint8_t> rgba, std::vector<std::string> caption_)
-      : image{width, height, 4, std::move(rgba)}, caption(std::move(caption_)) {}
+  SheetImage(int width, int height, std::span<const std::uint8_t> rgba, std::vector<std::string> caption_)
+      : image{width, height, 4, {rgba.begin(), rgba.end()}}, caption(std::move(caption_)) {}
   Image image;
   std::vector<std::string> caption;  // one or two short lines
 };

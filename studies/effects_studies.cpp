@@ -46,7 +46,7 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
   std::string data = "$steps << EOD\n";
   SheetSection section;
   section.heading = std::string(kShowcase) + ", each effect added in turn (z-buffer; red: the pixels the step changed)";
-  std::vector<std::uint8_t> previous;
+  PixelBuffer<std::uint8_t> previous;
   double noneTotal = 0;
   for (const EffectStep& step : effectLadder(*showcase.scene)) {
     PreparedScene prepared(step.scene);
@@ -91,7 +91,7 @@ int effectsLadder(const StudyOptions& options, const std::filesystem::path& fold
     data += "\n";
 
     // The step's image, and where it differs from the step before.
-    std::vector<std::uint8_t> changed = frame.color;
+    PixelBuffer<std::uint8_t> changed = frame.color;
     for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
       const bool differs = !previous.empty() && !std::equal(&frame.color[4 * pixel], &frame.color[4 * pixel + 3], &previous[4 * pixel]);
       const std::uint8_t grey = static_cast<std::uint8_t>(frame.color[4 * pixel + 1] / 3 + 150);

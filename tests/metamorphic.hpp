@@ -86,7 +86,7 @@ inline std::vector<Variation> variations(const Scene& scene, bool subdivide) {
   return all;
 }
 
-inline std::vector<std::uint32_t> originalIds(std::vector<std::uint32_t> ids, std::uint32_t idsPerOriginal) {
+inline PixelBuffer<std::uint32_t> originalIds(PixelBuffer<std::uint32_t> ids, std::uint32_t idsPerOriginal) {
   for (std::uint32_t& id : ids)
     if (id != 0) id = (id - 1) / idsPerOriginal + 1;
   return ids;
@@ -323,7 +323,7 @@ inline void expectSameAfter(const Variation& variation, const PreparedScene& ori
       ++tally.labelledPartial;
       continue;
     }
-    const std::vector<std::uint32_t> ids = originalIds(frame->ids, variation.idsPerOriginal);
+    const PixelBuffer<std::uint32_t> ids = originalIds(frame->ids, variation.idsPerOriginal);
     if (variation.exact) {
       EXPECT_EQ(ids, baseline.frames[c]->ids) << name;
       tally.identical += ids == baseline.frames[c]->ids;

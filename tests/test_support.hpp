@@ -62,7 +62,7 @@ struct LoadedScene {
 
 // Whether two RGBA8 images differ at a pixel by more than `tolerance` levels in some
 // color channel.
-inline bool colorDiffers(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, std::size_t pixel, int tolerance) {
+inline bool colorDiffers(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b, std::size_t pixel, int tolerance) {
   for (std::size_t c = 0; c < 3; ++c)
     if (std::abs(int(a[4 * pixel + c]) - int(b[4 * pixel + c])) > tolerance) return true;
   return false;

@@ -92,7 +92,7 @@ struct Shown {
   Frame frame;
   LineSet drawing;
   std::vector<std::uint8_t> error;  // RGBA: the reference dimmed, wrong pixels red, ambiguous blue
-  std::vector<std::uint32_t> referenceIds;  // the exact reference's visible triangle per pixel, as frame.ids
+  PixelBuffer<std::uint32_t> referenceIds;  // the exact reference's visible triangle per pixel, as frame.ids
 };
 Shown& shown() {
   static Shown last;

@@ -1,5 +1,6 @@
 #include "renderer/image/frame.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 
@@ -8,6 +9,7 @@
 #include "renderer/image/image_library.hpp"
 #include "renderer/image/png.hpp"
 #include "renderer/util/error.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace hsr {
 
@@ -18,12 +20,15 @@ std::string partialFilePrefix(const std::filesystem::path& final) {
   return prefix;
 }
 
-Frame::Frame(int w, int h)
-    : width(w),
-      height(h),
-      color(std::size_t(w) * std::size_t(h) * 4, 0),
-      depth(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::infinity()),
-      ids(std::size_t(w) * std::size_t(h), 0) {}
+Frame::Frame(int w, int h, int threads)
+    : width(w), height(h), color(pixelCount() * 4), depth(pixelCount()), ids(pixelCount()) {
+  parallelFor(std::size_t(h), threads, [&](std::size_t row, int) {
+    const std::size_t first = row * std::size_t(w), end = first + std::size_t(w);
+    std::fill(color.begin() + std::ptrdiff_t(first * 4), color.begin() + std::ptrdiff_t(end * 4), std::uint8_t(0));
+    std::fill(depth.begin() + std::ptrdiff_t(first), depth.begin() + std::ptrdiff_t(end), std::numeric_limits<float>::infinity());
+    std::fill(ids.begin() + std::ptrdiff_t(first), ids.begin() + std::ptrdiff_t(end), std::uint32_t(0));
+  });
+}
 
 OutputFiles::~OutputFiles() {
   for (const auto& [temporary, final] : staged_) {
@@ -53,7 +58,7 @@ void OutputFiles::addColorPng(const std::filesystem::path& path, const Frame& fr
            frame.partial.empty() ? "" : "partial image: " + frame.partial);
 }
 
-void OutputFiles::addRgbaPng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba) {
+void OutputFiles::addRgbaPng(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba) {
   HSR_CHECK(rgba.size() == std::size_t(width) * std::size_t(height) * 4);
   const auto temporary = stage(path, ".png");
   writePng(temporary, width, height, 4, rgba.data());

@@ -6,24 +6,29 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "renderer/image/image.hpp"
+#include "renderer/util/memory.hpp"
 
 namespace hsr {
 
 struct Frame {
   int width = 0, height = 0;
-  std::vector<std::uint8_t> color;  // RGBA8, row 0 at the top
-  std::vector<float> depth;         // distance along the view axis; +infinity = background
-  std::vector<std::uint32_t> ids;   // global triangle index + 1; 0 = background
+  PixelBuffer<std::uint8_t> color;  // RGBA8, row 0 at the top
+  PixelBuffer<float> depth;         // distance along the view axis; +infinity = background
+  PixelBuffer<std::uint32_t> ids;   // global triangle index + 1; 0 = background
   // Why the image is known to be wrong in places (an algorithm stopped at a limit), or
   // "" when it is not: hsr render warns and records it in the PNG's description.
   std::string partial;
 
   Frame() = default;
-  Frame(int w, int h);
+  // Black, background ids, infinite depth; the rows are filled on `threads` threads, so
+  // each thread first touches the pages it fills (a frame's first touch on one thread
+  // was half the z-buffer's pass on counters at 1920x1080).
+  Frame(int w, int h, int threads = 1);
   std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
 };
 
@@ -51,7 +56,7 @@ class OutputFiles {
   void addColorPng(const std::filesystem::path& path, const Frame& frame);
   void addIdsPng(const std::filesystem::path& path, const Frame& frame);
   void addDepthExr(const std::filesystem::path& path, const Frame& frame);
-  void addRgbaPng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba);
+  void addRgbaPng(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba);
   void addText(const std::filesystem::path& path, const std::string& text);
   // For a file another program writes (gnuplot): the temporary name to write it under.
   std::filesystem::path addWrittenElsewhere(const std::filesystem::path& path);

@@ -176,9 +176,9 @@ Frame lineSetFrame(const LineSet& lines, LineStyle style) {
     });
   }
   if (style == LineStyle::qi) {
-    Image picture{frame.width, frame.height, 4, std::move(frame.color)};
+    Image picture{frame.width, frame.height, 4, {frame.color.begin(), frame.color.end()}};
     drawLegend(picture, qiLegend());
-    frame.color = std::move(picture.pixels);
+    frame.color.assign(picture.pixels.begin(), picture.pixels.end());
   }
   return frame;
 }

@@ -193,7 +193,7 @@ void traceReference(const PreparedScene& scene, int threads, Stats& stats, Refer
   PhaseTimer timer(stats, "reference");
   // Every pixel's id, depth and ambiguity is written below: an image of this size is
   // reused as it is, as a renderer reuses its framebuffer.
-  if (image.frame.width != scene.width() || image.frame.height != scene.height()) image.frame = Frame(scene.width(), scene.height());
+  if (image.frame.width != scene.width() || image.frame.height != scene.height()) image.frame = Frame(scene.width(), scene.height(), threads);
   image.ambiguous.resize(image.frame.pixelCount());
   image.ambiguousPixels = image.exactFallbacks = image.blendTiedPixels = 0;
   image.blendTied.clear();

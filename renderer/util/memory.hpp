@@ -9,6 +9,8 @@
 
 #include <cstddef>
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace hsr {
 
@@ -21,6 +23,34 @@ template <typename T>
 std::unique_ptr<T[]> uninitializedArray(std::size_t count) {
   return std::unique_ptr<T[]>(new T[count]);
 }
+
+// An allocator whose containers leave the values they make without arguments (resize,
+// the size constructor) uninitialized when T is trivial, as `new T[count]` does: for a
+// buffer whose first writes are done on the threads that will use it. A fresh page is
+// given to the thread that first touches it, and on one thread the first touch of a
+// 1920x1080 frame's 25 MB is a pass's largest serial part (see Frame's constructor).
+template <typename T>
+struct FirstTouchAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = FirstTouchAllocator<U>;
+  };
+  FirstTouchAllocator() = default;
+  template <typename U>
+  FirstTouchAllocator(const FirstTouchAllocator<U>&) noexcept {}
+
+  template <typename U, typename... Arguments>
+  void construct(U* at, Arguments&&... arguments) {
+    if constexpr (sizeof...(Arguments) == 0)
+      ::new (static_cast<void*>(at)) U;  // default-initialized: left as it is for a trivial U
+    else
+      ::new (static_cast<void*>(at)) U(std::forward<Arguments>(arguments)...);
+  }
+};
+
+// A frame-sized buffer of pixels, made without a fill (FirstTouchAllocator).
+template <typename T>
+using PixelBuffer = std::vector<T, FirstTouchAllocator<T>>;
 
 // The bits of `from` read as a To (std::bit_cast, which not every standard library has
 // yet; the compilers' builtin under it is in GCC 11 and Clang 9 on).

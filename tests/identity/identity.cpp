@@ -22,8 +22,8 @@ std::uint64_t hashOf(const void* data, std::size_t bytes, std::uint64_t hash = 1
   for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ byte[i]) * 1099511628211ull;
   return hash;
 }
-template <typename T>
-std::uint64_t hashOf(const std::vector<T>& values) {
+template <typename T, typename Allocator>
+std::uint64_t hashOf(const std::vector<T, Allocator>& values) {
   return hashOf(values.data(), values.size() * sizeof(T));
 }
 
