@@ -4,19 +4,22 @@
 // deferred Lambert shading of the whole render. "reference" traces the exact reference
 // (renderer/reference/reference) over the same scenes, by packets (its default) or by the textbook
 // traversal, BVHs already built, so the cost of ground truth comes out as a ratio to the
-// z-buffer from one run (ray_casting_bench times the BVH builds).
+// z-buffer from one run (ray_casting_bench times the BVH builds). "memsetFloor" clears the
+// frame's ids and depth as fast as memory allows: the floor under "raster".
 //
 // Protocol: one warm-up render, then Google Benchmark's repetitions; it reports
 // mean, median, min, max. Run: build/bench/zbuffer_bench --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstring>
 #include <memory>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "bench_scenes.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/shading/shading.hpp"
+#include "renderer/util/parallel.hpp"
 
 namespace {
 
@@ -77,6 +80,32 @@ void raster(benchmark::State& state) {
   state.counters["skipped"] = double(warmUp.counter("fragments skipped by block depth"));
 }
 
+// The machine's floor under raster: clearing what a visibility pass must write at least
+// once, the frame's ids and view distances (8 bytes a pixel), with memset, one part per
+// thread on the same threads as the pass. A pass that fills a few large triangles (counters)
+// approaches it; raster's time over this one says how far from memory bandwidth a pass is.
+void memsetFloor(benchmark::State& state) {
+  const char* name = kRasterScenes[state.range(0)];
+  const hsr::PreparedScene& scene = *sceneNamed(name).prepared;
+  const int threads = static_cast<int>(state.range(1));
+  hsr::Frame frame(scene.width(), scene.height(), threads);
+  const std::size_t parts = std::size_t(hsr::parallelWorkers(frame.pixelCount(), threads));
+  const auto clear = [&] {
+    hsr::parallelFor(parts, threads, [&](std::size_t part, int) {
+      const auto [first, end] = hsr::partRange(frame.pixelCount(), parts, part);
+      std::memset(&frame.ids[first], 0, (end - first) * sizeof frame.ids[0]);
+      std::memset(&frame.depth[first], 0, (end - first) * sizeof frame.depth[0]);
+    });
+  };
+  for (auto _ : state) {
+    clear();
+    benchmark::DoNotOptimize(frame.ids.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetLabel(std::string(name) + " memset of ids and depth threads=" + std::to_string(threads));
+  state.counters["bytes/s"] = benchmark::Counter(double(frame.pixelCount()) * 8, benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void shaded(benchmark::State& state) {
   const hsr::PreparedScene& scene = *sceneNamed(kScenes[state.range(0)]).prepared;
   const int threads = static_cast<int>(state.range(1));
@@ -131,6 +160,8 @@ BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)
 BENCHMARK(raster)->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(reference)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+BENCHMARK(memsetFloor)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(shaded)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
