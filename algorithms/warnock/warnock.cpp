@@ -308,7 +308,7 @@ class Subdivision {
     }
   }
 
-  const std::vector<ScreenTriangle>& triangles_;
+  const ScreenTriangles& triangles_;
   const CameraTransform& camera_;
   const Knobs& knobs_;
   Frame& frame_;

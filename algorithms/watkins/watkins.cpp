@@ -218,7 +218,7 @@ class RowResolver {
     }
   }
 
-  const std::vector<ScreenTriangle>& triangles_;
+  const ScreenTriangles& triangles_;
   const CameraTransform& camera_;
   const Knobs& knobs_;
   Frame& frame_;

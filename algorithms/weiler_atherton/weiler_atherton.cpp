@@ -432,7 +432,7 @@ class Clipper {
     polygons_.push_back(std::move(drawn));
   }
 
-  const std::vector<ScreenTriangle>& triangles_;
+  const ScreenTriangles& triangles_;
   const CameraTransform& camera_;
   DepthOrder order_;
   Frame& frame_;

@@ -14,7 +14,7 @@ namespace {
 // A step: the rows finished so far (the rest shown empty), the active triangles outlined
 // in red, the row in blue.
 void recordRow(const Recording& recording, const CameraTransform& view, const Frame& frame, std::size_t y,
-               const std::vector<ScreenTriangle>& triangles, const std::vector<std::uint32_t>& active, std::size_t entering,
+               const ScreenTriangles& triangles, const std::vector<std::uint32_t>& active, std::size_t entering,
                SourceLocation where = SourceLocation::current()) {
   const std::size_t done = (y + 1) * std::size_t(frame.width);
   std::vector<std::uint32_t> ids(frame.ids.begin(), frame.ids.begin() + std::ptrdiff_t(done));

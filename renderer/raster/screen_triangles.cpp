@@ -18,8 +18,8 @@ struct Counts {
 
 // One chunk's output; corners stays empty unless they were asked for.
 struct Part {
-  std::vector<ScreenTriangle> triangles;
-  std::vector<std::array<dvec3, 3>> corners;
+  ScreenTriangles triangles;
+  ScreenCorners corners;
   bool keepCorners = false;
 };
 
@@ -187,20 +187,24 @@ void buildScreenTriangles(const PreparedScene& scene, const CameraTransform& vie
     counts[part] = chunkCounts;
   });
 
-  // Concatenate the parts in order. Appended to a reserved list, not copied in parallel
-  // into a resized one: resizing first zeroes every triangle (11 MB on dragons), which
-  // cost more than the copy's second thread saved.
+  // Concatenate the parts in order, each copied into its place on the threads. The lists
+  // are resized without a fill (ScreenTriangles): with std::vector, resizing zeroed
+  // every triangle first (11 MB on dragons) on one thread, which cost more than the
+  // copy's second thread saved, and the parts were appended on one thread instead.
   if (inOrder) {
     geometry.triangles = std::move(parts[0].triangles), geometry.corners = std::move(parts[0].corners);
   } else {
-    std::size_t total = 0;
-    for (const Part& part : parts) total += part.triangles.size();
-    geometry.triangles.reserve(total);
-    if (keepCorners) geometry.corners.reserve(total);
-    for (const Part& part : parts) {
-      geometry.triangles.insert(geometry.triangles.end(), part.triangles.begin(), part.triangles.end());
-      geometry.corners.insert(geometry.corners.end(), part.corners.begin(), part.corners.end());
-    }
+    std::vector<std::size_t> placeOf(parts.size() + 1, 0);
+    for (std::size_t part = 0; part < parts.size(); ++part) placeOf[part + 1] = placeOf[part] + parts[part].triangles.size();
+    geometry.triangles.clear();  // nothing of an earlier frame's list is copied if it grows
+    geometry.triangles.resize(placeOf.back());
+    geometry.corners.clear();
+    geometry.corners.resize(keepCorners ? placeOf.back() : 0);
+    parallelFor(parts.size(), workers, [&](std::size_t part, int) {
+      const auto place = static_cast<std::ptrdiff_t>(placeOf[part]);
+      std::copy(parts[part].triangles.begin(), parts[part].triangles.end(), geometry.triangles.begin() + place);
+      std::copy(parts[part].corners.begin(), parts[part].corners.end(), geometry.corners.begin() + place);
+    });
   }
   Counts sum;
   for (const Counts& chunk : counts) {

@@ -13,19 +13,25 @@
 #include "renderer/raster/raster.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/scene/visible_set.hpp"
+#include "renderer/util/memory.hpp"
 #include "renderer/util/stats.hpp"
 
 namespace hsr {
+
+// The geometry stage's lists, made without a fill (FirstTouchAllocator): the stage's
+// chunks are copied into their places on the threads.
+using ScreenTriangles = std::vector<ScreenTriangle, FirstTouchAllocator<ScreenTriangle>>;
+using ScreenCorners = std::vector<std::array<dvec3, 3>, FirstTouchAllocator<std::array<dvec3, 3>>>;
 
 struct ScreenGeometry {
   CameraTransform camera;
   // In submission order: by global triangle index, and a clipped triangle's pieces
   // in fan order. Ties between equal depths go to the earlier entry.
-  std::vector<ScreenTriangle> triangles;
+  ScreenTriangles triangles;
   // Only when asked for (the painter's geometric tests need them; the z-buffer does
   // not): each screen triangle's corners as (pixel x, pixel y, t), unsnapped, in the
   // order the triangle was given (before the rasterizer's reordering).
-  std::vector<std::array<dvec3, 3>> corners;
+  ScreenCorners corners;
 };
 
 // What the geometry stage is asked for.
