@@ -1,24 +1,52 @@
 // parallelFor and the threads it keeps between loops (renderer/util/parallel.hpp): every item
 // once, loops inside loops, an exception from the caller's share, and the caller's
-// floating-point traps in every worker; and the time phases spend outside the loops.
+// floating-point traps in every worker; the time phases spend outside the loops; and a
+// frame's buffers, made without a fill and filled on the threads.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cfenv>
 #include <chrono>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "floating_point_traps.hpp"
+#include "renderer/image/frame.hpp"
 #include "renderer/util/parallel.hpp"
 #include "renderer/util/stats.hpp"
 
 namespace hsr {
 namespace {
+
+// A frame's buffers are left unfilled where they are allocated and filled by rows on the
+// threads: every pixel must still start black, background and infinitely far, also in
+// memory an earlier frame left full of other values.
+TEST(Parallel, AFrameFilledOnAnyThreadsStartsBlackBackgroundAndInfinitelyFar) {
+  for (const auto& [width, height] : {std::pair(1, 1), std::pair(7, 5), std::pair(33, 17), std::pair(640, 3)})
+    for (int threads = 1; threads <= 3; ++threads) {
+      {
+        Frame earlier(width, height, threads);  // its memory is likely the next frame's
+        std::fill(earlier.color.begin(), earlier.color.end(), std::uint8_t(77));
+        std::fill(earlier.depth.begin(), earlier.depth.end(), 1.5f);
+        std::fill(earlier.ids.begin(), earlier.ids.end(), 9u);
+      }
+      const Frame frame(width, height, threads);
+      ASSERT_EQ(frame.pixelCount(), std::size_t(width) * std::size_t(height));
+      ASSERT_EQ(frame.color.size(), frame.pixelCount() * 4);
+      EXPECT_TRUE(std::all_of(frame.color.begin(), frame.color.end(), [](std::uint8_t c) { return c == 0; }))
+          << width << "x" << height << " on " << threads;
+      EXPECT_TRUE(std::all_of(frame.ids.begin(), frame.ids.end(), [](std::uint32_t id) { return id == 0; }))
+          << width << "x" << height << " on " << threads;
+      EXPECT_TRUE(std::all_of(frame.depth.begin(), frame.depth.end(), [](float d) { return d == std::numeric_limits<float>::infinity(); }))
+          << width << "x" << height << " on " << threads;
+    }
+}
 
 TEST(Parallel, EveryItemOnceInLoopAfterLoop) {
   for (int loop = 0; loop < 2000; ++loop) {
