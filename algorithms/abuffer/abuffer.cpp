@@ -6,11 +6,13 @@
 #include <bit>
 #include <cstdio>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "renderer/raster/plane_depth.hpp"
 #include "renderer/raster/screen_triangles.hpp"
 #include "renderer/util/conventions.hpp"
+#include "renderer/util/memory.hpp"
 #include "renderer/util/parallel.hpp"
 
 namespace hsr::abuffer {
@@ -25,40 +27,82 @@ struct Fragment {
 };
 constexpr std::uint32_t kEndOfList = std::numeric_limits<std::uint32_t>::max();
 
-// The per-pixel lists: a head per pixel and a pool of fragments (Carpenter's linked lists).
+// The per-pixel lists (Carpenter's linked lists): a head per pixel, into the pool of
+// fragments of the band of rows that holds the pixel (step 1 builds each band's on a
+// thread of its own).
 struct FragmentLists {
-  std::vector<std::uint32_t> head;
-  std::vector<Fragment> pool;
+  static constexpr int kBandRows = 8;
+  int width = 0;
+  PixelBuffer<std::uint32_t> head;
+  std::vector<std::vector<Fragment>> pools;  // one per band
+  const std::vector<Fragment>& poolOf(std::size_t pixel) const { return pools[pixel / std::size_t(width) / kBandRows]; }
+  std::size_t fragments() const {
+    std::size_t count = 0;
+    for (const std::vector<Fragment>& pool : pools) count += pool.size();
+    return count;
+  }
 };
 
-// Step 1: scan conversion. Each polygon, in submission order, is rasterized at the
-// subsamples' resolution: a covered subsample sets its bit in the polygon's fragment in
-// the pixel that holds it, the fragment made when the polygon first reaches the pixel.
-FragmentLists buildLists(const ScreenGeometry& fine, int k, int width, int height, std::int64_t& subsamplesCovered) {
-  FragmentLists lists{std::vector<std::uint32_t>(std::size_t(width) * std::size_t(height), kEndOfList), {}};
+// Step 1, for the pixel rows [firstRow, endRow): each polygon that reaches them, in
+// submission order, is rasterized at the subsamples' resolution: a covered subsample
+// sets its bit in the polygon's fragment in the pixel that holds it, the fragment made
+// when the polygon first reaches the pixel. Returns the subsamples covered.
+std::int64_t scanConvertBand(const ScreenGeometry& fine, int k, int width, int firstRow, int endRow,
+                             std::span<const std::uint32_t> polygons, std::uint32_t* head, std::vector<Fragment>& pool) {
+  const std::size_t firstPixel = std::size_t(firstRow) * std::size_t(width), pixels = std::size_t(endRow - firstRow) * std::size_t(width);
+  std::fill_n(head + firstPixel, pixels, kEndOfList);
   // The fragment each pixel holds for the polygon being rasterized, found by a stamp
   // rather than by walking the pixel's list.
-  std::vector<std::uint32_t> stampedBy(lists.head.size(), kEndOfList), fragmentOf(lists.head.size());
-  for (std::uint32_t polygon = 0; polygon < fine.triangles.size(); ++polygon) {
+  std::vector<std::uint32_t> stampedBy(pixels, kEndOfList), fragmentOf(pixels);
+  std::int64_t covered = 0;
+  for (const std::uint32_t polygon : polygons) {
     const ScreenTriangle& tri = fine.triangles[polygon];
-    for (int y = tri.minY; y <= tri.maxY; ++y) {
+    for (int y = std::max(tri.minY, firstRow * k); y <= std::min(tri.maxY, endRow * k - 1); ++y) {
       int first, last;
       if (!coveredRun(tri, y, tri.minX, tri.maxX + 1, first, last)) continue;
-      subsamplesCovered += last - first + 1;
+      covered += last - first + 1;
       const std::size_t row = std::size_t(y / k) * std::size_t(width);
       const std::uint64_t rowBits = std::uint64_t(y % k) * std::uint64_t(k);
       for (int x = first; x <= last; ++x) {
-        const std::size_t pixel = row + std::size_t(x / k);
-        if (stampedBy[pixel] != polygon) {
-          stampedBy[pixel] = polygon;
-          fragmentOf[pixel] = static_cast<std::uint32_t>(lists.pool.size());
-          lists.pool.push_back({0, polygon, lists.head[pixel]});
-          lists.head[pixel] = fragmentOf[pixel];
+        const std::size_t pixel = row + std::size_t(x / k), inBand = pixel - firstPixel;
+        if (stampedBy[inBand] != polygon) {
+          stampedBy[inBand] = polygon;
+          fragmentOf[inBand] = static_cast<std::uint32_t>(pool.size());
+          pool.push_back({0, polygon, head[pixel]});
+          head[pixel] = fragmentOf[inBand];
         }
-        lists.pool[fragmentOf[pixel]].mask |= std::uint64_t{1} << (rowBits + std::uint64_t(x % k));
+        pool[fragmentOf[inBand]].mask |= std::uint64_t{1} << (rowBits + std::uint64_t(x % k));
       }
     }
   }
+  return covered;
+}
+
+// Step 1 over the image, cut into bands of rows scan-converted on the threads (REYES,
+// the renderer Carpenter made the A-buffer for, renders bucket by bucket). A band takes
+// the polygons that reach its rows in submission order, so its lists are the same for
+// any thread count; a pixel's list may hold its fragments in any order, as the resolve
+// sorts them.
+FragmentLists buildLists(const ScreenGeometry& fine, int k, int width, int height, int threads, std::int64_t& subsamplesCovered) {
+  constexpr int kBandRows = FragmentLists::kBandRows;
+  const auto bands = static_cast<std::size_t>((height + kBandRows - 1) / kBandRows);
+  const auto bandOf = [&](int fineRow) { return static_cast<std::size_t>(fineRow / k / kBandRows); };
+  std::vector<std::vector<std::uint32_t>> reaching(bands);  // the polygons whose rows reach each band
+  for (std::uint32_t polygon = 0; polygon < fine.triangles.size(); ++polygon)
+    for (std::size_t band = bandOf(fine.triangles[polygon].minY); band <= bandOf(fine.triangles[polygon].maxY); ++band)
+      reaching[band].push_back(polygon);
+
+  FragmentLists lists;
+  lists.width = width;
+  lists.head.resize(std::size_t(width) * std::size_t(height));
+  lists.pools.resize(bands);
+  std::vector<std::int64_t> covered(bands);
+  parallelFor(bands, threads, [&](std::size_t band, int) {
+    const int firstRow = int(band) * kBandRows;
+    covered[band] = scanConvertBand(fine, k, width, firstRow, std::min(height, firstRow + kBandRows), reaching[band],
+                                    lists.head.data(), lists.pools[band]);
+  });
+  for (const std::int64_t count : covered) subsamplesCovered += count;
   return lists;
 }
 
@@ -119,12 +163,12 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       buildScreenTriangles(request.scene, fine, {.submitted = request.triangles}, request.threads, request.stats);
   PhaseTimer timer(request.stats, "fragments");
   std::int64_t subsamplesCovered = 0;
-  const FragmentLists lists = buildLists(geometry, k, width, height, subsamplesCovered);
+  const FragmentLists lists = buildLists(geometry, k, width, height, request.threads, subsamplesCovered);
   if (request.steps) {
     std::vector<double> perPixel(lists.head.size(), 0);
     for (std::size_t p = 0; p < lists.head.size(); ++p)
-      for (std::uint32_t f = lists.head[p]; f != kEndOfList; f = lists.pool[f].next) ++perPixel[p];
-    request.steps->record("the fragment lists: " + std::to_string(lists.pool.size()) + " fragments, each a polygon's coverage mask in a pixel",
+      for (std::uint32_t f = lists.head[p]; f != kEndOfList; f = lists.poolOf(p)[f].next) ++perPixel[p];
+    request.steps->record("the fragment lists: " + std::to_string(lists.fragments()) + " fragments, each a polygon's coverage mask in a pixel",
                           heatMapPicture(perPixel, width, height, "fragments"));
   }
 
@@ -137,7 +181,8 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   const int samples = k * k;
   const DepthOrder order(fine);
   PixelCoverage coverage;
-  coverage.first.assign(frame.pixelCount() + 1, 0);
+  coverage.first.resize(frame.pixelCount() + 1);  // filled by the rows: pixel p's count at p + 1, then the offsets
+  coverage.first[0] = 0;
   std::vector<std::vector<CoveredSurface>> rowSurfaces(static_cast<std::size_t>(height));
   std::vector<Counts> rowCounts(static_cast<std::size_t>(height));
   parallelFor(static_cast<std::size_t>(height), request.threads, [&](std::size_t y, int) {
@@ -149,8 +194,9 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       const std::size_t pixel = y * std::size_t(width) + std::size_t(x);
       const double centerX = (double(x) + 0.5) * k;
       fragments.clear();
-      for (std::uint32_t f = lists.head[pixel]; f != kEndOfList; f = lists.pool[f].next) {
-        const Fragment& fragment = lists.pool[f];
+      const std::vector<Fragment>& pool = lists.poolOf(pixel);
+      for (std::uint32_t f = lists.head[pixel]; f != kEndOfList; f = pool[f].next) {
+        const Fragment& fragment = pool[f];
         const ScreenTriangle& tri = geometry.triangles[fragment.polygon];
         const float opacity = transparency ? static_cast<float>(request.scene.instanceOf(tri.triangle).opacity) : 1.0f;
         fragments.push_back({order.sign * tri.depthAt(centerX, centerY), fragment.polygon, fragment.mask, opacity});
@@ -224,13 +270,21 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
       coverage.first[pixel + 1] = static_cast<std::uint32_t>(surfaces);
     }
   });
-  // The rows' lists joined, in pixel order.
+  // The rows' lists joined in pixel order: each row's surfaces copied into their place,
+  // and its pixels' counts turned into where each pixel's surfaces end, on the threads.
   Counts total;
-  for (std::size_t p = 0; p < frame.pixelCount(); ++p) coverage.first[p + 1] += coverage.first[p];
+  std::vector<std::uint32_t> rowPlace(rowSurfaces.size() + 1, 0);
   for (std::size_t y = 0; y < rowSurfaces.size(); ++y) {
-    coverage.surfaces.insert(coverage.surfaces.end(), rowSurfaces[y].begin(), rowSurfaces[y].end());
+    rowPlace[y + 1] = rowPlace[y] + static_cast<std::uint32_t>(rowSurfaces[y].size());
     total += rowCounts[y];
   }
+  coverage.surfaces.resize(rowPlace.back());
+  parallelFor(rowSurfaces.size(), request.threads, [&](std::size_t y, int) {
+    std::copy(rowSurfaces[y].begin(), rowSurfaces[y].end(), coverage.surfaces.begin() + std::ptrdiff_t(rowPlace[y]));
+    std::uint32_t end = rowPlace[y];
+    for (std::size_t pixel = y * std::size_t(width); pixel < (y + 1) * std::size_t(width); ++pixel)
+      coverage.first[pixel + 1] = end += coverage.first[pixel + 1];
+  });
   if (request.steps) {
     // How far each pixel is from showing one thing: 1 less the largest share (the
     // background's among them): 0 inside a surface, up to 1/2 on a clean edge.
@@ -246,11 +300,11 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   }
   visibility.coverage = std::move(coverage);
 
-  request.stats.add("fragments", static_cast<std::int64_t>(lists.pool.size()));
+  request.stats.add("fragments", static_cast<std::int64_t>(lists.fragments()));
   request.stats.add("subsamples covered", subsamplesCovered);
   request.stats.add("most fragments in a pixel", total.mostFragments);
   request.stats.add("pixels with partial coverage", total.partial);
-  request.stats.add("fragment bytes", static_cast<std::int64_t>(lists.pool.size() * sizeof(Fragment)));
+  request.stats.add("fragment bytes", static_cast<std::int64_t>(lists.fragments() * sizeof(Fragment)));
 }
 
 AlgorithmEntry entry() {

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "renderer/util/memory.hpp"
+
 namespace hsr {
 
 // An antialiasing algorithm's answer (Visibility::coverage): each pixel's surfaces and
@@ -18,8 +20,8 @@ struct CoveredSurface {
   float share;
 };
 struct PixelCoverage {
-  std::vector<std::uint32_t> first;  // per pixel, into surfaces; one more entry than pixels
-  std::vector<CoveredSurface> surfaces;
+  PixelBuffer<std::uint32_t> first;  // per pixel, into surfaces; one more entry than pixels
+  std::vector<CoveredSurface, FirstTouchAllocator<CoveredSurface>> surfaces;
 };
 
 // Whether the pixel shows one surface and nothing else: one surface, taking all of it.
