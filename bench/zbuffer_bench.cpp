@@ -93,8 +93,8 @@ void memsetFloor(benchmark::State& state) {
   const auto clear = [&] {
     hsr::parallelFor(parts, threads, [&](std::size_t part, int) {
       const auto [first, end] = hsr::partRange(frame.pixelCount(), parts, part);
-      std::memset(&frame.ids[first], 0, (end - first) * sizeof frame.ids[0]);
-      std::memset(&frame.depth[first], 0, (end - first) * sizeof frame.depth[0]);
+      std::memset(frame.ids.data() + first, 0, (end - first) * sizeof frame.ids[0]);
+      std::memset(frame.depth.data() + first, 0, (end - first) * sizeof frame.depth[0]);
     });
   };
   for (auto _ : state) {

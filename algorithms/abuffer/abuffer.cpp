@@ -35,7 +35,8 @@ struct FragmentLists {
   int width = 0;
   PixelBuffer<std::uint32_t> head;
   std::vector<std::vector<Fragment>> pools;  // one per band
-  const std::vector<Fragment>& poolOf(std::size_t pixel) const { return pools[pixel / std::size_t(width) / kBandRows]; }
+  const std::vector<Fragment>& poolOfRow(std::size_t y) const { return pools[y / kBandRows]; }
+  const std::vector<Fragment>& poolOf(std::size_t pixel) const { return poolOfRow(pixel / std::size_t(width)); }
   std::size_t fragments() const {
     std::size_t count = 0;
     for (const std::vector<Fragment>& pool : pools) count += pool.size();
@@ -99,8 +100,10 @@ FragmentLists buildLists(const ScreenGeometry& fine, int k, int width, int heigh
   std::vector<std::int64_t> covered(bands);
   parallelFor(bands, threads, [&](std::size_t band, int) {
     const int firstRow = int(band) * kBandRows;
+    std::vector<Fragment> pool;  // made here: neighbouring bands' pools in `pools` share cache lines
     covered[band] = scanConvertBand(fine, k, width, firstRow, std::min(height, firstRow + kBandRows), reaching[band],
-                                    lists.head.data(), lists.pools[band]);
+                                    lists.head.data(), pool);
+    lists.pools[band] = std::move(pool);
   });
   for (const std::int64_t count : covered) subsamplesCovered += count;
   return lists;
@@ -190,11 +193,11 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
     std::vector<float> shares;
     std::vector<std::pair<double, std::uint32_t>> atSubsample;  // (key, fragment) of those covering it
     const double centerY = (double(y) + 0.5) * k;
+    const std::vector<Fragment>& pool = lists.poolOfRow(y);
     for (int x = 0; x < width; ++x) {
       const std::size_t pixel = y * std::size_t(width) + std::size_t(x);
       const double centerX = (double(x) + 0.5) * k;
       fragments.clear();
-      const std::vector<Fragment>& pool = lists.poolOf(pixel);
       for (std::uint32_t f = lists.head[pixel]; f != kEndOfList; f = pool[f].next) {
         const Fragment& fragment = pool[f];
         const ScreenTriangle& tri = geometry.triangles[fragment.polygon];

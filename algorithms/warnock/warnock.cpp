@@ -175,7 +175,7 @@ class Subdivision {
       for (std::size_t k = 0; k < related.size(); ++k) related[k] = counts.relations[k] - relationsBefore[k];
       witnessWindow(window, examined, related, nearestSurrounding);
     }
-    if (examined.rule != Rule::subdivided) examined.meeting = {};  // its memory too: the list was reserved at the parent's size
+    if (examined.rule != Rule::subdivided) std::vector<std::uint32_t>().swap(examined.meeting);  // its memory too: reserved at the parent's size
     return examined;
   }
 

@@ -111,7 +111,9 @@ void buildScreenTriangles(const PreparedScene& scene, const CameraTransform& vie
   const bool clipFar = options.clipFar, keepCorners = options.keepCorners;
   const VisibleSet* const submitted = options.submitted;
   geometry.camera = view;
-  geometry.triangles.clear();  // the storage stays, for the triangles below
+  // The storage stays, for the triangles below; emptied first, so that nothing of an
+  // earlier frame's list is copied when it grows.
+  geometry.triangles.clear();
   geometry.corners.clear();
   const CameraTransform& camera = geometry.camera;
   const ClipVolume volume(camera, clipFar);
@@ -196,14 +198,12 @@ void buildScreenTriangles(const PreparedScene& scene, const CameraTransform& vie
   } else {
     std::vector<std::size_t> placeOf(parts.size() + 1, 0);
     for (std::size_t part = 0; part < parts.size(); ++part) placeOf[part + 1] = placeOf[part] + parts[part].triangles.size();
-    geometry.triangles.clear();  // nothing of an earlier frame's list is copied if it grows
     geometry.triangles.resize(placeOf.back());
-    geometry.corners.clear();
-    geometry.corners.resize(keepCorners ? placeOf.back() : 0);
+    if (keepCorners) geometry.corners.resize(placeOf.back());
     parallelFor(parts.size(), workers, [&](std::size_t part, int) {
       const auto place = static_cast<std::ptrdiff_t>(placeOf[part]);
       std::copy(parts[part].triangles.begin(), parts[part].triangles.end(), geometry.triangles.begin() + place);
-      std::copy(parts[part].corners.begin(), parts[part].corners.end(), geometry.corners.begin() + place);
+      if (keepCorners) std::copy(parts[part].corners.begin(), parts[part].corners.end(), geometry.corners.begin() + place);
     });
   }
   Counts sum;
