@@ -32,11 +32,9 @@ constexpr std::uint32_t kEndOfList = std::numeric_limits<std::uint32_t>::max();
 // thread of its own).
 struct FragmentLists {
   static constexpr int kBandRows = 8;
-  int width = 0;
   PixelBuffer<std::uint32_t> head;
   std::vector<std::vector<Fragment>> pools;  // one per band
   const std::vector<Fragment>& poolOfRow(std::size_t y) const { return pools[y / kBandRows]; }
-  const std::vector<Fragment>& poolOf(std::size_t pixel) const { return poolOfRow(pixel / std::size_t(width)); }
   std::size_t fragments() const {
     std::size_t count = 0;
     for (const std::vector<Fragment>& pool : pools) count += pool.size();
@@ -94,7 +92,6 @@ FragmentLists buildLists(const ScreenGeometry& fine, int k, int width, int heigh
       reaching[band].push_back(polygon);
 
   FragmentLists lists;
-  lists.width = width;
   lists.head.resize(std::size_t(width) * std::size_t(height));
   lists.pools.resize(bands);
   std::vector<std::int64_t> covered(bands);
@@ -169,8 +166,11 @@ void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility
   const FragmentLists lists = buildLists(geometry, k, width, height, request.threads, subsamplesCovered);
   if (request.steps) {
     std::vector<double> perPixel(lists.head.size(), 0);
-    for (std::size_t p = 0; p < lists.head.size(); ++p)
-      for (std::uint32_t f = lists.head[p]; f != kEndOfList; f = lists.poolOf(p)[f].next) ++perPixel[p];
+    for (std::size_t y = 0; y < std::size_t(height); ++y) {
+      const std::vector<Fragment>& pool = lists.poolOfRow(y);
+      for (std::size_t p = y * std::size_t(width); p < (y + 1) * std::size_t(width); ++p)
+        for (std::uint32_t f = lists.head[p]; f != kEndOfList; f = pool[f].next) ++perPixel[p];
+    }
     request.steps->record("the fragment lists: " + std::to_string(lists.fragments()) + " fragments, each a polygon's coverage mask in a pixel",
                           heatMapPicture(perPixel, width, height, "fragments"));
   }
