@@ -105,9 +105,10 @@ struct AlgorithmEntry {
   bool takesTriangleSubsets = false;
   // It records the history of the pixels hsr why asks about (VisibilityRequest::why).
   bool answersWhy = false;
-  // Every decision its loops can record about what is not a triangle (Warnock's windows),
-  // as an event's outcome begins, before its first ": ". The browser edition's quiz offers
-  // them all when it asks what the loop decided; empty: it offers those taken at the pixel.
+  // Every decision its loops can record about what is not a triangle (Warnock's windows;
+  // for a line algorithm, Roberts' bodies along an edge), as an event's outcome begins,
+  // before its first ": ". The browser edition's quiz offers them all when it asks what
+  // the loop decided; empty: it offers those taken at the pixel.
   std::vector<std::string> whyDecisions;
   // It decides with a depth buffer: the format its knobs chose (what a tie is a tie of:
   // hsr render's note on depth ties, and its advice).
@@ -122,6 +123,10 @@ struct AlgorithmEntry {
   // Line algorithms that answer hsr why --edge: the same drawing, with what the walk met
   // along edge witness.edge recorded (renderer/steps/why.hpp); null for the others.
   std::function<LineSet(const PreparedScene&, const KnobValues&, Stats&, EdgeWitness&)> drawLinesWatchingEdge;
+  // Where the exact drawing (LineJudgement::exact) shows edge `edge` of the drawing, in
+  // its u, for an algorithm whose exact drawing has other edges (the floating horizon's
+  // curves, sampled finer); null: the exact drawing's edges are the drawing's own.
+  std::function<EdgeVisibility(const LineSet& drawing, std::uint32_t edge, const LineSet& exact)> exactAlongEdge;
 
   // The reference: its whole image, visibility and effects both exact.
   std::function<Frame(const PreparedScene&, int threads, Stats&)> renderExactly;
@@ -158,10 +163,15 @@ template <typename Knobs>
 void setOrder(AlgorithmEntry& entry, PaintedPieces (*order)(const VisibilityRequest&, const Knobs&)) {
   entry.order = [order](const VisibilityRequest& request, const KnobValues& knobs) { return order(request, knobs.as<Knobs>()); };
 }
+// A line algorithm's drawing: drawLines, and drawLinesWatchingEdge the same run with
+// hsr why --edge's witness handed in.
 template <typename Knobs>
-void setDrawing(AlgorithmEntry& entry, LineSet (*draw)(const PreparedScene&, const Knobs&, Stats&, StepRecorder*)) {
+void setDrawing(AlgorithmEntry& entry, LineSet (*draw)(const PreparedScene&, const Knobs&, Stats&, StepRecorder*, EdgeWitness*)) {
   entry.drawLines = [draw](const PreparedScene& scene, const KnobValues& knobs, int, Stats& stats, StepRecorder* steps) {
-    return draw(scene, knobs.as<Knobs>(), stats, steps);
+    return draw(scene, knobs.as<Knobs>(), stats, steps, nullptr);
+  };
+  entry.drawLinesWatchingEdge = [draw](const PreparedScene& scene, const KnobValues& knobs, Stats& stats, EdgeWitness& edge) {
+    return draw(scene, knobs.as<Knobs>(), stats, nullptr, &edge);
   };
 }
 template <typename Knobs>

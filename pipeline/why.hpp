@@ -59,7 +59,8 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
                                        StepAsked* step = nullptr);
 
 // The answers as a person reads them, and as JSON (one object: the scene, the algorithm
-// and its knobs, the size, its decisions (AlgorithmEntry::whyDecisions), the step asked
+// and its knobs, the size, its decisions (AlgorithmEntry::whyDecisions), whether it paints
+// in order (a list-priority algorithm: AlgorithmEntry::order), the step asked
 // about, and per pixel the history, what it
 // shows, the reference's answer with its tied triangles, agrees and the verdict; a
 // triangle is its global index, null for none). With a step, the text lists the events
@@ -80,6 +81,7 @@ struct EdgeAnswer {
   std::vector<LineSegment> pieces;   // the algorithm's pieces of it, with their QI
   std::vector<Interval> referenceVisible;  // where the exact line reference sees it (sorted, disjoint, in u)
   double differingPixels = 0;        // the length, in pixels, where the two disagree on visibility
+  bool agrees = false;               // they disagree on no more than rounding (0.001 pixel)
   std::string verdict;
 };
 

@@ -359,12 +359,16 @@ function why(x, y) {
 }
 
 // The edge a line drawing's answer is about, drawn over the drawing and its difference
-// with the reference: a line from where the walk starts (a dot) to where it arrives, and a
-// tick at each place its QI changed; none for a pixel's answer.
+// with the reference: a line from where Appel's walk starts (a dot; the others walk
+// nowhere: from the edge's start) to its other end, and a ring at each place its
+// visibility may change (Appel: its QI changes; Roberts: a body's hidden part begins;
+// the floating horizon: it crosses a horizon); none for a pixel's answer.
 function showEdge(edge) {
   for (const overlay of document.querySelectorAll(".images svg.edge")) overlay.remove();
   if (!edge) return;
-  const start = edge.walk.length ? edge.walk[0].u : 0;
+  const first = edge.walk[0];
+  const start = first && first.subject === "" && Number.isFinite(first.u) ? first.u : 0;
+  const ringed = (event) => event.change !== 0;
   const at = (u) => [edge.from[0] + u * (edge.to[0] - edge.from[0]), edge.from[1] + u * (edge.to[1] - edge.from[1])];
   for (const id of ["color", "error"]) {
     const canvas = $(id);
@@ -380,7 +384,7 @@ function showEdge(edge) {
     const [x0, y0] = at(start), [x1, y1] = at(1 - start);
     shape("line", { x1: x0, y1: y0, x2: x1, y2: y1 });
     shape("circle", { cx: x0, cy: y0, r: 3, class: "start" });
-    for (const event of edge.walk) if (event.change !== 0) shape("circle", { cx: at(event.u)[0], cy: at(event.u)[1], r: 2.5, class: "change" });
+    for (const event of edge.walk) if (ringed(event)) shape("circle", { cx: at(event.u)[0], cy: at(event.u)[1], r: 2.5, class: "change" });
     canvas.parentElement.append(svg);
   }
 }

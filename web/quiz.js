@@ -9,12 +9,14 @@
 //     reference finds two or more triangles exactly nearest, any of them is right);
 //   - then, event by event in the order the loop met them, with the numbers the loop
 //     decided by: for an event about a triangle, whether the pixel shows that triangle
-//     after it (the depth test, the painter's overdraw, a span's rule, a resolve); for an
+//     after it (the depth test, a span's rule, a resolve), or for the painter, which
+//     paints them all, which piece it paints next; for an
 //     event about something else (Warnock's window, a BVH node, a culling stage), which
 //     decision the loop made there, among all the algorithm declares (Warnock's rules) or
 //     else those made at this pixel;
-//   - for a line drawing, along the edge nearest the pixel (hsr why --edge X,Y): at each
-//     crossing of a contour, how the edge's quantitative invisibility changes.
+//   - for a line drawing, along the edge nearest the pixel (hsr why --edge X,Y): Appel's,
+//     at each crossing of a contour, how the edge's quantitative invisibility changes;
+//     Roberts', what the test of each body decided (hides part of it, none, ruled out).
 // At most kStepQuestions events are asked about (those about triangles first, then the
 // last of the others); the rest are revealed as the quiz passes them. At the end, the whole answer, as hsr why prints it.
 "use strict";
@@ -37,8 +39,10 @@ function choicesOf(labels, isRight) {
 }
 
 // A pixel's quiz, from hsr why's answer for one pixel of a surface algorithm, whose
-// decisions about what is not a triangle are `declared` (all of Warnock's rules).
-function pixelQuiz(pixel, declared) {
+// decisions about what is not a triangle are `declared` (all of Warnock's rules), and
+// which `paintsInOrder` (the painter: every piece reaching the pixel is painted, and
+// what it decides is the order).
+function pixelQuiz(pixel, declared, paintsInOrder) {
   const history = pixel.history;
   const named = history.filter((event) => event.triangle !== null).map((event) => event.name);
   const tied = pixel.reference.ambiguous ? pixel.reference.tied.map((t) => t.name) : [];
@@ -63,9 +67,22 @@ function pixelQuiz(pixel, declared) {
   const aboutTriangles = history.flatMap((event, index) => (event.triangle !== null ? [index] : []));
   const aboutOthers = declared.length > 1 || new Set(otherDecisions).size > 1 ? history.flatMap((event, index) => (event.triangle === null ? [index] : [])).reverse() : [];
   const asked = [...aboutTriangles, ...aboutOthers].slice(0, kStepQuestions).sort((a, b) => a - b);
-  const steps = asked.map((index) => {
+  // The painter's question: which of the pieces still to come it paints next. A choice
+  // names the piece's triangle, its distance here and whether it is whole or cut (not its
+  // place in the order, which the detail begins with).
+  const pieceOf = (event) => `${withDistance(event.name, event.distance)} (${/\(([^()]*)\)$/.exec(event.detail)?.[1] ?? "a piece"})`;
+  const nextPiece = (index) => ({
+    event: index,
+    prompt: `Event ${index + 1}: which piece does the painter paint ${index === 0 ? "first" : "next"} at this pixel?`,
+    context: `${history.length} pieces reach pixel (${pixel.x}, ${pixel.y}); the painter paints every one, back to front, ` +
+             `each over the ones before. ${index} painted so far.`,
+    choices: choicesOf(history.slice(index).map(pieceOf).sort(), (label) => label === pieceOf(history[index])),
+    answer: `${history[index].name}: ${history[index].detail}.`,
+  });
+  const steps = asked.filter((index) => !paintsInOrder || index + 1 < history.length).map((index) => {
     const event = history[index];
     const at = `Event ${index + 1} of ${history.length}: ${event.name}. ${numbersOf(event.detail)}.`;
+    if (paintsInOrder && event.triangle !== null) return nextPiece(index);
     if (event.triangle !== null) {
       return {
         event: index,
@@ -91,19 +108,40 @@ function pixelQuiz(pixel, declared) {
   return { events: history.map((event) => `${event.name}: ${event.outcome}`), questions: [...(first.choices.length > 1 ? [first] : []), ...steps] };
 }
 
-// An edge's quiz, from hsr why --edge's answer: its quantitative invisibility at each
-// crossing the walk met.
+// An edge's quiz, from hsr why --edge's answer: Appel's, how the edge's quantitative
+// invisibility changes at each crossing the walk met; Roberts', what the test of each
+// body decided; the floating horizon's, where the segment lies against the horizons at
+// its start and each column center (the algorithm's declared decisions are offered).
 function edgeQuiz(edge) {
   const change = (value) => (value > 0 ? `+${value}: it passes behind` : `${value}: it comes out from behind`);
-  const steps = edge.walk.map((event, index) => ({ event, index })).filter(({ event }) => event.change !== 0).slice(0, kStepQuestions)
-    .map(({ event, index }) => ({
+  const of = (index) => `Event ${index + 1} of ${edge.walk.length} along ${edge.name}`;
+  const question = (event, index) => {
+    if (event.change !== 0 && event.subject === "") {  // a change of Appel's QI
+      return {
+        event: index,
+        prompt: `At u = ${event.u.toPrecision(4)} the walk crosses a contour's projection. How does the edge's QI change?`,
+        context: `${of(index)}. ${event.detail}.`,
+        choices: choicesOf([change(1), change(-1), change(event.change)].sort(), (label) => label === change(event.change)),
+        answer: `${event.outcome}.`,
+      };
+    }
+    const decision = decisionOf(event.outcome);
+    if (!edge.decisions.includes(decision)) return null;
+    // The numbers it decided by, without the conclusion after the semicolon (a detail
+    // without one would give the answer away: it comes with the answer).
+    return {
       event: index,
-      prompt: `At u = ${event.u.toPrecision(4)} the walk crosses a contour's projection. How does the edge's QI change?`,
-      context: `Event ${index + 1} of ${edge.walk.length} along ${edge.name}. ${event.detail}.`,
-      choices: choicesOf([change(1), change(-1), change(event.change)].sort(), (label) => label === change(event.change)),
-      answer: `${event.outcome}.`,
-    }));
-  return { events: edge.walk.map((event) => `at u = ${event.u.toPrecision(4)}: ${event.outcome}`), questions: steps };
+      prompt: event.subject ? `${event.subject}${Number.isFinite(event.u) ? ` (u = ${event.u.toPrecision(4)})` : ""}: what does the algorithm decide there?`
+                            : "What does the algorithm decide for this edge?",
+      context: `${of(index)}${event.subject ? `: ${event.subject}` : ""}. ` +
+               (event.detail.includes("; ") ? `${numbersOf(event.detail)}.` : "Look at the drawing: where does it lie, against the edge?"),
+      choices: choicesOf(edge.decisions, (label) => label === decision),
+      answer: `${event.outcome}: ${event.detail}.`,
+    };
+  };
+  const steps = edge.walk.map(question).filter((asked) => asked !== null).slice(0, kStepQuestions);
+  const place = (event) => (Number.isFinite(event.u) ? `at u = ${event.u.toPrecision(4)}: ` : "");
+  return { events: edge.walk.map((event) => `${place(event)}${event.subject ? `${event.subject}: ` : ""}${event.outcome}`), questions: steps };
 }
 
 // The quiz in progress: its questions, the one shown, the answers right so far, and
@@ -161,7 +199,8 @@ function nextQuestion() {
 // Starts the quiz on the module's answer to why (a pixel's, or an edge's) for the pixel
 // clicked, `at` ([x, y]); an answer with nothing to ask is shown at once.
 function startQuiz(result, at) {
-  const built = result.edge ? edgeQuiz(result.edge) : pixelQuiz(result.answer.pixels[0], result.answer.decisions);
+  const built = result.edge ? edgeQuiz(result.edge)
+                            : pixelQuiz(result.answer.pixels[0], result.answer.decisions, result.answer.paints_in_order);
   Object.assign(quiz, built, { current: 0, right: 0, verdict: $("whyBox").className, at });
   $("quiz").hidden = false;
   $("why").hidden = quiz.questions.length > 0;

@@ -608,12 +608,7 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"feature edges", "contour edges", "crossings tested", "QI changes", "start-vertex ray casts",
                        "QI mismatches"};
   setRefusal(entry, refusal);
-  setDrawing<Knobs>(entry, [](const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
-    return run(scene, knobs, stats, steps);
-  });
-  entry.drawLinesWatchingEdge = [](const PreparedScene& scene, const KnobValues& knobs, Stats& stats, EdgeWitness& edge) {
-    return run(scene, knobs.as<Knobs>(), stats, nullptr, &edge);
-  };
+  setDrawing(entry, run);
   entry.judgeLines = judgedByLineReference;
   return entry;
 }

@@ -53,34 +53,43 @@ class CurveLookup {
   std::vector<std::vector<std::uint32_t>> byCurve_;
 };
 
-// Walks every edge of `walked` in steps of at most a quarter pixel. For each step: its
-// ends in pixels, its length, whether `walked` shows it, and whether `other` shows the same
-// curve within kCurveTolerancePixels at the same coordinate.
+// Walks edge e of `walked` in steps of at most a quarter pixel. For each step: its ends
+// in u and in pixels, its length, whether `walked` shows it, and whether `other` shows the
+// same curve within kCurveTolerancePixels at the same coordinate.
+template <typename Visit>
+void walkEdge(const CurveLookup& walked, const CurveLookup& other, std::size_t e, Visit&& visit) {
+  const FeatureEdge& edge = walked.lines().edges[e];
+  const CurvePlace& place = walked.lines().curvePlaces[e];
+  const int steps = std::max(1, static_cast<int>(std::ceil(edge.lengthPixels() / 0.25)));
+  for (int i = 0; i < steps; ++i) {
+    const double u0 = double(i) / steps, u1 = double(i + 1) / steps, middle = 0.5 * (u0 + u1);
+    const bool shown = contains(walked.visibility(e).visible, middle);
+    const double coordinate = place.from + edge.edgeParameter(middle) * (place.to - place.from);
+    const auto there = other.at(place.curve, coordinate);
+    const bool matched = there && there->visible && glm::length(there->pixel - edge.pixelAt(middle)) <= kCurveTolerancePixels;
+    visit(Interval{u0, u1}, edge.pixelAt(u0), edge.pixelAt(u1), (u1 - u0) * edge.lengthPixels(), shown, matched);
+  }
+}
+
+// The same for every edge of `walked`, without the ends in u.
 template <typename Visit>
 void walkCurves(const CurveLookup& walked, const CurveLookup& other, Visit&& visit) {
-  const LineSet& lines = walked.lines();
-  for (std::size_t e = 0; e < lines.edges.size(); ++e) {
-    const FeatureEdge& edge = lines.edges[e];
-    const CurvePlace& place = lines.curvePlaces[e];
-    const int steps = std::max(1, static_cast<int>(std::ceil(edge.lengthPixels() / 0.25)));
-    for (int i = 0; i < steps; ++i) {
-      const double u0 = double(i) / steps, u1 = double(i + 1) / steps, middle = 0.5 * (u0 + u1);
-      const bool shown = contains(walked.visibility(e).visible, middle);
-      const double coordinate = place.from + edge.edgeParameter(middle) * (place.to - place.from);
-      const auto there = other.at(place.curve, coordinate);
-      const bool matched = there && there->visible && glm::length(there->pixel - edge.pixelAt(middle)) <= kCurveTolerancePixels;
-      visit(edge.pixelAt(u0), edge.pixelAt(u1), (u1 - u0) * edge.lengthPixels(), shown, matched);
-    }
-  }
+  for (std::size_t e = 0; e < walked.lines().edges.size(); ++e)
+    walkEdge(walked, other, e, [&](Interval, dvec2 a, dvec2 b, double length, bool shown, bool matched) { visit(a, b, length, shown, matched); });
+}
+
+std::size_t curveCount(const LineSet& drawn, const LineSet& exact) {
+  std::size_t curves = 0;
+  for (const LineSet* lines : {&drawn, &exact})
+    for (const CurvePlace& place : lines->curvePlaces) curves = std::max<std::size_t>(curves, place.curve + 1);
+  return curves;
 }
 
 }  // namespace
 
 CurveComparison compareCurveDrawings(const LineSet& drawn, const LineSet& exact, std::span<const EdgeVisibility> exactVisibility) {
   HSR_CHECK(exactVisibility.size() == exact.edges.size());
-  std::size_t curves = 0;
-  for (const LineSet* lines : {&drawn, &exact})
-    for (const CurvePlace& place : lines->curvePlaces) curves = std::max<std::size_t>(curves, place.curve + 1);
+  const std::size_t curves = curveCount(drawn, exact);
   const CurveLookup drawnCurves(drawn, edgeVisibility(drawn), curves);
   const CurveLookup exactCurves(exact, {exactVisibility.begin(), exactVisibility.end()}, curves);
   CurveComparison result;
@@ -100,6 +109,21 @@ CurveComparison compareCurveDrawings(const LineSet& drawn, const LineSet& exact,
   error.error = error.visibleLength > 0 ? (error.wronglyDrawn + error.wronglyHidden) / error.visibleLength : 0;
   result.errorMap = picture.take();
   return result;
+}
+
+EdgeVisibility exactAlongDrawnEdge(const LineSet& drawn, std::uint32_t edge, const LineSet& exact,
+                                   std::span<const EdgeVisibility> exactVisibility) {
+  HSR_CHECK(exactVisibility.size() == exact.edges.size() && edge < drawn.edges.size());
+  const std::size_t curves = curveCount(drawn, exact);
+  const CurveLookup drawnCurves(drawn, edgeVisibility(drawn), curves);
+  const CurveLookup exactCurves(exact, {exactVisibility.begin(), exactVisibility.end()}, curves);
+  EdgeVisibility along{drawn.edges[edge].lengthPixels(), {}};
+  walkEdge(drawnCurves, exactCurves, edge, [&](Interval step, dvec2, dvec2, double, bool, bool matched) {
+    if (!matched) return;
+    if (!along.visible.empty() && along.visible.back().end == step.begin) along.visible.back().end = step.end;
+    else along.visible.push_back(step);
+  });
+  return along;
 }
 
 }  // namespace hsr

@@ -26,4 +26,10 @@ struct CurveComparison {
 };
 CurveComparison compareCurveDrawings(const LineSet& drawn, const LineSet& exact, std::span<const EdgeVisibility> exactVisibility);
 
+// Where the exact drawing shows edge `edge` of the drawn one, by the same measure (every
+// quarter pixel, the curve within kCurveTolerancePixels at the same coordinate), as
+// intervals of the drawn edge's u: what hsr why --edge sets beside the floating horizon's pieces.
+EdgeVisibility exactAlongDrawnEdge(const LineSet& drawn, std::uint32_t edge, const LineSet& exact,
+                                   std::span<const EdgeVisibility> exactVisibility);
+
 }  // namespace hsr

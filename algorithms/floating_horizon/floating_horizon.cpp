@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <span>
@@ -14,6 +15,8 @@
 namespace hsr::floating_horizon {
 
 namespace {
+
+constexpr double kNowhere = std::numeric_limits<double>::quiet_NaN();  // an hsr why event about the whole segment
 
 // The upper and lower horizons, in pixel coordinates (y grows down the image, so the
 // upper horizon is the smallest y drawn so far). Each is known at the centers of equal
@@ -37,10 +40,28 @@ class Horizons {
   // Step 3: visible above the upper horizon, or below the lower one.
   bool visible(const dvec2& p) const { return p.y < at(upper_, p.x) || (keepLower_ && p.y > at(lower_, p.x)); }
 
+  // hsr why --edge: where point p (at u along the edge asked about) lies against the
+  // horizons, and so whether step 3 sees it.
+  EdgeEvent placeOf(double u, const dvec2& p, std::string subject) const {
+    const double upper = at(upper_, p.x), lower = at(lower_, p.x);
+    const std::string numbers = "the segment at y = " + whyNumber(p.y) +
+                                (upper < kNothingDrawn ? ", the upper horizon at y = " + whyNumber(upper) : ", no upper horizon") +
+                                (!keepLower_ ? " (lower=off: none kept)"
+                                 : lower > -kNothingDrawn ? ", the lower at y = " + whyNumber(lower) : ", no lower horizon") +
+                                " (y grows down the image)";
+    const char* place = upper == kNothingDrawn            ? "no curve drawn there yet: visible"
+                        : p.y < upper                     ? "above the upper horizon: visible"
+                        : keepLower_ && p.y > lower       ? "below the lower horizon: visible"
+                        : keepLower_                      ? "between the horizons: hidden"
+                                                          : "under the upper horizon: hidden";
+    return {u, 0, place, numbers + "; " + (visible(p) ? "step 3 sees it" : "step 3 hides it"), std::move(subject)};
+  }
+
   // Step 4 with interpolation: the parts of segment a-b (parameter t in [0, 1]) that are
   // visible. Between consecutive column centers both horizons are straight, as is the
   // segment, so visibility changes at most once per horizon there, where they cross.
-  std::vector<Interval> visibleParts(const dvec2& a, const dvec2& b, std::int64_t& crossings) const {
+  // `why`: hsr why --edge's events for this segment, or null.
+  std::vector<Interval> visibleParts(const dvec2& a, const dvec2& b, std::int64_t& crossings, std::vector<EdgeEvent>* why = nullptr) const {
     std::vector<double> breaks = {0.0};
     forEachCenterBetween(a.x, b.x, [&](std::size_t, double x) { breaks.push_back((x - a.x) / (b.x - a.x)); });
     breaks.push_back(1.0);
@@ -60,12 +81,30 @@ class Horizons {
       const Interval above = signedPart(t0, t1, at(upper_, p0.x) - p0.y, at(upper_, p1.x) - p1.y, crossings);
       const Interval below = keepLower_ ? signedPart(t0, t1, p0.y - at(lower_, p0.x), p1.y - at(lower_, p1.x), crossings)
                                         : Interval{t0, t0};
+      if (why) [[unlikely]] witnessPiece(t0, t1, p0, above, below, *why);
       // Between the horizons is hidden, so the two parts are disjoint: add them in order.
       const bool aboveFirst = above.begin <= below.begin;
       add(aboveFirst ? above.begin : below.begin, aboveFirst ? above.end : below.end);
       add(aboveFirst ? below.begin : above.begin, aboveFirst ? below.end : above.end);
     }
     return parts;
+  }
+
+  // hsr why --edge: the segment's piece from t0 to t1 between two column centers (or its
+  // ends): where its start lies, then each horizon it crosses on the way.
+  void witnessPiece(double t0, double t1, const dvec2& p0, const Interval& above, const Interval& below, std::vector<EdgeEvent>& why) const {
+    why.push_back(placeOf(t0, p0, t0 == 0 ? "its start" : "a column center"));
+    const std::size_t first = why.size();
+    const auto crossing = [&](double u, bool becomesVisible, const char* horizon, const char* how) {
+      why.push_back({u, becomesVisible ? -1 : 1, becomesVisible ? "visible from here" : "hidden from here",
+                     std::string("it ") + how + ", where the two cross; between column centers the horizon is straight, so the "
+                     "crossing is computed (interpolate=on)", std::string("the ") + horizon});
+    };
+    if (above.end > above.begin && above.begin > t0) crossing(above.begin, true, "upper horizon", "comes out above the upper horizon");
+    if (above.end > above.begin && above.end < t1) crossing(above.end, false, "upper horizon", "sinks under the upper horizon");
+    if (below.end > below.begin && below.begin > t0) crossing(below.begin, true, "lower horizon", "comes out below the lower horizon");
+    if (below.end > below.begin && below.end < t1) crossing(below.end, false, "lower horizon", "rises above the lower horizon");
+    std::sort(why.begin() + std::ptrdiff_t(first), why.end(), [](const EdgeEvent& a, const EdgeEvent& b) { return a.u < b.u; });
   }
 
   // Step 5: the horizons take in segment a-b at every column center it spans.
@@ -146,8 +185,8 @@ int countOf(const KnobNumber& knob, int width, int minimum) {
 
 class FloatingHorizon {
  public:
-  FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps)
-      : view_(scene), knobs_(knobs), stats_(stats), steps_(steps), layout_(view_.layout(knobs.mesh)),
+  FloatingHorizon(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps, EdgeWitness* witness)
+      : view_(scene), knobs_(knobs), stats_(stats), steps_(steps), witness_(witness), layout_(view_.layout(knobs.mesh)),
         columns_(countOf(knobs.columns, scene.width(), 1)), samples_(countOf(knobs.samples, scene.width(), 2)) {
     lines_.width = scene.width();
     lines_.height = scene.height();
@@ -226,18 +265,38 @@ class FloatingHorizon {
         stats_.add("breaks", 1);
         continue;
       }
+      std::vector<EdgeEvent>* const why = witness_ && witness_->edge == lines_.edges.size() ? &witness_->events : nullptr;
+      if (why) [[unlikely]]
+        why->push_back({kNowhere, 0, "curve " + std::to_string(curvesDrawn_ + 1) + " of " + std::to_string(curvesToDraw()) + ", front to back",
+                        "the curves in front of it have raised the horizons; each of its segments is tested against them, and "
+                        "only then does the curve raise them (steps 3 to 5)"});
       std::vector<Interval> visible;
       if (knobs_.interpolate) {
-        visible = horizons_->visibleParts(a.pixel, b.pixel, crossings_);
-      } else if (horizons_->visible(a.pixel) && horizons_->visible(b.pixel)) {
-        visible = {{0.0, 1.0}};
-      } else if (horizons_->visible(a.pixel) || horizons_->visible(b.pixel)) {
-        stats_.add("segments dropped", 1);  // the classic ragged end: visibility changes between samples
+        visible = horizons_->visibleParts(a.pixel, b.pixel, crossings_, why);
+      } else {
+        if (why) [[unlikely]]
+          why->push_back(horizons_->placeOf(0, a.pixel, "its start")), why->push_back(horizons_->placeOf(1, b.pixel, "its end"));
+        if (horizons_->visible(a.pixel) && horizons_->visible(b.pixel)) {
+          visible = {{0.0, 1.0}};
+        } else if (horizons_->visible(a.pixel) || horizons_->visible(b.pixel)) {
+          stats_.add("segments dropped", 1);  // the classic ragged end: visibility changes between samples
+        }
+        if (why) [[unlikely]]
+          why->push_back({kNowhere, 0, visible.empty() ? "hidden whole" : "drawn whole",
+                          "interpolate=off looks only at the two samples: " +
+                              std::string(!visible.empty() ? "both are visible"
+                                          : horizons_->visible(a.pixel) || horizons_->visible(b.pixel)
+                                              ? "one is visible and the other not, so the segment is dropped (the classic ragged end)"
+                                              : "neither is visible")});
       }
       addEdge(a, b, static_cast<std::uint32_t>(curve), visible);
       drawn.emplace_back(a.pixel, b.pixel);
     }
     for (const auto& [a, b] : drawn) horizons_->raise(a, b);
+    if (witness_ && witness_->edge >= firstEdge && witness_->edge < lines_.edges.size()) [[unlikely]]
+      witness_->events.push_back({kNowhere, 0, "then the curve raises the horizons",
+                                  "at every column center its segments span, the upper horizon to the least y drawn there and the lower "
+                                  "to the greatest (step 5): what the curves behind it are tested against"});
     if (steps_ && steps_->due(curvesDrawn_, curvesToDraw())) recordCurve(firstEdge);
     ++curvesDrawn_;
   }
@@ -272,6 +331,7 @@ class FloatingHorizon {
   const Knobs& knobs_;
   Stats& stats_;
   StepRecorder* steps_;
+  EdgeWitness* witness_;  // hsr why --edge's edge, or null
   std::size_t curvesDrawn_ = 0;
   CurveLayout layout_;
   int columns_, samples_;
@@ -282,9 +342,9 @@ class FloatingHorizon {
 
 }  // namespace
 
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps, EdgeWitness* edge) {
   const PhaseTimer timer(stats, "floating horizon");
-  return FloatingHorizon(scene, knobs, stats, steps).run();
+  return FloatingHorizon(scene, knobs, stats, steps, edge).run();
 }
 
 AlgorithmEntry entry() {
@@ -298,10 +358,15 @@ AlgorithmEntry entry() {
                                {{"columns", "25%"}}};
   setRefusal(entry, refusal);
   setDrawing(entry, run);
+  entry.whyDecisions = {"no curve drawn there yet", "above the upper horizon", "below the lower horizon", "between the horizons",
+                        "under the upper horizon"};
   entry.judgeLines = [](const PreparedScene& scene, const KnobValues& values, const LineSet& lines, int threads, Stats& stats) {
     const ExactDrawing exact = exactDrawing(scene, values.as<Knobs>().mesh, threads, stats);
     CurveComparison comparison = compareCurveDrawings(lines, exact.lines, exact.visibility);
     return LineJudgement{comparison.error, std::move(comparison.errorMap), drawingOf(exact.lines, exact.visibility)};
+  };
+  entry.exactAlongEdge = [](const LineSet& drawing, std::uint32_t edge, const LineSet& exact) {
+    return exactAlongDrawnEdge(drawing, edge, exact, edgeVisibility(exact));
   };
   return entry;
 }

@@ -72,7 +72,9 @@ std::string refusal(const PreparedScene& scene);
 // edge's place on its curve (LineSet::curvePlaces). Stats: "curves", "samples",
 // "undefined samples", "breaks" (segments not drawn: a jump or a hole between their
 // samples), "horizon columns", "horizon crossings", "segments dropped" (interpolate=off).
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr);
+// `edge`: hsr why --edge's, where what step 3 and 4 met along that segment is recorded
+// (where it lies against the horizons at each column center, each horizon it crosses), or null.
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr, EdgeWitness* edge = nullptr);
 
 // The exact drawing of the same curves (reference.cpp): each curve sampled every
 // kReferenceSpacingPixels or finer, on a lattice of the same function whose lines include

@@ -14,6 +14,7 @@ namespace hsr::roberts {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kNowhere = std::numeric_limits<double>::quiet_NaN();  // an hsr why event about the whole edge
 
 // A plane n . x = offset; the body lies on the side n . x <= offset.
 struct Plane {
@@ -127,8 +128,8 @@ struct Body {
 
 class Roberts {
  public:
-  Roberts(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps)
-      : scene_(scene), knobs_(knobs), camera_(scene.camera()), stats_(stats), steps_(steps) {}
+  Roberts(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps, EdgeWitness* witness)
+      : scene_(scene), knobs_(knobs), camera_(scene.camera()), stats_(stats), steps_(steps), witness_(witness) {}
 
   LineSet run() {
     const std::vector<std::int8_t> facing = viewFacing(scene_, camera_, stats_);
@@ -157,16 +158,34 @@ class Roberts {
       const FeatureEdge& edge = lines.edges[e];
       std::vector<Interval> hidden;
       const std::int64_t testsBefore = bodyTests_;
+      EdgeWitness* const watched = witness_ && witness_->edge == e ? witness_ : nullptr;
       if (selfHidden[e]) {
         stats_.add("back-face edges");
         hidden.push_back({0, 1});
+        if (watched) [[unlikely]]
+          watched->events.push_back({kNowhere, 0, "hidden by its own body (step 1)", edge.kind == EdgeKind::junction
+              ? "it lies on a back face of one of the two bodies it joins, inside that body's shadow of itself"
+              : "both its faces face away from the eye; so its convex body hides all of it, and no other body is tested"});
       } else {
         // Step 2: the other bodies.
         const dvec3 s0 = screenPoint(edge.from), s1 = screenPoint(edge.to);
+        std::size_t listed = 0;
         forEachCandidate(edge, [&](std::uint32_t b) {
-          if (b == owner[e] || b == secondOwner[e]) return;
-          if (const std::optional<Interval> part = hiddenBy(bodies_[b], s0, s1)) hidden.push_back(*part);
+          ++listed;
+          EdgeEvent* const event = watched ? &watched->events.emplace_back(bodyEvent(b)) : nullptr;
+          if (b == owner[e] || b == secondOwner[e]) {
+            if (event) [[unlikely]]
+              event->outcome = "not tested: the edge lies on it",
+              event->detail = "a convex body hides none of its own edges but those between two back faces (step 1)";
+            return;
+          }
+          if (const std::optional<Interval> part = hiddenBy(bodies_[b], s0, s1, event)) hidden.push_back(*part);
         });
+        if (watched && grid_) [[unlikely]]
+          watched->events.insert(watched->events.begin(), {kNowhere, 0, "the screen grid lists " + std::to_string(listed) + " of the " +
+                                 std::to_string(bodies_.size()) + " bodies",
+                                 "those whose projected boxes cover a cell of " + whyNumber(knobs_.cellPixels) +
+                                 " pixels that the edge crosses; the others cannot hide it and are not looked at"});
       }
       appendPieces(e, std::move(hidden), lines.segments);
       if (steps_ && steps_->due(e, lines.edges.size()))
@@ -243,14 +262,24 @@ class Roberts {
     return body;
   }
 
+  // An event of hsr why --edge about body b, its outcome and detail still to say.
+  EdgeEvent bodyEvent(std::uint32_t b) const {
+    return {kNowhere, 0, "", "", "body " + scene_.instanceName(scene_.instances()[b])};
+  }
+
   // Step 2's linear program: the open interval of u in (0, 1) over which S(u) + alpha z
-  // is strictly inside the body for some alpha > 0, or nothing.
-  std::optional<Interval> hiddenBy(const Body& body, const dvec3& s0, const dvec3& s1) {
+  // is strictly inside the body for some alpha > 0, or nothing. `event`: hsr why's, or null.
+  std::optional<Interval> hiddenBy(const Body& body, const dvec3& s0, const dvec3& s1, EdgeEvent* event) {
     ++pairs_;
     // The minimax test: projections apart, or the body wholly behind the edge.
     const dvec2 lo = glm::min(dvec2(s0), dvec2(s1)), hi = glm::max(dvec2(s0), dvec2(s1));
-    if (body.hi.x < lo.x || body.lo.x > hi.x || body.hi.y < lo.y || body.lo.y > hi.y || body.nearest <= std::min(s0.z, s1.z)) {
+    const bool apart = body.hi.x < lo.x || body.lo.x > hi.x || body.hi.y < lo.y || body.lo.y > hi.y;
+    if (apart || body.nearest <= std::min(s0.z, s1.z)) {
       ++minimaxRejections_;
+      if (event) [[unlikely]]
+        event->outcome = "ruled out by the minimax test",
+        event->detail = apart ? "its projected box misses the edge's"
+                              : "its nearest point is no nearer than the edge's farther end: it lies wholly behind the edge";
       return std::nullopt;
     }
     ++bodyTests_;
@@ -277,7 +306,19 @@ class Roberts {
       for (const Row& j : lower)  // -h_j / g_j < -h_i / g_i, times g_i g_j < 0
         require(-(i.h1 * j.g - j.h1 * i.g), -(i.h0 * j.g - j.h0 * i.g));
     }
-    if (begin >= end) return std::nullopt;
+    if (event) [[unlikely]]
+      event->detail = std::to_string(body.screenPlanes.size()) + " face planes along the sight lines from the edge: " +
+                      std::to_string(upper.size()) + " bound alpha from above, " + std::to_string(lower.size()) + " from below, " +
+                      std::to_string(body.screenPlanes.size() - upper.size() - lower.size()) +
+                      " are parallel to the sight lines; every pair of bounds, and alpha > 0, leave u " +
+                      (begin < end ? "in (" + whyNumber(begin) + ", " + whyNumber(end) + ")" : "nowhere in (0, 1)");
+    if (begin >= end) {
+      if (event) [[unlikely]]
+        event->outcome = "hides none of it";
+      return std::nullopt;
+    }
+    if (event) [[unlikely]]
+      event->u = begin, event->change = 1, event->outcome = "hides part of it: u = " + whyNumber(begin) + " to " + whyNumber(end);
     ++hiddenIntervals_;
     return Interval{begin, end};
   }
@@ -379,6 +420,7 @@ class Roberts {
   CameraTransform camera_;
   Stats& stats_;
   StepRecorder* steps_;
+  EdgeWitness* witness_;  // hsr why --edge's edge, or null
   std::vector<Body> bodies_;
   std::optional<ImageGrid> grid_;
   std::vector<std::uint32_t> seen_;
@@ -389,9 +431,9 @@ class Roberts {
 
 }  // namespace
 
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps) {
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps, EdgeWitness* edge) {
   PhaseTimer timer(stats, "roberts");
-  return Roberts(scene, knobs, stats, steps).run();
+  return Roberts(scene, knobs, stats, steps, edge).run();
 }
 
 AlgorithmEntry entry() {
@@ -403,6 +445,8 @@ AlgorithmEntry entry() {
   entry.keyCounters = {"feature edges", "junction lines", "back-face edges", "edge-body pairs", "body tests", "hidden intervals"};
   setRefusal(entry, refusal);
   setDrawing(entry, run);
+  entry.whyDecisions = {"hidden by its own body (step 1)", "not tested", "ruled out by the minimax test", "hides none of it",
+                        "hides part of it"};
   entry.judgeLines = judgedByLineReference;
   return entry;
 }

@@ -70,8 +70,9 @@ std::string refusal(const PreparedScene& scene);
 
 // Stats: "bodies", "body faces" (planes after merging), "back-face edges" (step 1),
 // "edge-body pairs" (considered), "minimax rejections", "body tests" (linear programs
-// solved), "hidden intervals", "junction lines".
-LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr);
+// solved), "hidden intervals", "junction lines". `edge`: hsr why --edge's, where the
+// test of each body looked at for that edge is recorded, or null.
+LineSet run(const PreparedScene& scene, const Knobs& knobs, Stats& stats, StepRecorder* steps = nullptr, EdgeWitness* edge = nullptr);
 
 // The registry's entry (algorithms/algorithm.hpp).
 AlgorithmEntry entry();

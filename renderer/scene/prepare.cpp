@@ -94,12 +94,15 @@ const Instance& PreparedScene::instanceOf(std::uint32_t triangle) const {
   return *(after - 1);
 }
 
-std::string PreparedScene::triangleName(std::uint32_t triangle) const {
-  const Instance& instance = instanceOf(triangle);
+std::string PreparedScene::instanceName(const Instance& instance) const {
   const SceneObject& object = scene_->objects[instance.object];
-  std::string name = "triangle " + std::to_string(triangle) + " of \"" + object.name + "\"";
+  std::string name = "\"" + object.name + "\"";
   if (object.instancing.copyCount() > 1) name += " copy " + std::to_string(instance.copy);
   return name;
+}
+
+std::string PreparedScene::triangleName(std::uint32_t triangle) const {
+  return "triangle " + std::to_string(triangle) + " of " + instanceName(instanceOf(triangle));
 }
 
 Aabb PreparedScene::bounds() const {

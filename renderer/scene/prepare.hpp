@@ -86,6 +86,8 @@ class PreparedScene {
   // (the id image's value - 1) and its object, `triangle 7 of "lamp"`, with the copy
   // when the object has several (`triangle 7 of "tree" copy 3`).
   std::string triangleName(std::uint32_t triangle) const;
+  // An instance as the same names have it: `"lamp"`, or `"tree" copy 3`.
+  std::string instanceName(const Instance& instance) const;
 
   // Coplanarity up to the placements' rounding (Instance::placementRounding,
   // rounding.hpp): planeUpToPlacement(p) is triangle p's plane, and liesOn says whether

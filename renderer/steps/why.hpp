@@ -9,12 +9,21 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace hsr {
+
+// A number in hsr why's answers: 9 significant digits, enough to tell apart the places
+// and distances a loop compared.
+inline std::string whyNumber(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
 
 struct PixelEvent {
   std::uint32_t id = 0;  // the triangle the event is about: global index + 1 (0: the background)
@@ -29,13 +38,20 @@ struct PixelEvent {
   std::string subject;
 };
 
-// hsr why --edge: what a line algorithm's walk met along one edge of its drawing, in the
-// order it met it. Handed to the algorithm only when asked, as PixelWitness is.
+// hsr why --edge: what a line algorithm met deciding one edge of its drawing (Appel's
+// walk along it, Roberts' test of each body), in the order it met it. Handed to the
+// algorithm only when asked, as PixelWitness is.
 struct EdgeEvent {
-  double u = 0;         // where along the edge's projection: 0 at its start, 1 at its end
-  int change = 0;       // the QI's change there, as the walk meets it (0: none, or counted afresh)
-  std::string outcome;  // what the walk did there, in the textbook's words
+  // Where along the edge's projection: 0 at its start, 1 at its end; NaN for an event
+  // about the whole edge (Roberts' test of one body).
+  double u = 0;
+  // The QI's change there, as Appel's walk meets it (0: none, or counted afresh); for the
+  // algorithms that only know hidden or not, +1 where the edge may go out of sight
+  // (Roberts: a body's hidden part begins) and -1 where it comes into sight.
+  int change = 0;
+  std::string outcome;  // what the algorithm decided there, in the textbook's words
   std::string detail;   // the numbers it decided by
+  std::string subject = {};  // what the event is about besides the edge (Roberts: the body tested); empty: the edge itself
 };
 struct EdgeWitness {
   std::uint32_t edge = 0;  // the edge asked about: its index in the drawing's edges

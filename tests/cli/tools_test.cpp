@@ -579,6 +579,47 @@ TEST(Why, FollowsAppelsWalkAlongAnEdge) {
     EXPECT_NE(near.output.find(part), std::string::npos) << part << "\n" << near.output;
 }
 
+// Roberts along the same edge: with the grid off, every body is looked at. The slab is
+// the edge's own, the prism's box misses it, the pyramid's inequalities leave no u, and
+// the tower and the ball hide the parts that make its hidden piece; the exact line
+// reference agrees within rounding. An edge between two back faces is step 1's alone.
+TEST(Why, FollowsRobertsTestOfEachBodyAlongAnEdge) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "blocks.toml --size 320x240 --algo roberts --knob grid=off --edge ";
+  const test::CommandResult tests = test::runCommand(why + "2");
+  ASSERT_EQ(tests.exitCode, 0) << tests.output;
+  for (const char* line : {"5 events, in the order the algorithm met them", "1. body \"slab\": not tested: the edge lies on it",
+                           "2. at u = 0: body \"tower\": hides part of it: u = 0 to 0.196959776",
+                           "3. body \"prism\": ruled out by the minimax test\n     its projected box misses the edge's",
+                           "4. body \"pyramid\": hides none of it\n     5 face planes along the sight lines from the edge: 2 bound alpha from above, "
+                           "3 from below, 0 are parallel to the sight lines; every pair of bounds, and alpha > 0, leave u nowhere in (0, 1)",
+                           "5. at u = 0.120809213: body \"ball\": hides part of it: u = 0.120809213 to 0.51675934",
+                           "its pieces: 0 to 0.51675934 hidden; 0.51675934 to 1 QI 0 (visible)\n",
+                           "=> agrees with the exact line reference within 0.001 pixel"})
+    EXPECT_NE(tests.output.find(line), std::string::npos) << line << "\n" << tests.output;
+  const test::CommandResult own = test::runCommand(why + "0 --json");
+  ASSERT_EQ(own.exitCode, 0) << own.output;
+  for (const char* part : {"\"u\": null, \"change\": 0, \"subject\": \"\", \"outcome\": \"hidden by its own body (step 1)\"", "\"agrees\": true",
+                           "\"decisions\": [\"hidden by its own body (step 1)\", \"not tested\", \"ruled out by the minimax test\", \"hides none of it\", "
+                           "\"hides part of it\"]"})
+    EXPECT_NE(own.output.find(part), std::string::npos) << part << "\n" << own.output;
+}
+
+// The floating horizon along one segment of the ripple: curve 11 of 41 in the order,
+// its start between the horizons (a hair under the upper one), the upper horizon crossed
+// at u = 0.763: visible from there. The exact drawing sees none of it: the horizon is
+// straight between column centers, and the curve in front is not.
+TEST(Why, FollowsTheFloatingHorizonAlongASegment) {
+  const test::CommandResult segment =
+      test::runCommand(std::string(HSR_BINARY) + " why " + kScenes + "ripple.toml --size 320x240 --algo floating_horizon --edge 3407");
+  ASSERT_EQ(segment.exitCode, 0) << segment.output;
+  for (const char* line : {"1. curve 11 of 41, front to back", "2. at u = 0: its start: between the horizons: hidden",
+                           "the segment at y = 155.806657, the upper horizon at y = 155.759328, the lower at y = 190.027817",
+                           "4. at u = 0.763485192: the upper horizon: visible from here", "5. then the curve raises the horizons",
+                           "its pieces: 0 to 0.763485192 hidden; 0.763485192 to 1 QI 0 (visible)", "the exact line reference: visible nowhere",
+                           "=> differs: it and the exact line reference disagree on 0.147 of the edge's 0.623 pixels"})
+    EXPECT_NE(segment.output.find(line), std::string::npos) << line << "\n" << segment.output;
+}
+
 // Culling before the z-buffer on hard/cull_off_center: the view-direction backface test
 // removes the left cube's inner side, which faces the eye; the history leads with each
 // stage's fate for the reference's triangle, and the verdict names the stage. The

@@ -2,6 +2,7 @@
 // each of its hard cases (scenes/hard/fh_*.toml), and its refusals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "algorithms/floating_horizon/floating_horizon.hpp"
@@ -153,6 +154,79 @@ TEST(FloatingHorizon, WithoutInterpolationLinesEndShortAtTheHorizon) {
   EXPECT_GT(dropped.stats.counter("segments dropped"), 20);
   EXPECT_GT(interpolated.stats.counter("horizon crossings"), 20);
   EXPECT_GT(dropped.error.wronglyHidden, interpolated.error.wronglyHidden + 50);
+}
+
+// hsr why --edge on the floating horizon: a segment's tests, watched, leave the drawing
+// as it was and account for its pieces. With interpolation, each place recorded (its
+// start, each column center) says whether step 3 sees the segment there as its piece
+// there is drawn, and its pieces change from visible to hidden exactly where a horizon
+// crossing was recorded, or at a place recorded; without, the two samples decide it whole.
+TEST(FloatingHorizon, TheTestsWatchedAlongASegmentAccountForItsPieces) {
+  const auto loaded = load("ripple");
+  const AlgorithmEntry& entry = findAlgorithm("floating_horizon");
+  std::int64_t crossingsChecked = 0, placesChecked = 0;
+  for (const bool interpolate : {true, false}) {
+    const KnobValues values = resolveKnobs(entry, {{"samples", "10%"}, {"interpolate", interpolate ? "on" : "off"}});
+    Stats plainStats;
+    const LineSet plain = entry.drawLines(loaded.prepared, values, 1, plainStats, nullptr);
+    // Every edge whose pieces change along it, and as many others, spread over the drawing.
+    std::vector<std::uint32_t> changing, whole;
+    std::vector<std::size_t> piecesOf(plain.edges.size());
+    for (const LineSegment& piece : plain.segments) ++piecesOf[piece.edge];
+    for (std::uint32_t e = 0; e < plain.edges.size(); ++e) (piecesOf[e] > 1 ? changing : whole).push_back(e);
+    std::vector<std::uint32_t> asked;
+    for (std::size_t i = 0; i < 40; ++i) {
+      if (!changing.empty()) asked.push_back(changing[i * changing.size() / 40]);
+      if (!whole.empty()) asked.push_back(whole[i * whole.size() / 40]);
+    }
+    for (const std::uint32_t e : asked) {
+      const std::string where = std::string(interpolate ? "" : "interpolate=off ") + "edge " + std::to_string(e);
+      EdgeWitness witness{e, {}};
+      Stats stats;
+      const LineSet watched = entry.drawLinesWatchingEdge(loaded.prepared, values, stats, witness);
+      ASSERT_EQ(watched.segments.size(), plain.segments.size()) << where;
+      std::vector<LineSegment> pieces;
+      for (std::size_t i = 0; i < watched.segments.size(); ++i) {
+        ASSERT_EQ(watched.segments[i].qi, plain.segments[i].qi) << where;
+        if (watched.segments[i].edge == e) pieces.push_back(watched.segments[i]);
+      }
+      const std::vector<EdgeEvent>& events = witness.events;
+      ASSERT_GE(events.size(), 3u) << where;
+      EXPECT_EQ(events.front().outcome.rfind("curve ", 0), 0u) << where;
+      EXPECT_EQ(events.back().outcome, "then the curve raises the horizons") << where;
+      const auto visibleAt = [&](double u) {
+        for (const LineSegment& piece : pieces)
+          if (piece.begin <= u && u < piece.end) return piece.visible();
+        return pieces.back().visible();
+      };
+      if (!interpolate) {
+        const std::string& verdict = events[events.size() - 2].outcome;
+        EXPECT_EQ(verdict, pieces.size() == 1 && pieces[0].visible() ? "drawn whole" : "hidden whole") << where;
+        continue;
+      }
+      std::vector<double> recorded;  // where the segment's visibility may change: crossings and places
+      for (std::size_t i = 1; i + 1 < events.size(); ++i) {
+        const EdgeEvent& event = events[i];
+        recorded.push_back(event.u);
+        if (event.change != 0) {
+          // The pieces change here, to what the crossing says.
+          EXPECT_EQ(visibleAt(event.u), event.change < 0) << where << " at u = " << event.u;
+          ++crossingsChecked;
+          continue;
+        }
+        const double next = i + 2 < events.size() ? events[i + 1].u : 1.0;
+        const bool seen = event.detail.ends_with("step 3 sees it");
+        EXPECT_TRUE(seen || event.detail.ends_with("step 3 hides it")) << where << ": " << event.detail;
+        EXPECT_EQ(visibleAt(0.5 * (event.u + next)), seen) << where << " at u = " << event.u;
+        ++placesChecked;
+      }
+      for (std::size_t i = 1; i < pieces.size(); ++i)
+        EXPECT_TRUE(std::any_of(recorded.begin(), recorded.end(), [&](double u) { return std::abs(u - pieces[i].begin) < 1e-12; }))
+            << where << ": no event where its piece from u = " << pieces[i].begin << " begins";
+    }
+  }
+  EXPECT_GT(crossingsChecked, 20) << "too few crossings to test anything";
+  EXPECT_GT(placesChecked, 60);
 }
 
 TEST(FloatingHorizon, FinerColumnsNeverCostAccuracyOnTheRipple) {

@@ -143,6 +143,74 @@ TEST(Appel, TheWalkWatchedAlongEachEdgeAccountsForItsPieces) {
   EXPECT_GT(changesChecked, 20) << "too few changes of QI to test anything";
 }
 
+// hsr why --edge on Roberts: each edge's tests of the bodies, watched, leave the drawing
+// as it was and account for its pieces: an edge hidden by its own body has that one
+// event; any other has one event per body the grid listed (every body with grid=off),
+// and its hidden pieces are exactly the union of the parts the bodies were recorded to hide.
+TEST(Roberts, TheTestsWatchedAlongEachEdgeAccountForItsPieces) {
+  std::int64_t partsChecked = 0;
+  for (const char* path : {"scenes/blocks.toml", "scenes/hard/box_junctions.toml"})
+    for (const bool grid : {true, false}) {
+      const test::LoadedScene loaded(test::sourcePath(path));
+      roberts::Knobs knobs;
+      knobs.grid = grid;
+      Stats plainStats;
+      const LineSet plain = roberts::run(loaded.prepared, knobs, plainStats);
+      for (std::uint32_t e = 0; e < plain.edges.size(); ++e) {
+        const std::string where = std::string(path) + (grid ? "" : " grid=off") + " edge " + std::to_string(e);
+        EdgeWitness witness{e, {}};
+        Stats stats;
+        const LineSet watched = roberts::run(loaded.prepared, knobs, stats, nullptr, &witness);
+        ASSERT_EQ(watched.segments.size(), plain.segments.size()) << where;
+        std::vector<Interval> hiddenPieces;
+        for (std::size_t i = 0; i < watched.segments.size(); ++i) {
+          ASSERT_EQ(watched.segments[i].qi, plain.segments[i].qi) << where;
+          ASSERT_EQ(watched.segments[i].begin, plain.segments[i].begin) << where;
+          if (watched.segments[i].edge == e && !watched.segments[i].visible())
+            hiddenPieces.push_back({watched.segments[i].begin, watched.segments[i].end});
+        }
+        const std::vector<EdgeEvent>& events = witness.events;
+        ASSERT_FALSE(events.empty()) << where;
+        if (events.front().outcome == "hidden by its own body (step 1)") {
+          EXPECT_EQ(events.size(), 1u) << where;
+          EXPECT_EQ(hiddenPieces.size(), 1u) << where;
+          continue;
+        }
+        std::size_t bodies = 0;
+        std::vector<Interval> hiddenParts;
+        for (const EdgeEvent& event : events) {
+          if (event.subject.empty()) continue;
+          ++bodies;
+          if (event.outcome.rfind("hides part of it: u = ", 0) != 0) continue;
+          double begin = 0, end = 0;
+          ASSERT_EQ(std::sscanf(event.outcome.c_str(), "hides part of it: u = %lf to %lf", &begin, &end), 2) << where;
+          EXPECT_NEAR(begin, event.u, 1e-8) << where;
+          hiddenParts.push_back({begin, end});
+        }
+        const std::size_t bodyCount = loaded.prepared.instances().size();
+        if (grid) {
+          EXPECT_EQ(events.front().outcome.rfind("the screen grid lists " + std::to_string(bodies) + " of the " + std::to_string(bodyCount), 0), 0u)
+              << where << ": " << events.front().outcome;
+        } else {
+          EXPECT_EQ(bodies, bodyCount) << where;
+        }
+        // Their union, to the 9 digits the events are written with.
+        std::sort(hiddenParts.begin(), hiddenParts.end(), [](const Interval& a, const Interval& b) { return a.begin < b.begin; });
+        std::vector<Interval> joined;
+        for (const Interval& part : hiddenParts)
+          if (!joined.empty() && part.begin <= joined.back().end + 1e-8) joined.back().end = std::max(joined.back().end, part.end);
+          else joined.push_back(part);
+        ASSERT_EQ(joined.size(), hiddenPieces.size()) << where;
+        for (std::size_t i = 0; i < joined.size(); ++i) {
+          EXPECT_NEAR(joined[i].begin, hiddenPieces[i].begin, 1e-8) << where;
+          EXPECT_NEAR(joined[i].end, hiddenPieces[i].end, 1e-8) << where;
+        }
+        partsChecked += std::int64_t(hiddenParts.size());
+      }
+    }
+  EXPECT_GT(partsChecked, 20) << "too few hidden parts to test anything";
+}
+
 TEST(LineHardCases, TouchingBoxesDrawNoJunctionAndLoseNothing) {
   const test::LoadedScene loaded(test::sourcePath("scenes/hard/touching_boxes.toml"));
   Stats stats;

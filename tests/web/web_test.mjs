@@ -160,8 +160,9 @@ try {
       const right = [pixel.shows.name, ...(pixel.reference.ambiguous ? pixel.reference.tied.map((t) => t.name) : [])];
       return asked.choices.filter((choice) => right.some((name) => names(choice, name)));
     }
-    const event = pixel.history[Number(/event (\d+)/.exec(asked.prompt)[1]) - 1];
+    const event = pixel.history[Number(/event (\d+)/i.exec(asked.prompt)[1]) - 1];
     if (asked.prompt.startsWith("After event")) return [event.shown ? "yes" : "no"];
+    if (asked.prompt.includes("which piece does the painter paint")) return asked.choices.filter((choice) => names(choice, event.name));
     return [event.outcome.split(": ")[0]];
   };
   // Answers the questions left, each rightly, after `before` were answered (and `wrong`
@@ -250,6 +251,26 @@ try {
   const zbufferQuiz = await takeQuiz(tiedPixel, 1, 0);
   check(zbufferQuiz.problems.length === 0 && zbufferQuiz.asked === 1 + tiedPixel.history.length,
         `and each fragment: does the pixel show it after the depth test (${zbufferQuiz.problems.join("; ") || zbufferQuiz.asked + " asked"})`);
+  // The painter paints every piece that reaches the pixel: what it decides, and what the
+  // quiz asks, is the order. On the cyclic overlap Newell's test cuts "third", and its cut
+  // piece is painted first, under "second", though nearer along this sight line.
+  await page.selectOption("#algorithm", "painter");
+  await page.selectOption('[id="painter.variant"]', "newell");
+  await page.selectOption("#scene", "hard/cyclic_overlap.toml");
+  await page.fill("#size", "");
+  result = await renderWith();
+  await clickPixel("color", 98, 44);
+  const paintedPixel = nativeJson("hard/cyclic_overlap.toml", "98,44", ["--algo", "painter", "--variant", "newell"]);
+  await page.click(`#quizChoices button:nth-child(${(await quizShown()).choices.findIndex((c) => names(c, paintedPixel.shows.name)) + 1})`);
+  await page.click("#quizNext");
+  const order = await quizShown();
+  check(order.prompt === "Event 1: which piece does the painter paint first at this pixel?" && order.choices.length === 2 &&
+        order.choices.some((c) => c.startsWith(`${paintedPixel.history[0].name}, 8.54104 away (the part of its triangle cut out by 1 plane)`)),
+        `the painter's quiz asks which piece it paints first, each choice with its distance and whether it was cut (${order.choices.join(" | ")})`);
+  await page.locator("#whyBox").screenshot({ path: join(out, "quiz-painter.png") });
+  const painterQuiz = await takeQuiz(paintedPixel, 1, 0);
+  check(painterQuiz.problems.length === 0 && painterQuiz.asked === 2 && (await text("#quizProgress")) === "2 of 2 predicted right; the whole answer:",
+        `and the last piece, forced, is not asked (${painterQuiz.problems.join("; ") || painterQuiz.asked + " asked"})`);
   await page.uncheck("#quizMode");
   await page.dblclick("#color");
 
@@ -281,11 +302,38 @@ try {
         crossing.choices.join(" | ") === "+1: it passes behind | -1: it comes out from behind",
         `quiz me on an edge: how its QI changes at each of the walk's 3 crossings (${crossing.prompt})`);
   await page.uncheck("#quizMode");
+  // Roberts along the same edge: each body's test, as hsr why --edge prints it; a ring
+  // where each of the two bodies that hide a part of it begins to.
   await page.selectOption("#algorithm", "roberts");
   result = await renderWith();
+  const robertsAnswer = await clickPixel("color", 108, 123);
+  const nativeRoberts = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", "blocks.toml"), "--size", "320x240", "--algo", "roberts",
+                                                              "--edge", robertsAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
+  const robertsRings = await page.$$eval("#color + .marker + svg.edge circle.change", (rings) => rings.length);
+  await page.locator("#results").screenshot({ path: join(out, "edge-roberts.png") });
+  check(result.message === "" && robertsAnswer.shown === nativeRoberts && robertsAnswer.shown.includes('body "ball": hides part of it') && robertsRings === 2,
+        `a click on Roberts' drawing answers with its test of each body, as hsr why --edge ${robertsAnswer.pixel} does, a ring where each hidden part begins (${robertsRings})`);
+  await page.check("#quizMode");
   await clickPixel("color", 108, 123);
-  check(result.message === "" && (await text("#why")).startsWith("hsr: error: --algo roberts: hsr why --edge follows the walk of appel so far") &&
-        (await text("#message")) === "", `why on a drawing whose walk is not followed: the command line's line, in the box (${await text("#why")})`);
+  const body = await quizShown();
+  check(body.progress === "question 1 of 4" && body.prompt === 'body "slab": what does the algorithm decide there?' &&
+        body.choices.join(" | ") === "hidden by its own body (step 1) | not tested | ruled out by the minimax test | hides none of it | hides part of it",
+        `quiz me on Roberts' edge: what the test of each body decided, among all Roberts declares (${body.progress}: ${body.prompt})`);
+  // The floating horizon along the segment nearest the pixel: where it lies against the
+  // horizons at its start and each column center, as hsr why --edge says; the quiz asks
+  // each place among the places the algorithm declares.
+  await page.selectOption("#algorithm", "floating_horizon");
+  await page.selectOption("#scene", "ripple.toml");
+  result = await renderWith();
+  const horizonAnswer = await clickPixel("color", 160, 120);
+  const nativeHorizon = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", "ripple.toml"), "--size", "320x240", "--algo", "floating_horizon",
+                                                              "--edge", horizonAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
+  const place = await quizShown();
+  check(result.message === "" && horizonAnswer.shown === nativeHorizon && horizonAnswer.shown.includes("its start: above the upper horizon") &&
+        place.prompt === "its start (u = 0.000): what does the algorithm decide there?" &&
+        place.choices.join(" | ") === "no curve drawn there yet | above the upper horizon | below the lower horizon | between the horizons | under the upper horizon",
+        `a click on the floating horizon's drawing answers along the segment nearest it, as hsr why --edge ${horizonAnswer.pixel} does, and the quiz asks where it lies (${place.prompt})`);
+  await page.uncheck("#quizMode");
   await page.fill("#size", "");
 
   await page.selectOption("#algorithm", "zbuffer");
