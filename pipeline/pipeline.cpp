@@ -40,7 +40,7 @@ struct Context {
   std::optional<ShadowMaps> shadowMaps = {};
   std::optional<PixelShader<float>> shader = {};  // built by the first pass that shades
   PixelWitness* why = nullptr;                     // hsr why's pixels; null unless asked
-  std::vector<VisibleSet>* keptByStage = nullptr;  // each culling stage's kept set, for hsr why; null unless asked
+  culling::CullingWitness* culled = nullptr;       // each culling stage's kept set and findings, for hsr why; null unless asked
 
   PixelShader<float>& pixelShader() {
     if (!shader) shader.emplace(scene, camera, shadowMaps ? &*shadowMaps : nullptr);
@@ -91,7 +91,7 @@ Decision decideCulling(const Facts& facts) {
 
 void runCulling(Context& context) {
   context.kept = culling::runPipeline(context.scene, context.configuration.culling, context.threads, context.stats, context.previous,
-                                      context.steps, context.keptByStage);
+                                      context.steps, context.culled);
 }
 
 Decision decideVisibility(const Facts& facts) {
@@ -357,12 +357,12 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
                             Visibility& visibility, const culling::PreviousFrame* previous, PixelWitness* why,
-                            std::vector<VisibleSet>* keptByStage, StepRecorder* steps) {
+                            culling::CullingWitness* culled, StepRecorder* steps) {
   HSR_CHECK(configuration.algorithm->kind == AlgorithmKind::surface);
   HSR_CHECK(!why || configuration.algorithm->answersWhy);
   Context context{scene, scene.camera(), configuration, threads, stats, previous, steps, std::nullopt, visibility};
   context.why = why;
-  context.keptByStage = keptByStage;
+  context.culled = culled;
   runPasses(context, kVisibilityPasses);
   return context.kept ? std::move(*context.kept) : VisibleSet::everything(scene);
 }

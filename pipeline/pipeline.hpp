@@ -87,11 +87,12 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
 // stages kept (every triangle when there are none). `why`: the pixels hsr why asks about,
 // whose histories an algorithm that answers why (AlgorithmEntry::answersWhy) records, and
 // the counter "why: events recorded"; null: none asked, and no provenance work done.
-// keptByStage: where the culling stages' kept sets go, one per stage in order, or null.
+// culled: where the culling stages' kept sets and what each found for culled->instances
+// go, one per stage in order (culling.hpp), or null.
 // `steps`: where their steps go, as render()'s (hsr why --step).
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,
                             Visibility& visibility, const culling::PreviousFrame* previous = nullptr, PixelWitness* why = nullptr,
-                            std::vector<VisibleSet>* keptByStage = nullptr, StepRecorder* steps = nullptr);
+                            culling::CullingWitness* culled = nullptr, StepRecorder* steps = nullptr);
 
 // The caption of the last step hsr render --steps records for a surface algorithm, after
 // the algorithm's own: the finished image.

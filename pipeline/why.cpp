@@ -68,13 +68,16 @@ std::string verdictOf(const PreparedScene& scene, const PixelAnswer& answer) {
 }
 
 // The culling stages' fate for the reference's triangle, one event a stage in order,
-// until one removes it: what the stage was given of the triangle's object and kept of it.
+// until one removes it: what the stage was given of the triangle's object and kept of
+// it, and what the stage's own test found for the object, where it says.
 // Empty when there are no stages or the reference shows the background.
-std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling::Pipeline& stages,
-                                      const std::vector<VisibleSet>& keptByStage, std::uint32_t id, std::string& culledBy) {
+std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling::Pipeline& stages, culling::CullingWitness& culled,
+                                      std::uint32_t id, std::string& culledBy) {
   std::vector<PixelEvent> events;
   if (id == conventions::kBackgroundId) return events;
   const Instance& object = scene.instanceOf(id - 1);
+  const auto instance = std::uint32_t(&object - scene.instances().data());
+  const std::vector<VisibleSet>& keptByStage = culled.keptByStage;
   const auto ofObject = [&](const VisibleSet& set) {
     const auto first = std::lower_bound(set.triangles.begin(), set.triangles.end(), object.firstTriangle);
     return std::lower_bound(first, set.triangles.end(), object.firstTriangle + object.triangleCount) - first;
@@ -89,8 +92,10 @@ std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling:
     const auto variant = std::find(variants.choices.begin(), variants.choices.end(), stages[s].variant());
     const std::size_t which = std::size_t(variant - variants.choices.begin());
     const std::string test = which < variants.choiceHelp.size() ? variants.choiceHelp[which] : stages[s].stage->summary;
+    const std::string* found = culled.byStage[s].about(instance);
     events.push_back({id, keeps ? "kept the reference's triangle" : "removed the reference's triangle; its test: " + test,
-                      "of its object's " + std::to_string(given) + " triangles given to the stage, it kept " + std::to_string(keptOfObject),
+                      "of its object's " + std::to_string(given) + " triangles given to the stage, it kept " + std::to_string(keptOfObject) +
+                          (found && !found->empty() ? "; the test found " + *found : ""),
                       std::numeric_limits<double>::quiet_NaN(), false, "culling stage " + stages[s].name()});
     if (!keeps) {
       culledBy = stages[s].name();
@@ -238,8 +243,26 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
                                        const std::vector<PixelWitness::Pixel>& pixels, int threads, Stats& stats,
                                        StepAsked* step) {
   PixelWitness witness(pixels, scene.width());
+  // The exact reference first: the objects its triangles belong to are those the culling
+  // stages are asked about.
+  Stats referenceStats;
+  const SurfaceReference reference(scene, referenceStats);
+  const CameraTransform& camera = scene.camera();
+  std::vector<PixelAnswer> answers(witness.count());
+  culling::CullingWitness culled;
+  for (std::size_t asked = 0; asked < witness.count(); ++asked) {
+    PixelAnswer& answer = answers[asked];
+    answer.pixel = witness.pixel(asked);
+    SurfaceReference::Counters counters;
+    answer.reference = reference.trace(
+        camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters,
+        &answer.tied);
+    if (answer.reference.id != conventions::kBackgroundId)
+      culled.instances.push_back(std::uint32_t(&scene.instanceOf(answer.reference.id - 1) - scene.instances().data()));
+  }
+  std::sort(culled.instances.begin(), culled.instances.end());
+  culled.instances.erase(std::unique(culled.instances.begin(), culled.instances.end()), culled.instances.end());
   Visibility visibility;
-  std::vector<VisibleSet> keptByStage;
   // With a step asked about: each step's mark, the events each pixel's history held when
   // it was recorded (on one thread, so that no loop adds to a history meanwhile).
   std::vector<std::vector<std::size_t>> marks;
@@ -254,7 +277,7 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
     threads = 1;
   }
   const VisibleSet kept =
-      renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness, &keptByStage, steps ? &*steps : nullptr);
+      renderVisibility(scene, configuration, threads, stats, visibility, nullptr, &witness, &culled, steps ? &*steps : nullptr);
   if (step) {
     mark(kFinishedImageStep);  // the last step hsr render --steps records: the finished image, every event behind it
     step->recorded = marks.size();
@@ -263,30 +286,20 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
                        std::to_string(marks.size()) + " steps here (as hsr render --steps numbers them, with the same size, knobs and --every); expected 1 to " +
                        std::to_string(marks.size()));
   }
-  Stats referenceStats;
-  const SurfaceReference reference(scene, referenceStats);
-  const CameraTransform& camera = scene.camera();
-  std::vector<PixelAnswer> answers;
   for (std::size_t asked = 0; asked < witness.count(); ++asked) {
-    PixelAnswer answer;
-    answer.pixel = witness.pixel(asked);
+    PixelAnswer& answer = answers[asked];
     const std::size_t at = std::size_t(answer.pixel.y) * std::size_t(scene.width()) + std::size_t(answer.pixel.x);
     answer.shown = visibility.frame.ids[at];
     answer.distance = visibility.frame.depth[at];
-    SurfaceReference::Counters counters;
-    answer.reference = reference.trace(
-        camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters,
-        &answer.tied);
     answer.culled = answer.reference.id != conventions::kBackgroundId &&
                     !std::binary_search(kept.triangles.begin(), kept.triangles.end(), answer.reference.id - 1);
     // The culling stages ran first: their fate for the reference's triangle leads the history.
-    answer.history = cullingEvents(scene, configuration.culling, keptByStage, answer.reference.id, answer.culledBy);
+    answer.history = cullingEvents(scene, configuration.culling, culled, answer.reference.id, answer.culledBy);
     const std::vector<PixelEvent>& loop = witness.history(asked);
     answer.eventsByStep = answer.history.size() + (step ? marks[step->number - 1][asked] : loop.size());
     answer.history.insert(answer.history.end(), loop.begin(), loop.end());
     answer.agrees = answer.shown == answer.reference.id || answer.reference.ambiguous;
     answer.verdict = verdictOf(scene, answer);
-    answers.push_back(std::move(answer));
   }
   return answers;
 }

@@ -124,16 +124,18 @@ void recordStage(const PreparedScene& scene, const CameraTransform& camera, cons
 }  // namespace
 
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
-                       const PreviousFrame* previous, StepRecorder* steps, std::vector<VisibleSet>* keptByStage) {
+                       const PreviousFrame* previous, StepRecorder* steps, CullingWitness* why) {
   const CameraTransform& camera = scene.camera();
   VisibleSet set = VisibleSet::everything(scene);
   if (previous && previous->memory) previous->memory->resize(std::max(previous->memory->size(), pipeline.size()));
   for (std::size_t s = 0; s < pipeline.size(); ++s) {
     const StageChoice& choice = pipeline[s];
     std::unique_ptr<StageMemory>* memory = previous && previous->memory ? &(*previous->memory)[s] : nullptr;
-    VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps, memory});
+    StageWitness* const witness =
+        why ? &why->byStage.emplace_back(StageWitness{why->instances, std::vector<std::string>(why->instances.size())}) : nullptr;
+    VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps, memory, witness});
     if (steps) recordStage(scene, camera, choice, set, kept, *steps);
-    if (keptByStage) keptByStage->push_back(kept);
+    if (why) why->keptByStage.push_back(kept);
     set = std::move(kept);
   }
   stats.add("culling: triangles kept", static_cast<std::int64_t>(set.triangles.size()));

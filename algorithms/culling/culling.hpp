@@ -56,6 +56,27 @@ struct PreviousFrame {
   SimulatedGpu* gpu = nullptr;
 };
 
+// hsr why: what a stage's own test found for the objects asked about, in its terms
+// ("outside the left plane", "behind every texel of its footprint"). Handed to a stage
+// only when asked (StageInput::why), as PixelWitness is to an algorithm; a stage that
+// does not test objects one by one (backface, the BVH's frustum test) says nothing.
+struct StageWitness {
+  std::vector<std::uint32_t> instances;  // the objects asked about, ascending
+  std::vector<std::string> found;        // what the test found for each ("": nothing said)
+  // The slot of an object asked about, or null for any other.
+  std::string* about(std::uint32_t instance) {
+    const auto at = std::lower_bound(instances.begin(), instances.end(), instance);
+    return at != instances.end() && *at == instance ? &found[std::size_t(at - instances.begin())] : nullptr;
+  }
+};
+
+// hsr why's view of a pipeline: each stage's kept set and its witness, in order.
+struct CullingWitness {
+  std::vector<std::uint32_t> instances;  // the objects asked about, ascending
+  std::vector<VisibleSet> keptByStage;
+  std::vector<StageWitness> byStage;
+};
+
 // What a stage works on: the scene seen from its camera, and what earlier stages kept.
 struct StageInput {
   const PreparedScene& scene;
@@ -66,6 +87,7 @@ struct StageInput {
   const PreviousFrame* previous;  // nullptr: none (the first frame, or a single image)
   StepRecorder* steps = nullptr;  // where the stage records its steps; null: not asked (renderer/steps/steps.hpp)
   std::unique_ptr<StageMemory>* memory = nullptr;  // this stage's slot in previous->memory, or null
+  StageWitness* why = nullptr;  // hsr why's objects, where the stage says what its test found; null: not asked
 };
 
 // A stage as the pipeline and `hsr list` see it. Each stage file declares its own
@@ -121,11 +143,11 @@ std::string describePipeline(const Pipeline& pipeline);  // "backface:object,fru
 
 // Runs the stages in order on the scene's camera and size. threads: 0 = all cores; the
 // result is the same for every thread count. Counts "culling: triangles kept". With
-// steps, records after each stage what it kept and what it removed; with keptByStage,
-// keeps there what each stage kept, in order (hsr why names the stage that removed a triangle).
+// steps, records after each stage what it kept and what it removed; with why, keeps
+// there what each stage kept and found for why->instances, in order (hsr why names the
+// stage that removed a triangle, and what its test found).
 VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int threads, Stats& stats,
-                       const PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr,
-                       std::vector<VisibleSet>* keptByStage = nullptr);
+                       const PreviousFrame* previous = nullptr, StepRecorder* steps = nullptr, CullingWitness* why = nullptr);
 
 // The machinery the stages share. The triangles of `in` for which a test holds, in
 // order, tested in parallel chunks: makeTest() gives each chunk its own test (a callable

@@ -28,25 +28,34 @@ ViewVolume::Side ViewVolume::boxSide(int side, const dvec3& center, const dvec3&
   return distance > reach ? Side::inside : Side::crossing;
 }
 
-bool ViewVolume::sphereOutside(const dvec3& center, double radius) {
-  for (const Plane& plane : planes) {
+bool ViewVolume::sphereOutside(const dvec3& center, double radius, int* outsideOf) {
+  for (int side = 0; side < 6; ++side) {
     ++planesTested;
-    if (plane.distance(center) < -(radius + slack)) return true;
+    if (planes[std::size_t(side)].distance(center) < -(radius + slack)) {
+      if (outsideOf) *outsideOf = side;
+      return true;
+    }
   }
   return false;
 }
 
-bool ViewVolume::boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask) {
+bool ViewVolume::boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask, int* outsideOf) {
   for (int side = 0; side < 6; ++side) {
     if (!(mask & (1u << side))) continue;
     const Side result = boxSide(side, center, halfExtent);
-    if (result == Side::outside) return false;
+    if (result == Side::outside) {
+      if (outsideOf) *outsideOf = side;
+      return false;
+    }
     if (result == Side::inside) mask &= ~(1u << side);
   }
   return true;
 }
 
 namespace {
+
+// The planes by FrustumSide, as hsr why names them.
+constexpr std::array<const char*, 6> kSideNames = {"left", "right", "bottom", "top", "near", "far"};
 
 // The hierarchical test: down the object BVH with plane masking. Marks the instances not
 // proven outside; counts the objects tested in the leaves reached.
@@ -91,36 +100,41 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
 }  // namespace
 
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
-                int threads, Stats& stats) {
+                int threads, Stats& stats, StageWitness* why) {
   PhaseTimer timer(stats, "culling: frustum");
   ViewVolume volume(scene, camera);
   VisibleSet out;
-  // Per object: each object that still has triangles in `in` is tested once.
+  // Per object: each object that still has triangles in `in` is tested once. `outsideOf`:
+  // the plane the test found it wholly outside, for hsr why.
   std::int64_t objectsTested = 0, objectsCulled = 0;
-  const auto keepObjectsThat = [&](auto&& mayBeVisible) {
+  int outsideOf = -1;
+  const auto keepObjectsThat = [&](const char* bound, auto&& mayBeVisible) {
     return keepObjects(scene, in, [&](std::uint32_t instance) {
       const bool kept = mayBeVisible(scene.instances()[instance]);
       objectsCulled += !kept;
+      if (std::string* found = why ? why->about(instance) : nullptr) [[unlikely]]
+        *found = std::string("its ") + bound + (kept ? " meets the view volume, outside no plane"
+                                                      : " lies wholly outside the view volume's " + std::string(kSideNames[std::size_t(outsideOf)]) + " plane");
       return kept;
     });
   };
   switch (variant) {
     case Variant::sphere:
-      out = keepObjectsThat([&](const Instance& instance) {
+      out = keepObjectsThat("bounding sphere", [&](const Instance& instance) {
         ++objectsTested;
-        return !volume.sphereOutside(instance.sphereCenter, instance.sphereRadius);
+        return !volume.sphereOutside(instance.sphereCenter, instance.sphereRadius, &outsideOf);
       });
       break;
     case Variant::aabb:
-      out = keepObjectsThat([&](const Instance& instance) {
+      out = keepObjectsThat("box", [&](const Instance& instance) {
         ++objectsTested;
         std::uint32_t mask = ViewVolume::kAllPlanes;
-        return volume.boxMayBeInside(instance.box, mask);
+        return volume.boxMayBeInside(instance.box, mask, &outsideOf);
       });
       break;
     case Variant::bvh: {
       const std::vector<std::uint8_t> keep = traverseObjectBvh(scene, volume, objectsTested, stats);
-      out = keepObjectsThat([&](const Instance& instance) { return keep[std::size_t(&instance - scene.instances().data())] != 0; });
+      out = keepObjects(scene, in, [&](std::uint32_t instance) { return keep[instance] != 0 || (++objectsCulled, false); });
       break;
     }
     case Variant::triangle:
@@ -161,7 +175,7 @@ StageEntry stage() {
   StageEntry entry = stageEntry("frustum", "drop objects or triangles wholly outside the view volume", knobTable());
   entry.mayDropVisible = [](const KnobValues& knobs) { return knobs.as<Knobs>().variant == Variant::anyVertex; };
   entry.run = [](const KnobValues& knobs, const StageInput& input) {
-    return cull(input.scene, input.camera, knobs.as<Knobs>().variant, input.in, input.threads, input.stats);
+    return cull(input.scene, input.camera, knobs.as<Knobs>().variant, input.in, input.threads, input.stats, input.why);
   };
   return entry;
 }

@@ -50,19 +50,24 @@ struct ViewVolume {
   ViewVolume(const PreparedScene& scene, const CameraTransform& camera);
   // A box given by its center and half extent, against plane `side`.
   Side boxSide(int side, const dvec3& center, const dvec3& halfExtent);
-  bool sphereOutside(const dvec3& center, double radius);
+  // `outsideOf`, when given: the FrustumSide of the plane it lies wholly outside, if any.
+  bool sphereOutside(const dvec3& center, double radius, int* outsideOf = nullptr);
   // The box against the planes still in `mask` (bit i: plane i unsettled); clears the
   // bits of the planes the box is wholly inside. False when it is outside one: what a
   // hierarchy's traversal passes down, so that children skip the planes settled above.
-  bool boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask);
-  bool boxMayBeInside(const Aabb& box, std::uint32_t& mask) { return boxMayBeInside(box.center(), (box.hi - box.lo) * 0.5, mask); }
+  bool boxMayBeInside(const dvec3& center, const dvec3& halfExtent, std::uint32_t& mask, int* outsideOf = nullptr);
+  bool boxMayBeInside(const Aabb& box, std::uint32_t& mask, int* outsideOf = nullptr) {
+    return boxMayBeInside(box.center(), (box.hi - box.lo) * 0.5, mask, outsideOf);
+  }
 };
 
 // The triangles of `in` not proven outside the view volume. Counts, as they apply:
 // "frustum: objects tested", "frustum: objects culled", "frustum: planes tested",
 // "frustum: bvh nodes visited", "frustum: triangles tested", "frustum: triangles culled".
+// `why`: hsr why's objects, where the sphere and aabb tests say which plane an object
+// lies wholly outside, or that it meets the view volume; null: not asked.
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
-                int threads, Stats& stats);
+                int threads, Stats& stats, StageWitness* why = nullptr);
 
 struct Knobs {
   Variant variant = Variant::sphere;

@@ -620,6 +620,35 @@ TEST(Why, FollowsTheFloatingHorizonAlongASegment) {
     EXPECT_NE(segment.output.find(line), std::string::npos) << line << "\n" << segment.output;
 }
 
+// Inside a culling stage: on the gap case the center rule culls the box seen through the
+// gap, and its test says why (every texel of its footprint holds the wall); the
+// conservative rule keeps it, at the first texel no wall covers entirely, and with the
+// pyramid, at the level where the footprint spans 2x2 texels. The portal search names
+// the cells a chain reached.
+TEST(Why, SaysWhatACullingStagesTestFound) {
+  const std::string why = std::string(HSR_BINARY) + " why " + kScenes + "hard/occ_gap.toml --pixel 161,120 --cull ";
+  const test::CommandResult center = test::runCommand(why + "occlusion:raster=center");
+  ASSERT_EQ(center.exitCode, 0) << center.output;
+  for (const char* line : {"the test found every texel of its footprint on the 256x128 map (x 123 to 134, y 60 to 67) holds an occluder nearer "
+                           "than its box's nearest point (distance 7.85)",
+                           "=> differs: the reference shows triangle 34 of \"seen through the gap\", which the culling stage "
+                           "occlusion:depth-map:raster=center removed before the algorithm ran"})
+    EXPECT_NE(center.output.find(line), std::string::npos) << line << "\n" << center.output;
+  const test::CommandResult conservative = test::runCommand(why + "occlusion");
+  ASSERT_EQ(conservative.exitCode, 0) << conservative.output;
+  EXPECT_NE(conservative.output.find("the test found texel (128, 60) of the 256x128 map holds no occluder, not nearer than its box's nearest "
+                                     "point (distance 7.85): it may show there"), std::string::npos) << conservative.output;
+  const test::CommandResult pyramid = test::runCommand(why + "occlusion:pyramid=on");
+  ASSERT_EQ(pyramid.exitCode, 0) << pyramid.output;
+  EXPECT_NE(pyramid.output.find("the test found texel (16, 7) of pyramid level 3 of the 256x128 map holds no occluder"), std::string::npos)
+      << pyramid.output;
+  const test::CommandResult portals =
+      test::runCommand(std::string(HSR_BINARY) + " why " + kScenes + "hard/portal_rooms.toml --size 320x180 --pixel 160,90 --cull portals");
+  ASSERT_EQ(portals.exitCode, 0) << portals.output;
+  EXPECT_NE(portals.output.find("the test found a chain of portals from the eye's cell reaches its cells \"room 0 0\", \"room 1 0\", and its "
+                                "box lies within a view narrowed through the portals"), std::string::npos) << portals.output;
+}
+
 // Culling before the z-buffer on hard/cull_off_center: the view-direction backface test
 // removes the left cube's inner side, which faces the eye; the history leads with each
 // stage's fate for the reference's triangle, and the verdict names the stage. The

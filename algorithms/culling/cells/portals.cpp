@@ -77,6 +77,33 @@ class Traversal {
     return kept;
   }
 
+  // hsr why: for each object asked about, the cells it lies in, which of them a chain of
+  // portals reached, and what step 4 made of it (`kept`: objectsKept's answer).
+  void explain(StageWitness& why, const std::vector<std::uint8_t>& kept) const {
+    for (std::size_t i = 0; i < why.instances.size(); ++i) {
+      const std::uint32_t object = why.instances[i];
+      std::vector<std::string> lies, reached;  // its cells' names, and those of them reached
+      for (std::uint32_t cell = 0; cell < map_.size(); ++cell) {
+        const std::vector<std::uint32_t>& objects = map_.objects(cell);
+        if (std::find(objects.begin(), objects.end(), object) == objects.end()) continue;
+        lies.push_back("\"" + scene_.scene().cells[cell].name + "\"");
+        if (!reached_[cell].empty()) reached.push_back(lies.back());
+      }
+      const auto cells = [](const std::vector<std::string>& names) {
+        std::string text = names.size() == 1 ? "cell " : "cells ";
+        for (std::size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
+        return text;
+      };
+      why.found[i] = lies.empty() ? "it lies in no cell of the level"
+                     : givenUp_ ? "the search gave up after " + std::to_string(maxPasses_) + " portals, so every object of a connected cell is kept"
+                     : reached.empty() ? "no chain of portals from the eye's cell reaches its " + cells(lies)
+                     : kept[object] ? "a chain of portals from the eye's cell reaches its " + cells(reached) +
+                                          ", and its box lies within a view narrowed through the portals"
+                                    : "a chain of portals reaches its " + cells(reached) +
+                                          ", but its box lies outside every view narrowed through the portals";
+    }
+  }
+
   void count(Stats& stats) const {
     const std::vector<std::uint8_t> cells = cellsReached();
     stats.add("portals: cells visited", visits_);
@@ -208,9 +235,11 @@ std::vector<std::uint8_t> cellsReached(const PreparedScene& scene, const cells::
 }
 
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, const Knobs& knobs,
-                const VisibleSet& in, Stats& stats) {
+                const VisibleSet& in, Stats& stats, StageWitness* why) {
   Traversal traversal = searched(scene, map, camera, knobs, stats);
   const std::vector<std::uint8_t> kept = traversal.objectsKept(stats);
+  if (why) [[unlikely]]
+    traversal.explain(*why, kept);
   std::int64_t objectsKept = 0;
   VisibleSet out = keepObjects(scene, in, [&](std::uint32_t object) { return kept[object] ? (++objectsKept, true) : false; });
   stats.add("portals: objects kept", objectsKept);
@@ -225,7 +254,7 @@ StageEntry stage() {
   entry.run = [](const KnobValues& knobs, const StageInput& input) {
     std::optional<cells::CellMap> local;
     const cells::CellMap& map = cells::remembered(input, local, [&] { return cells::CellMap(input.scene, "--cull portals"); });
-    return cull(input.scene, map, input.camera, knobs.as<Knobs>(), input.in, input.stats);
+    return cull(input.scene, map, input.camera, knobs.as<Knobs>(), input.in, input.stats, input.why);
   };
   return entry;
 }

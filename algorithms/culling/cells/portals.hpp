@@ -64,8 +64,10 @@ inline const KnobTable<Knobs>& knobTable() {
 // passed", "portals: portals cut away" (tried, and nothing of them in view), "portals:
 // objects tested", "portals: objects kept", "portals: searches given up". Throws
 // InputError for an orthographic camera (no eye to narrow from) and an eye in no cell.
+// With why, says for hsr why's objects which of their cells a chain reached and whether
+// a view through it holds their box.
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const CameraTransform& camera, const Knobs& knobs,
-                const VisibleSet& in, Stats& stats);
+                const VisibleSet& in, Stats& stats, StageWitness* why = nullptr);
 
 // Steps 1 to 3 alone: per cell, 1 when a chain of portals reaches it (the tests compare
 // it with lines of sight walked cell by cell). Counts as cull() does, objects aside.

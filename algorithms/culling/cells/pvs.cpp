@@ -318,7 +318,7 @@ VisibleSets readCache(const std::filesystem::path& path, const PreparedScene& sc
 }
 
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const VisibleSets& sets, const CameraTransform& camera,
-                const VisibleSet& in, Stats& stats) {
+                const VisibleSet& in, Stats& stats, StageWitness* why) {
   std::vector<std::uint8_t> inSet(scene.instances().size(), 0);
   std::string cellNames;
   for (const std::uint32_t cell : map.cellsAt(camera.camera().eye, "--cull pvs")) {
@@ -331,6 +331,10 @@ VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const Vis
   stats.add("pvs: objects in the set", std::int64_t(objects.size()));
   stats.note("pvs: the eye's cells", cellNames);
   stats.note("pvs: the set", objectNames(scene, objects, kObjectsNamed));
+  if (why) [[unlikely]]
+    for (std::size_t i = 0; i < why->instances.size(); ++i)
+      why->found[i] = std::string(inSet[why->instances[i]] ? "it is in" : "it is not in") + " the potentially visible set of the eye's cell " +
+                      cellNames + (inSet[why->instances[i]] ? "" : ", which holds every object some eye in that cell may see");
   return keepObjects(scene, in, [&](std::uint32_t object) { return inSet[object] != 0; });
 }
 
@@ -362,7 +366,7 @@ StageEntry stage() {
                                              : readCache(knobs.cache, input.scene, knobs);
       return Built{std::move(map), std::move(sets)};
     });
-    return cull(input.scene, built.map, built.sets, input.camera, input.in, input.stats);
+    return cull(input.scene, built.map, built.sets, input.camera, input.in, input.stats, input.why);
   };
   return entry;
 }

@@ -90,9 +90,10 @@ VisibleSets readCache(const std::filesystem::path& path, const PreparedScene& sc
 
 // The triangles of `in` of the objects in the eye's cell's set (the union of the sets of
 // the cells the eye is in, on a shared face). Counts "pvs: objects in the set", and notes
-// "pvs: the eye's cells" and "pvs: the set" by name.
+// "pvs: the eye's cells" and "pvs: the set" by name. With why, says for hsr why's
+// objects whether the set holds them.
 VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const VisibleSets& sets, const CameraTransform& camera,
-                const VisibleSet& in, Stats& stats);
+                const VisibleSet& in, Stats& stats, StageWitness* why = nullptr);
 
 // The stage's entry in culling::stages().
 StageEntry stage();

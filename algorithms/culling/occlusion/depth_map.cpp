@@ -134,12 +134,18 @@ BoxFootprint footprint(const MapView& view, const Aabb& bounds) {
   return box;
 }
 
-bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead) {
+bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead, MapDecision* decision) {
+  if (decision) [[unlikely]]
+    decision->tested = box;
   if (box.crossesNear || box.empty()) return false;
   for (int y = box.y0; y < box.y1; ++y)
     for (int x = box.x0; x < box.x1; ++x) {
       ++texelsRead;
-      if (map.at(x, y) >= box.nearest) return false;  // something of the box may show here
+      if (map.at(x, y) >= box.nearest) {  // something of the box may show here
+        if (decision) [[unlikely]]
+          decision->x = x, decision->y = y;
+        return false;
+      }
     }
   return true;
 }
@@ -216,15 +222,17 @@ Pyramid::Pyramid(const DepthMap& map) {
   }
 }
 
-bool Pyramid::hidden(const BoxFootprint& box, std::int64_t& texelsRead) const {
-  if (box.crossesNear || box.empty()) return false;
+bool Pyramid::hidden(const BoxFootprint& box, std::int64_t& texelsRead, MapDecision* decision) const {
+  if (box.crossesNear || box.empty()) return hiddenOnMap(levels_.front(), box, texelsRead, decision);
   // Texel i of a level covers texels 2i and 2i + 1 below it, so level k's texel over
   // level-0 texel x is x >> k.
   int level = 0;
   while (((box.x1 - 1) >> level) - (box.x0 >> level) > 1 || ((box.y1 - 1) >> level) - (box.y0 >> level) > 1) ++level;
   const BoxFootprint coarse{false, box.x0 >> level, ((box.x1 - 1) >> level) + 1, box.y0 >> level, ((box.y1 - 1) >> level) + 1,
                             box.nearest};
-  return hiddenOnMap(levels_[std::size_t(level)], coarse, texelsRead);
+  if (decision) [[unlikely]]
+    decision->level = level;
+  return hiddenOnMap(levels_[std::size_t(level)], coarse, texelsRead, decision);
 }
 
 void OccluderRasterizer::triangle(const dvec3& a, const dvec3& b, const dvec3& c) {

@@ -87,9 +87,19 @@ struct BoxFootprint {
 BoxFootprint footprint(const MapView& view, const Aabb& box);
 std::array<dvec3, 8> cornersOf(const Aabb& box);
 
+// What decided a box's test, for hsr why: the footprint tested (at pyramid level
+// `level`, 0: the map itself) and the first texel that proved it may show, or none
+// (x = -1: every texel hid it, or the footprint was empty or unbounded).
+struct MapDecision {
+  BoxFootprint tested;
+  int level = 0;
+  int x = -1, y = -1;
+};
+
 // Hidden when every texel of the footprint holds a key nearer than the box's nearest;
-// stops at the first texel that proves it visible. Counts the texels read.
-bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead);
+// stops at the first texel that proves it visible. Counts the texels read. `decision`:
+// hsr why's, or null.
+bool hiddenOnMap(const DepthMap& map, const BoxFootprint& box, std::int64_t& texelsRead, MapDecision* decision = nullptr);
 
 // The largest key of each 8x8 tile of a map that is still being drawn, recomputed only
 // where it was drawn since, and only when its old value, still a bound, is not enough:
@@ -119,7 +129,7 @@ class Pyramid {
  public:
   explicit Pyramid(const DepthMap& map);
   // The box tested at the finest level where its footprint spans at most 2x2 texels.
-  bool hidden(const BoxFootprint& box, std::int64_t& texelsRead) const;
+  bool hidden(const BoxFootprint& box, std::int64_t& texelsRead, MapDecision* decision = nullptr) const;
   const std::vector<DepthMap>& levels() const { return levels_; }
 
  private:

@@ -52,7 +52,7 @@ StageEntry stage() {
     if (knobs.method == Method::queries)
       return cullWithQueries(input.scene, input.camera, knobs, input.in, input.memory, input.previous ? input.previous->gpu : nullptr,
                              input.stats);
-    return cull(input.scene, input.camera, knobs, input.in, input.previous, input.stats, input.steps);
+    return cull(input.scene, input.camera, knobs, input.in, input.previous, input.stats, input.steps, input.why);
   };
   return entry;
 }
@@ -217,6 +217,28 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
 
 namespace {
 
+// hsr why: what the map test found for a box, with the depths as distances along the view axis.
+std::string decided(const MapView& view, const DepthMap& level, const MapDecision& decision, bool hidden) {
+  const BoxFootprint& box = decision.tested;
+  if (box.crossesNear) return "its box crosses the near plane, so its footprint is unbounded: never hidden";
+  if (box.empty()) return "its box's footprint covers no texel of the map";
+  const auto distance = [&](double key) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", view.camera.perspective() ? -1.0 / key : key);
+    return std::string(text);
+  };
+  const std::string where = (decision.level == 0 ? "the " : "pyramid level " + std::to_string(decision.level) + " of the ") +
+                            std::to_string(view.width) + "x" + std::to_string(view.height) + " map";
+  const std::string nearest = "its box's nearest point (distance " + distance(box.nearest) + ")";
+  if (hidden)
+    return "every texel of its footprint on " + where + " (x " + std::to_string(box.x0) + " to " + std::to_string(box.x1 - 1) + ", y " +
+           std::to_string(box.y0) + " to " + std::to_string(box.y1 - 1) + ") holds an occluder nearer than " + nearest;
+  const float key = level.at(decision.x, decision.y);
+  return "texel (" + std::to_string(decision.x) + ", " + std::to_string(decision.y) + ") of " + where + " holds " +
+         (std::isinf(key) ? std::string("no occluder") : "an occluder as far as distance " + distance(key)) + ", not nearer than " + nearest +
+         ": it may show there";
+}
+
 // A map as a step's picture: its depths (nearest white), each texel enlarged to whole
 // pixels so that a small map is seen at about the image's width.
 void recordMap(const DepthMap& map, int imageWidth, const std::string& caption, StepRecorder& steps,
@@ -231,7 +253,7 @@ void recordMap(const DepthMap& map, int imageWidth, const std::string& caption, 
 }  // namespace
 
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
-                const PreviousFrame* previous, Stats& stats, StepRecorder* steps) {
+                const PreviousFrame* previous, Stats& stats, StepRecorder* steps, StageWitness* why) {
   PhaseTimer timer(stats, "culling: occlusion");
   // Occlusion culling pays only where objects hide one another: a cheap estimate first.
   if (knobs.minDepthComplexity > 0) {
@@ -278,7 +300,12 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const
   VisibleSet out = keepObjects(scene, in, [&](std::uint32_t instance) {
     ++tested;
     const BoxFootprint box = footprint(view, scene.instances()[instance].box);
-    const bool hidden = pyramid ? pyramid->hidden(box, texelsRead) : hiddenOnMap(map, box, texelsRead);
+    std::string* const found = why ? why->about(instance) : nullptr;
+    MapDecision decision;
+    MapDecision* const watched = found ? &decision : nullptr;
+    const bool hidden = pyramid ? pyramid->hidden(box, texelsRead, watched) : hiddenOnMap(map, box, texelsRead, watched);
+    if (found) [[unlikely]]
+      *found = decided(view, pyramid ? pyramid->levels()[std::size_t(decision.level)] : map, decision, hidden);
     culled += hidden;
     return !hidden;
   });

@@ -166,8 +166,10 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame);
 // The stage: the triangles of the objects in `in` not proven hidden. Counts
 // "occlusion: occludees tested", "occlusion: occludees culled", "occlusion: texels read",
 // and "occlusion: no previous frame" when previous-frame has none (it then keeps all).
-// With steps, records the map and each level of the pyramid above it.
+// With steps, records the map and each level of the pyramid above it. With why, says
+// for hsr why's objects what the map test found: the texel that let the box show, or
+// that every texel of its footprint hid it (and at which level of the pyramid).
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
-                const PreviousFrame* previous, Stats& stats, StepRecorder* steps = nullptr);
+                const PreviousFrame* previous, Stats& stats, StepRecorder* steps = nullptr, StageWitness* why = nullptr);
 
 }  // namespace hsr::culling::occlusion
