@@ -234,7 +234,7 @@ EdgeAnswer explainEdge(const PreparedScene& scene, const Configuration& configur
   answer.verdict = answer.differingPixels == 0 ? "agrees with the exact line reference"
                    : answer.differingPixels <= kRoundingPixels
                        ? "agrees with the exact line reference within 0.001 pixel, the precision a drawing is written to: they differ on " +
-                             whyNumber(answer.differingPixels) + " pixels of its length (the algorithm's tolerances move the ends of its pieces; Roberts' are in docs/robustness.md)"
+                             whyNumber(answer.differingPixels) + " pixels of its length (the algorithm's tolerances, listed in docs/robustness.md, move the ends of its pieces)"
                        : text;
   return answer;
 }

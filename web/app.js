@@ -368,7 +368,6 @@ function showEdge(edge) {
   if (!edge) return;
   const first = edge.walk[0];
   const start = first && first.subject === "" && Number.isFinite(first.u) ? first.u : 0;
-  const ringed = (event) => event.change !== 0;
   const at = (u) => [edge.from[0] + u * (edge.to[0] - edge.from[0]), edge.from[1] + u * (edge.to[1] - edge.from[1])];
   for (const id of ["color", "error"]) {
     const canvas = $(id);
@@ -384,7 +383,7 @@ function showEdge(edge) {
     const [x0, y0] = at(start), [x1, y1] = at(1 - start);
     shape("line", { x1: x0, y1: y0, x2: x1, y2: y1 });
     shape("circle", { cx: x0, cy: y0, r: 3, class: "start" });
-    for (const event of edge.walk) if (ringed(event)) shape("circle", { cx: at(event.u)[0], cy: at(event.u)[1], r: 2.5, class: "change" });
+    for (const event of edge.walk) if (event.change !== 0) shape("circle", { cx: at(event.u)[0], cy: at(event.u)[1], r: 2.5, class: "change" });
     canvas.parentElement.append(svg);
   }
 }

@@ -16,7 +16,9 @@
 //     else those made at this pixel;
 //   - for a line drawing, along the edge nearest the pixel (hsr why --edge X,Y): Appel's,
 //     at each crossing of a contour, how the edge's quantitative invisibility changes;
-//     Roberts', what the test of each body decided (hides part of it, none, ruled out).
+//     Roberts', what the test of each body decided (hides part of it, none, ruled out);
+//     the floating horizon's, where the segment lies against the horizons at its start
+//     and at each column center.
 // At most kStepQuestions events are asked about (those about triangles first, then the
 // last of the others); the rest are revealed as the quiz passes them. At the end, the whole answer, as hsr why prints it.
 "use strict";
@@ -71,15 +73,21 @@ function pixelQuiz(pixel, declared, paintsInOrder) {
   // names the piece's triangle, its distance here and whether it is whole or cut (not its
   // place in the order, which the detail begins with).
   const pieceOf = (event) => `${withDistance(event.name, event.distance)} (${/\(([^()]*)\)$/.exec(event.detail)?.[1] ?? "a piece"})`;
-  const nextPiece = (index) => ({
-    event: index,
-    prompt: `Event ${index + 1}: which piece does the painter paint ${index === 0 ? "first" : "next"} at this pixel?`,
-    context: `${history.length} pieces reach pixel (${pixel.x}, ${pixel.y}); the painter paints every one, back to front, ` +
-             `each over the ones before. ${index} painted so far.`,
-    choices: choicesOf(history.slice(index).map(pieceOf).sort(), (label) => label === pieceOf(history[index])),
-    answer: `${history[index].name}: ${history[index].detail}.`,
-  });
-  const steps = asked.filter((index) => !paintsInOrder || index + 1 < history.length).map((index) => {
+  // The pieces are the events about triangles (culling stages' events may come first).
+  const pieces = aboutTriangles.map((index) => history[index]);
+  const nextPiece = (index) => {
+    const painted = aboutTriangles.indexOf(index);
+    return {
+      event: index,
+      prompt: `Event ${index + 1}: which piece does the painter paint ${painted === 0 ? "first" : "next"} at this pixel?`,
+      context: `${pieces.length} pieces reach pixel (${pixel.x}, ${pixel.y}); the painter paints every one, back to front, ` +
+               `each over the ones before. ${painted} painted so far.`,
+      choices: choicesOf(pieces.slice(painted).map(pieceOf).sort(), (label) => label === pieceOf(history[index])),
+      answer: `${history[index].name}: ${history[index].detail}.`,
+    };
+  };
+  // The painter's last piece is forced: not asked.
+  const steps = asked.filter((index) => !paintsInOrder || index !== aboutTriangles[aboutTriangles.length - 1]).map((index) => {
     const event = history[index];
     const at = `Event ${index + 1} of ${history.length}: ${event.name}. ${numbersOf(event.detail)}.`;
     if (paintsInOrder && event.triangle !== null) return nextPiece(index);
@@ -131,8 +139,8 @@ function edgeQuiz(edge) {
     // without one would give the answer away: it comes with the answer).
     return {
       event: index,
-      prompt: event.subject ? `${event.subject}${Number.isFinite(event.u) ? ` (u = ${event.u.toPrecision(4)})` : ""}: what does the algorithm decide there?`
-                            : "What does the algorithm decide for this edge?",
+      // Not where along the edge (Roberts records one only where a body hides a part).
+      prompt: event.subject ? `${event.subject}: what does the algorithm decide there?` : "What does the algorithm decide for this edge?",
       context: `${of(index)}${event.subject ? `: ${event.subject}` : ""}. ` +
                (event.detail.includes("; ") ? `${numbersOf(event.detail)}.` : "Look at the drawing: where does it lie, against the edge?"),
       choices: choicesOf(edge.decisions, (label) => label === decision),

@@ -113,7 +113,7 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
       const bool kept = mayBeVisible(scene.instances()[instance]);
       objectsCulled += !kept;
       if (std::string* found = why ? why->about(instance) : nullptr) [[unlikely]]
-        *found = std::string("its ") + bound + (kept ? " meets the view volume, outside no plane"
+        *found = std::string("its ") + bound + (kept ? " lies outside none of the view volume's planes (near a corner it may still miss the volume: the test is conservative)"
                                                       : " lies wholly outside the view volume's " + std::string(kSideNames[std::size_t(outsideOf)]) + " plane");
       return kept;
     });
@@ -134,7 +134,10 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
       break;
     case Variant::bvh: {
       const std::vector<std::uint8_t> keep = traverseObjectBvh(scene, volume, objectsTested, stats);
-      out = keepObjects(scene, in, [&](std::uint32_t instance) { return keep[instance] != 0 || (++objectsCulled, false); });
+      out = keepObjects(scene, in, [&](std::uint32_t instance) {
+        objectsCulled += keep[instance] == 0;
+        return keep[instance] != 0;
+      });
       break;
     }
     case Variant::triangle:

@@ -16,8 +16,6 @@ namespace hsr::floating_horizon {
 
 namespace {
 
-constexpr double kNowhere = std::numeric_limits<double>::quiet_NaN();  // an hsr why event about the whole segment
-
 // The upper and lower horizons, in pixel coordinates (y grows down the image, so the
 // upper horizon is the smallest y drawn so far). Each is known at the centers of equal
 // screen columns, `columns` of them across the image, and taken as straight between
@@ -44,12 +42,14 @@ class Horizons {
   // horizons, and so whether step 3 sees it.
   EdgeEvent placeOf(double u, const dvec2& p, std::string subject) const {
     const double upper = at(upper_, p.x), lower = at(lower_, p.x);
+    // Interpolated toward kNothingDrawn, a horizon is far beyond any image: no curve has
+    // reached a column beside p yet.
+    const bool undrawn = upper > kNothingDrawn * 1e-100;
     const std::string numbers = "the segment at y = " + whyNumber(p.y) +
-                                (upper < kNothingDrawn ? ", the upper horizon at y = " + whyNumber(upper) : ", no upper horizon") +
-                                (!keepLower_ ? " (lower=off: none kept)"
-                                 : lower > -kNothingDrawn ? ", the lower at y = " + whyNumber(lower) : ", no lower horizon") +
+                                (undrawn ? ", no horizon yet at a column beside it" : ", the upper horizon at y = " + whyNumber(upper) +
+                                 (!keepLower_ ? " (lower=off: no lower horizon kept)" : ", the lower at y = " + whyNumber(lower))) +
                                 " (y grows down the image)";
-    const char* place = upper == kNothingDrawn            ? "no curve drawn there yet: visible"
+    const char* place = undrawn                           ? "no curve drawn there yet: visible"
                         : p.y < upper                     ? "above the upper horizon: visible"
                         : keepLower_ && p.y > lower       ? "below the lower horizon: visible"
                         : keepLower_                      ? "between the horizons: hidden"
@@ -93,7 +93,7 @@ class Horizons {
   // hsr why --edge: the segment's piece from t0 to t1 between two column centers (or its
   // ends): where its start lies, then each horizon it crosses on the way.
   void witnessPiece(double t0, double t1, const dvec2& p0, const Interval& above, const Interval& below, std::vector<EdgeEvent>& why) const {
-    why.push_back(placeOf(t0, p0, t0 == 0 ? "its start" : "a column center"));
+    why.push_back(placeOf(t0, p0, t0 == 0 ? "its start" : "the column center at x = " + whyNumber(p0.x)));
     const std::size_t first = why.size();
     const auto crossing = [&](double u, bool becomesVisible, const char* horizon, const char* how) {
       why.push_back({u, becomesVisible ? -1 : 1, becomesVisible ? "visible from here" : "hidden from here",
@@ -267,7 +267,7 @@ class FloatingHorizon {
       }
       std::vector<EdgeEvent>* const why = witness_ && witness_->edge == lines_.edges.size() ? &witness_->events : nullptr;
       if (why) [[unlikely]]
-        why->push_back({kNowhere, 0, "curve " + std::to_string(curvesDrawn_ + 1) + " of " + std::to_string(curvesToDraw()) + ", front to back",
+        why->push_back({kWholeEdge, 0, "curve " + std::to_string(curvesDrawn_ + 1) + " of " + std::to_string(curvesToDraw()) + ", front to back",
                         "the curves in front of it have raised the horizons; each of its segments is tested against them, and "
                         "only then does the curve raise them (steps 3 to 5)"});
       std::vector<Interval> visible;
@@ -282,7 +282,7 @@ class FloatingHorizon {
           stats_.add("segments dropped", 1);  // the classic ragged end: visibility changes between samples
         }
         if (why) [[unlikely]]
-          why->push_back({kNowhere, 0, visible.empty() ? "hidden whole" : "drawn whole",
+          why->push_back({kWholeEdge, 0, visible.empty() ? "hidden whole" : "drawn whole",
                           "interpolate=off looks only at the two samples: " +
                               std::string(!visible.empty() ? "both are visible"
                                           : horizons_->visible(a.pixel) || horizons_->visible(b.pixel)
@@ -294,7 +294,7 @@ class FloatingHorizon {
     }
     for (const auto& [a, b] : drawn) horizons_->raise(a, b);
     if (witness_ && witness_->edge >= firstEdge && witness_->edge < lines_.edges.size()) [[unlikely]]
-      witness_->events.push_back({kNowhere, 0, "then the curve raises the horizons",
+      witness_->events.push_back({kWholeEdge, 0, "then the curve raises the horizons",
                                   "at every column center its segments span, the upper horizon to the least y drawn there and the lower "
                                   "to the greatest (step 5): what the curves behind it are tested against"});
     if (steps_ && steps_->due(curvesDrawn_, curvesToDraw())) recordCurve(firstEdge);

@@ -14,7 +14,6 @@ namespace hsr::roberts {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr double kNowhere = std::numeric_limits<double>::quiet_NaN();  // an hsr why event about the whole edge
 
 // A plane n . x = offset; the body lies on the side n . x <= offset.
 struct Plane {
@@ -163,7 +162,7 @@ class Roberts {
         stats_.add("back-face edges");
         hidden.push_back({0, 1});
         if (watched) [[unlikely]]
-          watched->events.push_back({kNowhere, 0, "hidden by its own body (step 1)", edge.kind == EdgeKind::junction
+          watched->events.push_back({kWholeEdge, 0, "hidden by its own body (step 1)", edge.kind == EdgeKind::junction
               ? "it lies on a back face of one of the two bodies it joins, inside that body's shadow of itself"
               : "both its faces face away from the eye; so its convex body hides all of it, and no other body is tested"});
       } else {
@@ -182,7 +181,7 @@ class Roberts {
           if (const std::optional<Interval> part = hiddenBy(bodies_[b], s0, s1, event)) hidden.push_back(*part);
         });
         if (watched && grid_) [[unlikely]]
-          watched->events.insert(watched->events.begin(), {kNowhere, 0, "the screen grid lists " + std::to_string(listed) + " of the " +
+          watched->events.insert(watched->events.begin(), {kWholeEdge, 0, "the screen grid lists " + std::to_string(listed) + " of the " +
                                  std::to_string(bodies_.size()) + " bodies",
                                  "those whose projected boxes cover a cell of " + whyNumber(knobs_.cellPixels) +
                                  " pixels that the edge crosses; the others cannot hide it and are not looked at"});
@@ -264,7 +263,7 @@ class Roberts {
 
   // An event of hsr why --edge about body b, its outcome and detail still to say.
   EdgeEvent bodyEvent(std::uint32_t b) const {
-    return {kNowhere, 0, "", "", "body " + scene_.instanceName(scene_.instances()[b])};
+    return {kWholeEdge, 0, "", "", "body " + scene_.instanceName(scene_.instances()[b])};
   }
 
   // Step 2's linear program: the open interval of u in (0, 1) over which S(u) + alpha z
@@ -310,7 +309,7 @@ class Roberts {
       event->detail = std::to_string(body.screenPlanes.size()) + " face planes along the sight lines from the edge: " +
                       std::to_string(upper.size()) + " bound alpha from above, " + std::to_string(lower.size()) + " from below, " +
                       std::to_string(body.screenPlanes.size() - upper.size() - lower.size()) +
-                      " are parallel to the sight lines; every pair of bounds, and alpha > 0, leave u " +
+                      " are parallel to the sight lines; every pair of bounds, alpha > 0 and the parallel planes leave u " +
                       (begin < end ? "in (" + whyNumber(begin) + ", " + whyNumber(end) + ")" : "nowhere in (0, 1)");
     if (begin >= end) {
       if (event) [[unlikely]]

@@ -41,6 +41,9 @@ struct PixelEvent {
 // hsr why --edge: what a line algorithm met deciding one edge of its drawing (Appel's
 // walk along it, Roberts' test of each body), in the order it met it. Handed to the
 // algorithm only when asked, as PixelWitness is.
+// An EdgeEvent's place when it is about the whole edge, not a place on it.
+inline constexpr double kWholeEdge = std::numeric_limits<double>::quiet_NaN();
+
 struct EdgeEvent {
   // Where along the edge's projection: 0 at its start, 1 at its end; NaN for an event
   // about the whole edge (Roberts' test of one body).

@@ -591,7 +591,7 @@ TEST(Why, FollowsRobertsTestOfEachBodyAlongAnEdge) {
                            "2. at u = 0: body \"tower\": hides part of it: u = 0 to 0.196959776",
                            "3. body \"prism\": ruled out by the minimax test\n     its projected box misses the edge's",
                            "4. body \"pyramid\": hides none of it\n     5 face planes along the sight lines from the edge: 2 bound alpha from above, "
-                           "3 from below, 0 are parallel to the sight lines; every pair of bounds, and alpha > 0, leave u nowhere in (0, 1)",
+                           "3 from below, 0 are parallel to the sight lines; every pair of bounds, alpha > 0 and the parallel planes leave u nowhere in (0, 1)",
                            "5. at u = 0.120809213: body \"ball\": hides part of it: u = 0.120809213 to 0.51675934",
                            "its pieces: 0 to 0.51675934 hidden; 0.51675934 to 1 QI 0 (visible)\n",
                            "=> agrees with the exact line reference within 0.001 pixel"})

@@ -145,8 +145,9 @@ TEST(Appel, TheWalkWatchedAlongEachEdgeAccountsForItsPieces) {
 
 // hsr why --edge on Roberts: each edge's tests of the bodies, watched, leave the drawing
 // as it was and account for its pieces: an edge hidden by its own body has that one
-// event; any other has one event per body the grid listed (every body with grid=off),
-// and its hidden pieces are exactly the union of the parts the bodies were recorded to hide.
+// event and one hidden piece, the whole edge; any other has one event for every body
+// with grid=off (with the grid, the count it names is of the events that follow), and
+// its hidden pieces are exactly the union of the parts the bodies were recorded to hide.
 TEST(Roberts, TheTestsWatchedAlongEachEdgeAccountForItsPieces) {
   std::int64_t partsChecked = 0;
   for (const char* path : {"scenes/blocks.toml", "scenes/hard/box_junctions.toml"})
@@ -173,7 +174,9 @@ TEST(Roberts, TheTestsWatchedAlongEachEdgeAccountForItsPieces) {
         ASSERT_FALSE(events.empty()) << where;
         if (events.front().outcome == "hidden by its own body (step 1)") {
           EXPECT_EQ(events.size(), 1u) << where;
-          EXPECT_EQ(hiddenPieces.size(), 1u) << where;
+          ASSERT_EQ(hiddenPieces.size(), 1u) << where;
+          EXPECT_EQ(hiddenPieces[0].begin, 0) << where;
+          EXPECT_EQ(hiddenPieces[0].end, 1) << where;
           continue;
         }
         std::size_t bodies = 0;

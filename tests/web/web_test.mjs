@@ -330,7 +330,7 @@ try {
                                                               "--edge", horizonAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
   const place = await quizShown();
   check(result.message === "" && horizonAnswer.shown === nativeHorizon && horizonAnswer.shown.includes("its start: above the upper horizon") &&
-        place.prompt === "its start (u = 0.000): what does the algorithm decide there?" &&
+        place.prompt === "its start: what does the algorithm decide there?" &&
         place.choices.join(" | ") === "no curve drawn there yet | above the upper horizon | below the lower horizon | between the horizons | under the upper horizon",
         `a click on the floating horizon's drawing answers along the segment nearest it, as hsr why --edge ${horizonAnswer.pixel} does, and the quiz asks where it lies (${place.prompt})`);
   await page.uncheck("#quizMode");

@@ -95,8 +95,9 @@ class Traversal {
         return text;
       };
       why.found[i] = lies.empty() ? "it lies in no cell of the level"
-                     : givenUp_ ? "the search gave up after " + std::to_string(maxPasses_) + " portals, so every object of a connected cell is kept"
                      : reached.empty() ? "no chain of portals from the eye's cell reaches its " + cells(lies)
+                     : givenUp_ ? "the search gave up after " + std::to_string(maxPasses_) +
+                                      " portals, so every object of a cell it reached is kept, its " + cells(reached) + " among them"
                      : kept[object] ? "a chain of portals from the eye's cell reaches its " + cells(reached) +
                                           ", and its box lies within a view narrowed through the portals"
                                     : "a chain of portals reaches its " + cells(reached) +

@@ -321,7 +321,8 @@ VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const Vis
                 const VisibleSet& in, Stats& stats, StageWitness* why) {
   std::vector<std::uint8_t> inSet(scene.instances().size(), 0);
   std::string cellNames;
-  for (const std::uint32_t cell : map.cellsAt(camera.camera().eye, "--cull pvs")) {
+  const std::vector<std::uint32_t> eyeCells = map.cellsAt(camera.camera().eye, "--cull pvs");
+  for (const std::uint32_t cell : eyeCells) {
     cellNames += (cellNames.empty() ? "" : ", ") + scene.scene().cells[cell].name;
     for (const std::uint32_t object : sets.objects[cell]) inSet[object] = 1;
   }
@@ -331,10 +332,13 @@ VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const Vis
   stats.add("pvs: objects in the set", std::int64_t(objects.size()));
   stats.note("pvs: the eye's cells", cellNames);
   stats.note("pvs: the set", objectNames(scene, objects, kObjectsNamed));
-  if (why) [[unlikely]]
+  if (why) [[unlikely]] {
+    std::string quoted = eyeCells.size() == 1 ? "cell " : "cells ";  // the eye's, on a shared face two or more
+    for (std::size_t k = 0; k < eyeCells.size(); ++k) quoted += (k ? ", \"" : "\"") + scene.scene().cells[eyeCells[k]].name + "\"";
     for (std::size_t i = 0; i < why->instances.size(); ++i)
-      why->found[i] = std::string(inSet[why->instances[i]] ? "it is in" : "it is not in") + " the potentially visible set of the eye's cell " +
-                      cellNames + (inSet[why->instances[i]] ? "" : ", which holds every object some eye in that cell may see");
+      why->found[i] = std::string(inSet[why->instances[i]] ? "it is in" : "it is not in") + " the potentially visible set of the eye's " + quoted +
+                      (inSet[why->instances[i]] ? "" : ", which holds every object some eye there may see");
+  }
   return keepObjects(scene, in, [&](std::uint32_t object) { return inSet[object] != 0; });
 }
 
