@@ -26,6 +26,7 @@
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "pipeline/pipeline.hpp"
 #include "renderer/geometry/camera.hpp"
+#include "renderer/lines/line_set.hpp"
 #include "renderer/raster/depth.hpp"
 #include "renderer/raster/screen_triangles.hpp"
 #include "renderer/reference/reference.hpp"
@@ -33,6 +34,20 @@
 #include "renderer/scene/scene.hpp"
 
 namespace hsr::test {
+
+// The pieces of edge e of a line drawing drawn with hsr why --edge watching that edge,
+// or nothing when that drawing differs anywhere from the one drawn without (a piece's
+// edge, QI or ends): watching must change nothing.
+inline std::optional<std::vector<LineSegment>> piecesIfUnchanged(const LineSet& plain, const LineSet& watched, std::uint32_t e) {
+  if (watched.segments.size() != plain.segments.size()) return std::nullopt;
+  std::vector<LineSegment> pieces;
+  for (std::size_t i = 0; i < watched.segments.size(); ++i) {
+    const LineSegment &mine = watched.segments[i], &theirs = plain.segments[i];
+    if (mine.edge != theirs.edge || mine.qi != theirs.qi || mine.begin != theirs.begin || mine.end != theirs.end) return std::nullopt;
+    if (mine.edge == e) pieces.push_back(mine);
+  }
+  return pieces;
+}
 
 inline std::filesystem::path sourcePath(const std::string& relative) { return std::filesystem::path(HSR_SOURCE_DIR) / relative; }
 

@@ -276,18 +276,18 @@ class FloatingHorizon {
       } else {
         if (why) [[unlikely]]
           why->push_back(horizons_->placeOf(0, a.pixel, "its start")), why->push_back(horizons_->placeOf(1, b.pixel, "its end"));
-        if (horizons_->visible(a.pixel) && horizons_->visible(b.pixel)) {
+        const bool seenA = horizons_->visible(a.pixel), seenB = horizons_->visible(b.pixel);
+        if (seenA && seenB) {
           visible = {{0.0, 1.0}};
-        } else if (horizons_->visible(a.pixel) || horizons_->visible(b.pixel)) {
+        } else if (seenA || seenB) {
           stats_.add("segments dropped", 1);  // the classic ragged end: visibility changes between samples
         }
         if (why) [[unlikely]]
           why->push_back({kWholeEdge, 0, visible.empty() ? "hidden whole" : "drawn whole",
                           "interpolate=off looks only at the two samples: " +
-                              std::string(!visible.empty() ? "both are visible"
-                                          : horizons_->visible(a.pixel) || horizons_->visible(b.pixel)
-                                              ? "one is visible and the other not, so the segment is dropped (the classic ragged end)"
-                                              : "neither is visible")});
+                              std::string(seenA && seenB ? "both are visible"
+                                          : seenA || seenB ? "one is visible and the other not, so the segment is dropped (the classic ragged end)"
+                                                           : "neither is visible")});
       }
       addEdge(a, b, static_cast<std::uint32_t>(curve), visible);
       drawn.emplace_back(a.pixel, b.pixel);

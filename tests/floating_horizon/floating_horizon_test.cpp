@@ -185,13 +185,10 @@ TEST(FloatingHorizon, TheTestsWatchedAlongASegmentAccountForItsPieces) {
       const std::string where = std::string(interpolate ? "" : "interpolate=off ") + "edge " + std::to_string(e);
       EdgeWitness witness{e, {}};
       Stats stats;
-      const LineSet watched = entry.drawLinesWatchingEdge(loaded.prepared, values, stats, witness);
-      ASSERT_EQ(watched.segments.size(), plain.segments.size()) << where;
-      std::vector<LineSegment> pieces;
-      for (std::size_t i = 0; i < watched.segments.size(); ++i) {
-        ASSERT_EQ(watched.segments[i].qi, plain.segments[i].qi) << where;
-        if (watched.segments[i].edge == e) pieces.push_back(watched.segments[i]);
-      }
+      const std::optional<std::vector<LineSegment>> watchedPieces =
+          test::piecesIfUnchanged(plain, entry.drawLinesWatchingEdge(loaded.prepared, values, stats, witness), e);
+      ASSERT_TRUE(watchedPieces) << where << ": watching changed the drawing";
+      const std::vector<LineSegment>& pieces = *watchedPieces;
       const std::vector<EdgeEvent>& events = witness.events;
       ASSERT_GE(events.size(), 3u) << where;
       EXPECT_EQ(events.front().outcome.rfind("curve ", 0), 0u) << where;

@@ -110,13 +110,10 @@ TEST(Appel, TheWalkWatchedAlongEachEdgeAccountsForItsPieces) {
       const std::string where = std::string(path) + " edge " + std::to_string(e);
       EdgeWitness witness{e, {}};
       Stats stats;
-      const LineSet watched = appel::run(loaded.prepared, appel::Knobs{}, stats, nullptr, &witness);
-      ASSERT_EQ(watched.segments.size(), plain.segments.size()) << where;
-      std::vector<LineSegment> pieces;
-      for (std::size_t i = 0; i < watched.segments.size(); ++i) {
-        ASSERT_EQ(watched.segments[i].qi, plain.segments[i].qi) << where;
-        if (watched.segments[i].edge == e) pieces.push_back(watched.segments[i]);
-      }
+      const std::optional<std::vector<LineSegment>> watchedPieces =
+          test::piecesIfUnchanged(plain, appel::run(loaded.prepared, appel::Knobs{}, stats, nullptr, &witness), e);
+      ASSERT_TRUE(watchedPieces) << where << ": watching changed the drawing";
+      const std::vector<LineSegment>& pieces = *watchedPieces;
       const std::vector<EdgeEvent>& walk = witness.events;
       ASSERT_FALSE(walk.empty()) << where;
       const bool junction = plain.edges[e].kind == EdgeKind::junction;
@@ -161,15 +158,12 @@ TEST(Roberts, TheTestsWatchedAlongEachEdgeAccountForItsPieces) {
         const std::string where = std::string(path) + (grid ? "" : " grid=off") + " edge " + std::to_string(e);
         EdgeWitness witness{e, {}};
         Stats stats;
-        const LineSet watched = roberts::run(loaded.prepared, knobs, stats, nullptr, &witness);
-        ASSERT_EQ(watched.segments.size(), plain.segments.size()) << where;
+        const std::optional<std::vector<LineSegment>> pieces =
+            test::piecesIfUnchanged(plain, roberts::run(loaded.prepared, knobs, stats, nullptr, &witness), e);
+        ASSERT_TRUE(pieces) << where << ": watching changed the drawing";
         std::vector<Interval> hiddenPieces;
-        for (std::size_t i = 0; i < watched.segments.size(); ++i) {
-          ASSERT_EQ(watched.segments[i].qi, plain.segments[i].qi) << where;
-          ASSERT_EQ(watched.segments[i].begin, plain.segments[i].begin) << where;
-          if (watched.segments[i].edge == e && !watched.segments[i].visible())
-            hiddenPieces.push_back({watched.segments[i].begin, watched.segments[i].end});
-        }
+        for (const LineSegment& piece : *pieces)
+          if (!piece.visible()) hiddenPieces.push_back({piece.begin, piece.end});
         const std::vector<EdgeEvent>& events = witness.events;
         ASSERT_FALSE(events.empty()) << where;
         if (events.front().outcome == "hidden by its own body (step 1)") {

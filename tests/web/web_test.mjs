@@ -81,10 +81,14 @@ try {
   // Why: a click on a pixel of an image, shown at its own size or scaled down (where a
   // CSS pixel spans several of the image's), answers for the pixel under the pointer as
   // hsr why does on the command line, line for line but the scene's name.
-  const nativeWhy = (scene, pixel, extra = []) => {
-    const run = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", scene), "--pixel", pixel, ...extra], { encoding: "utf8" });
+  // What hsr why prints for the scene with these options, without its first line (which
+  // names the scene by its path): for a pixel, and along the edge nearest a pixel.
+  const whyPrints = (scene, options) => {
+    const run = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", scene), ...options], { encoding: "utf8" });
     return run.stdout.split("\n").slice(1).join("\n").trim();
   };
+  const nativeWhy = (scene, pixel, extra = []) => whyPrints(scene, ["--pixel", pixel, ...extra]);
+  const nativeEdge = (scene, pixel, algorithm) => whyPrints(scene, ["--size", "320x240", "--algo", algorithm, "--edge", pixel]);
   const clickPixel = async (canvas, x, y) => {
     const scale = await page.$eval(`#${canvas}`, (c) => [c.getBoundingClientRect().width / c.width, c.getBoundingClientRect().height / c.height]);
     await page.click(`#${canvas}`, { position: { x: (x + 0.5) * scale[0], y: (y + 0.5) * scale[1] } });
@@ -281,9 +285,8 @@ try {
   await page.fill("#size", "320x240");
   result = await renderWith();
   const edgeAnswer = await clickPixel("color", 108, 123);
-  const nativeEdge = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", "blocks.toml"), "--size", "320x240", "--algo", "appel",
-                                                           "--edge", edgeAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
-  check(result.message === "" && edgeAnswer.shown === nativeEdge && edgeAnswer.shown.includes("edge 2, the contour edge of \"slab\""),
+  const appelEdge = nativeEdge("blocks.toml", edgeAnswer.pixel, "appel");
+  check(result.message === "" && edgeAnswer.shown === appelEdge && edgeAnswer.shown.includes("edge 2, the contour edge of \"slab\""),
         `a click on Appel's drawing answers along the edge nearest it, as hsr why --edge ${edgeAnswer.pixel} does`);
   const drawnEdge = await page.$eval("#color + .marker + svg.edge", (svg) => ({
     line: ["x1", "y1", "x2", "y2"].map((name) => Number(svg.querySelector("line").getAttribute(name))),
@@ -307,8 +310,7 @@ try {
   await page.selectOption("#algorithm", "roberts");
   result = await renderWith();
   const robertsAnswer = await clickPixel("color", 108, 123);
-  const nativeRoberts = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", "blocks.toml"), "--size", "320x240", "--algo", "roberts",
-                                                              "--edge", robertsAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
+  const nativeRoberts = nativeEdge("blocks.toml", robertsAnswer.pixel, "roberts");
   const robertsRings = await page.$$eval("#color + .marker + svg.edge circle.change", (rings) => rings.length);
   await page.locator("#results").screenshot({ path: join(out, "edge-roberts.png") });
   check(result.message === "" && robertsAnswer.shown === nativeRoberts && robertsAnswer.shown.includes('body "ball": hides part of it') && robertsRings === 2,
@@ -326,8 +328,7 @@ try {
   await page.selectOption("#scene", "ripple.toml");
   result = await renderWith();
   const horizonAnswer = await clickPixel("color", 160, 120);
-  const nativeHorizon = spawnSync(join(root, "build", "hsr"), ["why", join(root, "scenes", "ripple.toml"), "--size", "320x240", "--algo", "floating_horizon",
-                                                              "--edge", horizonAnswer.pixel], { encoding: "utf8" }).stdout.split("\n").slice(1).join("\n").trim();
+  const nativeHorizon = nativeEdge("ripple.toml", horizonAnswer.pixel, "floating_horizon");
   const place = await quizShown();
   check(result.message === "" && horizonAnswer.shown === nativeHorizon && horizonAnswer.shown.includes("its start: above the upper horizon") &&
         place.prompt === "its start: what does the algorithm decide there?" &&

@@ -91,4 +91,10 @@ Plane CellMap::planeInto(const Portal& portal, std::uint32_t from) const {
   return plane;
 }
 
+std::string quotedCells(const PreparedScene& scene, const std::vector<std::uint32_t>& cells) {
+  std::string text = cells.size() == 1 ? "cell " : "cells ";
+  for (std::size_t k = 0; k < cells.size(); ++k) text += (k ? ", \"" : "\"") + scene.scene().cells[cells[k]].name + "\"";
+  return text;
+}
+
 }  // namespace hsr::culling::cells

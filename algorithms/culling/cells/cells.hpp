@@ -82,6 +82,9 @@ class CellMap {
   double size_ = 0, magnitude_ = 0;
 };
 
+// Cells as hsr why names them: `cell "hall"`, or `cells "hall", "kitchen"`.
+std::string quotedCells(const PreparedScene& scene, const std::vector<std::uint32_t>& cells);
+
 // What a cell stage builds for a scene (its map, its visible sets), built once for a walk:
 // kept in the stage's slot of the walk's memory and rebuilt only for another scene; for
 // a single frame (no slot), built into `local`.

@@ -82,25 +82,20 @@ class Traversal {
   void explain(StageWitness& why, const std::vector<std::uint8_t>& kept) const {
     for (std::size_t i = 0; i < why.instances.size(); ++i) {
       const std::uint32_t object = why.instances[i];
-      std::vector<std::string> lies, reached;  // its cells' names, and those of them reached
+      std::vector<std::uint32_t> lies, reached;  // its cells, and those of them reached
       for (std::uint32_t cell = 0; cell < map_.size(); ++cell) {
         const std::vector<std::uint32_t>& objects = map_.objects(cell);
         if (std::find(objects.begin(), objects.end(), object) == objects.end()) continue;
-        lies.push_back("\"" + scene_.scene().cells[cell].name + "\"");
-        if (!reached_[cell].empty()) reached.push_back(lies.back());
+        lies.push_back(cell);
+        if (!reached_[cell].empty()) reached.push_back(cell);
       }
-      const auto cells = [](const std::vector<std::string>& names) {
-        std::string text = names.size() == 1 ? "cell " : "cells ";
-        for (std::size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + names[k];
-        return text;
-      };
       why.found[i] = lies.empty() ? "it lies in no cell of the level"
-                     : reached.empty() ? "no chain of portals from the eye's cell reaches its " + cells(lies)
-                     : givenUp_ ? "the search gave up after " + std::to_string(maxPasses_) +
-                                      " portals, so every object of a cell it reached is kept, its " + cells(reached) + " among them"
-                     : kept[object] ? "a chain of portals from the eye's cell reaches its " + cells(reached) +
+                     : reached.empty() ? "no chain of portals from the eye's cell reaches its " + cells::quotedCells(scene_, lies)
+                     : givenUp_ ? "the search gave up after " + std::to_string(maxPasses_) + " portals, so every object of a cell it reached is kept, its " +
+                                      cells::quotedCells(scene_, reached) + " among them"
+                     : kept[object] ? "a chain of portals from the eye's cell reaches its " + cells::quotedCells(scene_, reached) +
                                           ", and its box lies within a view narrowed through the portals"
-                                    : "a chain of portals reaches its " + cells(reached) +
+                                    : "a chain of portals reaches its " + cells::quotedCells(scene_, reached) +
                                           ", but its box lies outside every view narrowed through the portals";
     }
   }

@@ -333,8 +333,7 @@ VisibleSet cull(const PreparedScene& scene, const cells::CellMap& map, const Vis
   stats.note("pvs: the eye's cells", cellNames);
   stats.note("pvs: the set", objectNames(scene, objects, kObjectsNamed));
   if (why) [[unlikely]] {
-    std::string quoted = eyeCells.size() == 1 ? "cell " : "cells ";  // the eye's, on a shared face two or more
-    for (std::size_t k = 0; k < eyeCells.size(); ++k) quoted += (k ? ", \"" : "\"") + scene.scene().cells[eyeCells[k]].name + "\"";
+    const std::string quoted = cells::quotedCells(scene, eyeCells);  // the eye's, on a shared face two or more
     for (std::size_t i = 0; i < why->instances.size(); ++i)
       why->found[i] = std::string(inSet[why->instances[i]] ? "it is in" : "it is not in") + " the potentially visible set of the eye's " + quoted +
                       (inSet[why->instances[i]] ? "" : ", which holds every object some eye there may see");
