@@ -212,7 +212,7 @@ Image lineStepPicture(const LineSet& lines, std::span<const std::uint32_t> justD
       for (int x = int(at.x) - 2; x <= int(at.x) + 8 * int(label.size()); ++x)
         if (x >= 0 && y >= 0 && x < picture.width && y < picture.height)
           std::fill_n(&picture.pixels[(std::size_t(y) * std::size_t(picture.width) + std::size_t(x)) * 4], 3, std::uint8_t{255});
-    drawLabel(picture, int(at.x), int(at.y), label, penFor(segment.qi, style).color, 12);
+    drawLabel(picture, int(at.x), int(at.y), label, penFor(segment.qi, style).color, kSmallLabelSize);
   }
   return picture;
 }

@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
-#include <map>
+#include <cstring>
 
 #include <unistd.h>
 
 #include "renderer/image/image_library.hpp"
 #include "renderer/raster/raster.hpp"
+#include "renderer/steps/label_font.hpp"
 #include "renderer/steps/steps_page.hpp"
 #include "renderer/util/error.hpp"
 
@@ -28,6 +30,11 @@ void StepRecorder::record(std::string caption, Image picture, SourceLocation whe
     sink_(Step{std::move(caption), std::move(picture), where});
   else
     steps_.push_back({std::move(caption), std::move(picture), where});
+}
+
+std::string stepCountError(const std::string& text) {
+  const bool whole = !text.empty() && text.size() <= 9 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return whole ? "" : text + ": expected a whole number from 0 to " + std::to_string(kMostSteps);
 }
 
 namespace {
@@ -51,14 +58,6 @@ std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
   return text;
-}
-
-// How wide drawLabel draws `text` at `size`.
-int labelWidth(const std::string& text, int size) {
-  int width = 0;
-  if (const std::string error = imageLibrary().textWidth(text, size, kLabelFont, width); !error.empty())
-    throw InputError(std::string("steps: cannot measure text with ") + kLabelFont + ": " + error);
-  return width;
 }
 
 // Copies `picture` into `into` with its top left corner at (left, top); it must fit.
@@ -149,10 +148,10 @@ Image heatMapPicture(std::span<const double> values, int width, int height, cons
   for (int y = height + kMargin; y < height + kMargin + kRampHeight; ++y)
     for (int x = kMargin; x < width - kMargin; ++x) put(picture, x, y, heat(double(x - kMargin) / std::max(1, width - 2 * kMargin - 1)));
   const int baseline = height + kLegendHeight - 5;
-  drawLabel(picture, kMargin, baseline, "0", {0, 0, 0}, 12);
+  drawLabel(picture, kMargin, baseline, "0", {0, 0, 0}, kSmallLabelSize);
   const std::string top = number(largest) + " " + unit;
-  const int topWidth = labelWidth(top, 12);
-  drawLabel(picture, std::max(kMargin + 20, width - kMargin - topWidth), baseline, top, {0, 0, 0}, 12);
+  const int topWidth = labelWidth(top, kSmallLabelSize);
+  drawLabel(picture, std::max(kMargin + 20, width - kMargin - topWidth), baseline, top, {0, 0, 0}, kSmallLabelSize);
   return picture;
 }
 
@@ -195,30 +194,10 @@ void drawWireframe(Image& picture, const PreparedScene& scene, const CameraTrans
   }
 }
 
-void drawLabel(Image& picture, int x, int baseline, const std::string& text, Rgb color, int size) {
-  // The text is drawn on a patch of the picture as large as the text, then copied back
-  // where it overlaps the picture: a label partly or wholly off a small picture is cut,
-  // where OpenImageIO's own clipping fails an assertion.
-  const int width = labelWidth(text, size);
-  const int left = x - 2, top = baseline - size - 2;
-  Image patch = blankPicture(width + 4, size * 3 / 2 + 4);
-  const auto overlap = [&](auto&& each) {
-    for (int py = 0; py < patch.height; ++py)
-      for (int px = 0; px < patch.width; ++px)
-        if (left + px >= 0 && left + px < picture.width && top + py >= 0 && top + py < picture.height)
-          each(pixelAt(patch, px, py), pixelAt(picture, left + px, top + py));
-  };
-  overlap([](std::uint8_t* inPatch, const std::uint8_t* inPicture) { std::copy_n(inPicture, 4, inPatch); });
-  const float rgba[4] = {color[0] / 255.0f, color[1] / 255.0f, color[2] / 255.0f, 1.0f};
-  if (const std::string error = imageLibrary().drawText(patch, x - left, baseline - top, text, size, kLabelFont, rgba); !error.empty())
-    throw InputError(std::string("steps: cannot draw text with ") + kLabelFont + ": " + error);
-  overlap([](const std::uint8_t* inPatch, std::uint8_t* inPicture) { std::copy_n(inPatch, 4, inPicture); });
-}
-
 void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& entries) {
   constexpr int kLine = 17, kSample = 22, kPad = 5;
   int widest = 0;
-  for (const auto& [color, text] : entries) widest = std::max(widest, labelWidth(text, 12));
+  for (const auto& [color, text] : entries) widest = std::max(widest, labelWidth(text, kSmallLabelSize));
   const int boxWidth = std::min(picture.width, kPad * 3 + kSample + widest), boxHeight = std::min(picture.height, kPad * 2 + kLine * int(entries.size()));
   for (int y = 0; y < boxHeight; ++y)
     for (int x = 0; x < boxWidth; ++x) {
@@ -229,7 +208,7 @@ void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& 
   for (std::size_t e = 0; e < entries.size(); ++e) {
     const double y = kPad + kLine * (double(e) + 0.5);
     drawSegment(picture, {kPad, y}, {kPad + kSample, y}, entries[e].first, 2.5);
-    drawLabel(picture, kPad * 2 + kSample, int(y) + 5, entries[e].second, {0, 0, 0}, 12);
+    drawLabel(picture, kPad * 2 + kSample, int(y) + 5, entries[e].second, {0, 0, 0}, kSmallLabelSize);
   }
 }
 
@@ -237,8 +216,12 @@ Image graphvizPicture(const std::string& graph) {
   const std::filesystem::path drawn = std::filesystem::temp_directory_path() / ("hsr-diagram-" + std::to_string(::getpid()) + ".png");
   const std::string command = "dot -Tpng -Gdpi=72 -o '" + drawn.string() + "' 2>/dev/null";
   FILE* pipe = popen(command.c_str(), "w");
-  if (pipe) std::fwrite(graph.data(), 1, graph.size(), pipe);
-  const int status = pipe ? pclose(pipe) : -1;
+  // Where no program can be started at all (the browser edition), these steps are the command line's.
+  if (!pipe)
+    throw InputError("steps: cannot start Graphviz's dot, which draws this algorithm's diagram (" + std::string(std::strerror(errno)) +
+                     "); the browser edition starts no program: record these steps with hsr render --steps");
+  std::fwrite(graph.data(), 1, graph.size(), pipe);
+  const int status = pclose(pipe);
   Image picture;
   const std::string error = status == 0 ? imageLibrary().readImage(drawn.string(), picture) : "dot failed";
   std::error_code ignored;
@@ -257,7 +240,7 @@ Image withCaption(const Image& picture, const std::string& caption) {
   constexpr int kBand = 22;
   Image framed = blankPicture(picture.width, picture.height + kBand);
   paste(framed, picture, 0, kBand);
-  drawLabel(framed, 4, kBand - 6, caption, {0, 0, 0}, 13);
+  drawLabel(framed, 4, kBand - 6, caption, {0, 0, 0});
   return framed;
 }
 
@@ -275,18 +258,13 @@ void StepsWriter::add(const Step& step) {
 
 void StepsWriter::finish(const std::string& title, const PixelQuestion& question) {
   std::string captions;
-  std::vector<PageStep> pageSteps;
-  // A loop's steps share their recording place: its lines are read once.
-  std::map<std::pair<std::string, std::uint_least32_t>, SourceExcerpt> excerpts;
+  std::vector<std::string> pictures;
   for (std::size_t s = 0; s < recorded_.size(); ++s) {
-    const auto& [caption, where] = recorded_[s];
-    captions += stepNumber(s) + " " + caption + "\n";
-    auto [place, isNew] = excerpts.try_emplace({where.file_name(), where.line()});
-    if (isNew) place->second = sourceExcerpt(where);
-    pageSteps.push_back({stepPictureName(s), caption, place->second});
+    captions += stepNumber(s) + " " + recorded_[s].first + "\n";
+    pictures.push_back(stepPictureName(s));
   }
   files_.addText(folder_ / "captions.txt", captions);
-  files_.addText(folder_ / "steps.html", stepsPage(title, pageSteps, question));
+  files_.addText(folder_ / "steps.html", stepsPage(title, pageSteps(recorded_, pictures), question));
   // An animation's frames share one size: each is padded with white to the largest.
   int width = 0, height = 0;
   for (const Image& frame : frames_) width = std::max(width, frame.width), height = std::max(height, frame.height);

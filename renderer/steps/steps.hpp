@@ -5,9 +5,8 @@
 // loops hold: never a second implementation of the algorithm.
 //
 // The pictures are built with the helpers below: the surfaces a buffer of triangle ids
-// shows, a depth buffer, a heat map with its legend, lines drawn over a picture. Text
-// (legends, labels) goes through OpenImageIO (renderer/image/image_library.hpp), which is loaded
-// on the first step that draws some.
+// shows, a depth buffer, a heat map with its legend, lines drawn over a picture, and text
+// (legends, labels) in the label font compiled in (label_font.hpp).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +21,7 @@
 #include "renderer/geometry/camera.hpp"
 #include "renderer/image/frame.hpp"
 #include "renderer/scene/prepare.hpp"
+#include "renderer/steps/label_font.hpp"
 #include "renderer/steps/steps_page.hpp"
 #include "renderer/util/math.hpp"
 #include "renderer/util/source_location.hpp"
@@ -67,6 +67,11 @@ class StepRecorder {
   std::vector<Step> steps_;
 };
 
+// What is wrong with a number of steps as typed (--every, --step): "" for a whole number
+// from 0 to kMostSteps, or the line that says what was expected.
+inline constexpr int kMostSteps = 999999999;
+std::string stepCountError(const std::string& text);
+
 // Colours of the step pictures.
 inline constexpr Rgb kHighlight{220, 30, 30};        // what the step just did
 inline constexpr Rgb kSecondHighlight{30, 90, 220};  // what it did it against
@@ -96,8 +101,6 @@ void drawSegment(Image& picture, const dvec2& a, const dvec2& b, Rgb color, doub
 // The edges of some triangles, seen from the view (the parts nearer than the near plane cut off).
 void drawWireframe(Image& picture, const PreparedScene& scene, const CameraTransform& view, std::span<const std::uint32_t> triangles,
                    Rgb color);
-// Text with its baseline at y, in the suite's label font.
-void drawLabel(Image& picture, int x, int baseline, const std::string& text, Rgb color, int size = 13);
 // A legend in the top left corner: one coloured line sample and its text per entry.
 void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& entries);
 // A Graphviz diagram (the text of a `dot` graph) drawn by Graphviz's dot program.

@@ -67,6 +67,38 @@ TEST(Steps, LabelsAndLegendsOffASmallPictureAreCut) {
   }
 }
 
+// The label font compiled in: a label is as wide as its glyphs' advances, draws in its
+// colour only, and a character the table lacks is drawn as U+FFFD.
+TEST(Steps, LabelsAreDrawnFromTheFontCompiledIn) {
+  EXPECT_EQ(labelWidth("QI 12"), labelWidth("QI") + labelWidth(" ") + labelWidth("12"));
+  EXPECT_GT(labelWidth("W"), labelWidth("i"));
+  EXPECT_LT(labelWidth("QI 12", kSmallLabelSize), labelWidth("QI 12", kLabelSize));
+  const auto drawn = [](const std::string& text) {
+    Image picture = blankPicture(80, 20);
+    drawLabel(picture, 2, 15, text, {200, 0, 0});
+    return picture;
+  };
+  const Image label = drawn("QI 12");
+  std::size_t inked = 0;
+  for (std::size_t p = 0; p < label.pixels.size(); p += 4) {
+    const std::uint8_t* pixel = &label.pixels[p];
+    EXPECT_EQ(pixel[1], pixel[2]);  // white blended toward red only
+    EXPECT_EQ(pixel[3], 255);
+    inked += pixel[1] < 128;
+  }
+  EXPECT_GT(inked, 20u);
+  EXPECT_EQ(drawn("\xe2\x82\xac").pixels, drawn("\xef\xbf\xbd").pixels);  // the euro sign, which the table lacks
+  EXPECT_NE(drawn("\xc3\x97").pixels, drawn("\xef\xbf\xbd").pixels);  // the multiplication sign, which it has
+}
+
+// A number of steps as typed: a whole number, or one line saying what was expected.
+TEST(Steps, AStepCountIsAWholeNumber) {
+  EXPECT_EQ(stepCountError("0"), "");
+  EXPECT_EQ(stepCountError("999999999"), "");
+  for (const std::string bad : {"", "abc", "-1", "1.5", "1e3", "1000000000", " 5"})
+    EXPECT_EQ(stepCountError(bad), bad + ": expected a whole number from 0 to 999999999") << bad;
+}
+
 struct Configured {
   std::string scene, algorithm;
   KnobSettings knobs;
