@@ -248,8 +248,7 @@ int render(const RenderOptions& options) {
   const Frame& frame = rendered.frame;
   if (stepsFolder) {
     const Frame shown = lines && style != LineStyle::visible ? lineSetFrame(rendered.drawing, style) : frame;
-    steps->record(lines ? "the finished drawing" : pipeline::kFinishedImageStep,
-                  Image{shown.width, shown.height, 4, {shown.color.begin(), shown.color.end()}});
+    pipeline::recordFinishedStep(*steps, shown, lines);
     stepsFolder->finish(stepsTitle(options), stepsQuestion(options, algorithm, *scene.prepared));
   }
   // Why the image or drawing may be wrong somewhere, as the algorithm says.

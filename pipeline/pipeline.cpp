@@ -14,6 +14,7 @@
 #include "renderer/shading/fog.hpp"
 #include "renderer/shading/outline.hpp"
 #include "renderer/shading/shading.hpp"
+#include "renderer/steps/steps.hpp"
 #include "renderer/util/error.hpp"
 
 namespace hsr::pipeline {
@@ -365,6 +366,10 @@ VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& con
   context.culled = culled;
   runPasses(context, kVisibilityPasses);
   return context.kept ? std::move(*context.kept) : VisibleSet::everything(scene);
+}
+
+void recordFinishedStep(StepRecorder& steps, const Frame& shown, bool lines) {
+  steps.record(lines ? "the finished drawing" : kFinishedImageStep, Image{shown.width, shown.height, 4, {shown.color.begin(), shown.color.end()}});
 }
 
 std::vector<PassTime> passTimes(const Stats& stats) {

@@ -97,6 +97,9 @@ VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& con
 // The caption of the last step hsr render --steps records for a surface algorithm, after
 // the algorithm's own: the finished image.
 inline constexpr const char* kFinishedImageStep = "the finished image, after the passes that follow visibility (hsr render --explain)";
+// That last step recorded: `shown` is the finished image, or for a line algorithm the
+// drawing as it is shown (in its --line-style).
+void recordFinishedStep(StepRecorder& steps, const Frame& shown, bool lines);
 
 // The time of each pass that ran, in pipeline order, from a render's Stats.
 struct PassTime {

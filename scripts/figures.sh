@@ -214,6 +214,7 @@ cp out/web/page.png images/figures/web.png
 cp out/web/why.png images/figures/web-why.png  # a pixel asked why about (README "Asking why")
 cp out/web/quiz.png images/figures/web-quiz.png  # quiz me: predict, then reveal (README "Asking why")
 cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Watching an algorithm work")
+cp out/web/web-steps.png images/figures/web-steps.png  # the steps in the browser edition (README "In the browser")
 cp out/web/report.png images/figures/report.png     # hsr compare's report.html (README "report.html")
 # The speed-up of every algorithm's visibility pass against threads (README "On more
 # cores"): a machine's own figure, so it changes with the machine that runs this.

@@ -3,8 +3,10 @@
 # reference and the pipeline into WebAssembly with Debian's emscripten (no emscripten
 # "ports": nothing is downloaded), single-threaded, and lays out a static site in
 # web/dist/: index.html, app.js, quiz.js, style.css, hsr_web.js and .wasm, the shipped
-# scenes and models, and scenes.json (each scene's files). Serve it with any static file
-# server:
+# scenes and models, scenes.json (each scene's files), and under src/ the suite's code
+# (algorithms/, renderer/, pipeline/), whose lines the steps page shows beside each step
+# (fetched only for the files that recorded the steps shown). Serve it with any static
+# file server:
 #   python3 -m http.server -d web/dist     then open http://localhost:8000
 #   bash scripts/web.sh            the site
 #   bash scripts/web.sh --node     also hsr_identity for Node.js, the same-bits check without
@@ -50,6 +52,11 @@ with open(os.path.join(dist, "scenes.json"), "w") as out:
     json.dump({"scenes": scenes}, out, indent=1)
 print(f"{len(scenes)} scenes")
 PYTHON
+# The code the steps are recorded in, as the steps page reads it beside a native build.
+find algorithms renderer pipeline -name '*.cpp' -o -name '*.hpp' | while read -r file; do
+  mkdir -p "$dist/src/$(dirname "$file")"
+  cp "$file" "$dist/src/$file"
+done
 size() { stat -c %s "$1"; }
 echo "web/dist: hsr_web.wasm $(( $(size "$dist/hsr_web.wasm") / 1024 )) KiB ($(( $(gzip -9c "$dist/hsr_web.wasm" | wc -c) / 1024 )) KiB gzipped), hsr_web.js $(( $(size "$dist/hsr_web.js") / 1024 )) KiB"
 echo "serve it: python3 -m http.server -d $dist"

@@ -282,6 +282,7 @@ async function render() {
     Object.assign(against, { width, height, views: {} });
     showAgainst(against.chosen);
     $("whyBox").hidden = true;  // it answered for the render before
+    putStepsAway();
     showEdge(null);
     for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
     showMetrics(result, null);
@@ -335,7 +336,7 @@ function pixelUnder(canvas, event) {
 // line's line, in the box.
 function why(x, y) {
   if ($("quizMode").checked && quizUnderWayAt(x, y)) return null;  // a double click's second click: the quiz goes on
-  const result = JSON.parse(hsr.module.why(x, y));
+  const result = JSON.parse(hsr.module.why(x, y, 0));
   for (const canvas of document.querySelectorAll(".images canvas")) {
     const marker = canvas.nextElementSibling;  // the pixel asked about, ringed on every image that has one
     marker.style.left = `${(100 * (x + 0.5)) / canvas.width}%`;
@@ -388,6 +389,79 @@ function showEdge(edge) {
   }
 }
 
+// ---- The algorithm's steps: recorded in the page as hsr render --steps records them, and
+// gone through in the steps page (the one hsr render --steps writes as steps.html, shown
+// inside this one), whose clicks on a pixel this page answers with why() at the step.
+const stepPictures = { addresses: [] };
+
+// A picture (RGBA) as the address of a PNG image of it.
+function pictureAddress(rgba, width, height) {
+  const canvas = element("canvas", { width, height });
+  canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
+  return new Promise((resolve) => canvas.toBlob((blob) => resolve(URL.createObjectURL(blob)), "image/png"));
+}
+
+// The suite's files the steps were recorded in, written where the module reads their
+// lines; a file the site lacks leaves the page saying its lines cannot be shown.
+async function loadSources(files) {
+  for (const file of files) {
+    const shipped = `src/${file}`;
+    if (file.startsWith("/") || written.has(shipped)) continue;
+    try {
+      writeFile(`/hsr/${shipped}`, await download(shipped));
+      written.add(shipped);
+    } catch { /* shown as lines that cannot be shown */ }
+  }
+}
+
+async function recordSteps() {
+  $("stepsMessage").textContent = "";
+  $("stepsStatus").textContent = "recording the steps…";
+  $("recordSteps").disabled = true;
+  await paint();
+  try {
+    const recorded = JSON.parse(hsr.module.recordSteps($("every").value.trim()));
+    if (recorded.message) {
+      $("stepsMessage").textContent = asTheStudentNamesIt(recorded.message);
+      $("stepsStatus").textContent = "";
+      return recorded;
+    }
+    await loadSources(recorded.files);
+    for (const address of stepPictures.addresses) URL.revokeObjectURL(address);
+    stepPictures.addresses = [];
+    for (const [index, step] of recorded.steps.entries()) {
+      stepPictures.addresses.push(await pictureAddress(hsr.module.stepPicture(index), step.width, step.height));
+    }
+    const frame = $("stepsFrame");
+    const shown = new Promise((resolve) => { frame.onload = resolve; });
+    frame.srcdoc = hsr.module.stepsPage(`${$("status").textContent}: its steps`, stepPictures.addresses);
+    frame.hidden = false;
+    await shown;
+    $("stepsStatus").textContent = `${recorded.steps.length} steps`;
+    return recorded;
+  } finally {
+    $("recordSteps").disabled = false;
+  }
+}
+
+// The steps page asks about a pixel at a step: the history up to it, as hsr why --step prints it.
+window.addEventListener("message", (event) => {
+  const asked = event.data;
+  const frame = $("stepsFrame");
+  if (event.source !== frame.contentWindow || !asked || asked.kind !== "hsr-why") return;
+  const result = JSON.parse(hsr.module.why(asked.x, asked.y, asked.step));
+  const text = asTheStudentNamesIt(result.message || result.text);
+  frame.contentWindow.postMessage({ kind: "hsr-why-answer", x: asked.x, y: asked.y, step: asked.step, text }, "*");
+});
+
+// Steps shown are the last render's: a new render puts them away.
+function putStepsAway() {
+  $("stepsFrame").hidden = true;
+  $("stepsFrame").removeAttribute("srcdoc");
+  $("stepsStatus").textContent = "";
+  $("stepsMessage").textContent = "";
+}
+
 // ---- The same bits as native: every render's line of hashes (tests/identity), which a
 // test compares with the native build's.
 async function identity(width = 320, randomScenes = 0, only = "") {
@@ -422,6 +496,7 @@ async function start() {
   $("scene").value = kFirstScene;
   $("size").value = "640x360";
   $("controls").addEventListener("submit", (event) => { event.preventDefault(); render(); });
+  $("recordSteps").addEventListener("click", () => recordSteps().catch((error) => { $("stepsMessage").textContent = `hsr: error: ${error.message}`; }));
   // A click asks why about the pixel under it; a double click shows the image at its own
   // size (a wrong pixel is one pixel), and back.
   for (const figure of document.querySelectorAll(".images figure")) {
@@ -455,5 +530,5 @@ async function start() {
   document.body.dataset.ready = "true";  // the page's first render is done (the tests wait for it)
 }
 
-window.hsrPage = { render, why, identity, state: hsr, started };
+window.hsrPage = { render, why, recordSteps, stepPictures, identity, state: hsr, started };
 start().catch((error) => { $("message").textContent = `hsr: error: the page could not start: ${error.message}`; });

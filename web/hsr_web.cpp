@@ -11,9 +11,14 @@
 //   compare()             that render against the exact reference: the metrics hsr
 //                         compare prints, as JSON, the error heat map, and the
 //                         reference's ids (the page toggles between them and the render's)
-//   why(x, y)             how that render decided pixel (x, y), beside the exact
+//   why(x, y, step)       how that render decided pixel (x, y), beside the exact
 //                         reference's answer: what hsr why prints, and its --json (for
-//                         a line drawing, the edge nearest the pixel: hsr why --edge X,Y)
+//                         a line drawing, the edge nearest the pixel: hsr why --edge X,Y);
+//                         with a step (from 1), the history up to it (hsr why --step)
+//   recordSteps(every)    that render's steps, as hsr render --steps records them; then
+//   stepPicture(i)        each step's picture, which the page makes an image of, and
+//   stepsPage(title, pictures)  the steps page (renderer/steps/steps_page.hpp) showing
+//                         those images, whose pixel clicks the page answers with why()
 //   identity(width, N)    every render's line of hashes (tests/identity): the same bits
 //                         as native, checked in the page
 //
@@ -25,6 +30,7 @@
 #include <chrono>
 #include <memory>
 #include <new>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,6 +43,7 @@
 #include "renderer/reference/metrics.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/scene/scene.hpp"
+#include "renderer/steps/steps.hpp"
 #include "renderer/util/error.hpp"
 #include "renderer/util/markup.hpp"
 
@@ -93,6 +100,8 @@ struct Shown {
   LineSet drawing;
   std::vector<std::uint8_t> error;  // RGBA: the reference dimmed, wrong pixels red, ambiguous blue
   PixelBuffer<std::uint32_t> referenceIds;  // the exact reference's visible triangle per pixel, as frame.ids
+  std::unique_ptr<StepRecorder> steps;      // its steps, from recordSteps() until stepsPage() is made
+  std::size_t stepsEvery = 0;               // their stride, which why() at a step records with again
 };
 Shown& shown() {
   static Shown last;
@@ -209,7 +218,7 @@ std::string compare() {
 // the lines hsr why prints, "answer": its --json}; for a line drawing, the edge passing
 // nearest the pixel's center, as hsr why --edge X,Y asks ({"text", "edge": its --json});
 // or the command line's line of error.
-std::string why(int x, int y) {
+std::string why(int x, int y, int step) {
   Shown& last = shown();
   if (!last.algorithm) return messageJson("nothing rendered to ask about");
   try {
@@ -224,14 +233,78 @@ std::string why(int x, int y) {
     pipeline::checkAnswersWhy(*last.algorithm);
     const PixelWitness::Pixel pixel = pipeline::pixelOf(std::to_string(x) + "," + std::to_string(y), last.prepared->width(), last.prepared->height());
     Stats stats;
-    const std::vector<pipeline::PixelAnswer> answers = pipeline::explainPixels(*last.prepared, last.configuration, {pixel}, 1, stats);
-    return "{\"text\":" + jsonString(pipeline::whyText(*last.prepared, last.sceneName, last.configuration, answers)) +
-           ",\"answer\":" + pipeline::whyJson(*last.prepared, last.sceneName, last.configuration, answers) + "}";
+    pipeline::StepAsked asked{std::size_t(step), last.stepsEvery};
+    pipeline::StepAsked* atStep = step > 0 ? &asked : nullptr;
+    const std::vector<pipeline::PixelAnswer> answers = pipeline::explainPixels(*last.prepared, last.configuration, {pixel}, 1, stats, atStep);
+    return "{\"text\":" + jsonString(pipeline::whyText(*last.prepared, last.sceneName, last.configuration, answers, atStep)) +
+           ",\"answer\":" + pipeline::whyJson(*last.prepared, last.sceneName, last.configuration, answers, atStep) + "}";
   } catch (const InputError& error) {
     return messageJson(error.what());
   } catch (const std::bad_alloc&) {
     return outOfMemoryJson();
   }
+}
+
+// Where the page writes the suite's files that recorded the steps (web/dist/src/), for
+// the steps page to show their lines.
+const char* const kSourceRoot = "/hsr/src";
+
+// The last render's steps, recorded as hsr render --steps records them (one thread, every
+// `every`th repeated step, empty or 0: about 40 of each run, and the finished image last), kept
+// for stepPicture() and stepsPage(): {"steps": [{"width", "height", "caption"}...],
+// "files": the suite's files the steps were recorded in, for the page to write under
+// kSourceRoot}, or the command line's line of error.
+std::string recordSteps(const std::string& everyAsTyped) {
+  Shown& last = shown();
+  if (!last.algorithm) return messageJson("nothing rendered to record the steps of");
+  last.steps.reset();
+  if (const std::string error = stepCountError(everyAsTyped); !everyAsTyped.empty() && !error.empty()) return messageJson("--every: " + error);
+  const std::size_t every = everyAsTyped.empty() ? 0 : std::stoul(everyAsTyped);
+  try {
+    auto recorder = std::make_unique<StepRecorder>(every);
+    Stats stats;
+    const pipeline::Rendered rendered = pipeline::render(*last.prepared, last.configuration, 1, stats, nullptr, recorder.get());
+    pipeline::recordFinishedStep(*recorder, rendered.frame, last.algorithm->kind == AlgorithmKind::line);
+    std::string json = "{\"steps\":[";
+    std::set<std::string> files;
+    for (const Step& step : recorder->steps()) {
+      json += std::string(json.back() == '[' ? "" : ",") + "{\"width\":" + std::to_string(step.picture.width) +
+              ",\"height\":" + std::to_string(step.picture.height) + ",\"caption\":" + jsonString(step.caption) + "}";
+      files.insert(sourceExcerpt(step.where, kSourceRoot).file);
+    }
+    json += "],\"files\":[";
+    for (const std::string& file : files) json += std::string(json.back() == '[' ? "" : ",") + jsonString(file);
+    last.steps = std::move(recorder);
+    last.stepsEvery = every;
+    return json + "]}";
+  } catch (const InputError& error) {
+    return messageJson(error.what());
+  } catch (const std::bad_alloc&) {
+    return outOfMemoryJson();
+  }
+}
+
+emscripten::val stepPicture(int index) {
+  const std::vector<Step>& steps = shown().steps->steps();
+  const Image& picture = steps.at(std::size_t(index)).picture;
+  return emscripten::val(emscripten::typed_memory_view(picture.pixels.size(), picture.pixels.data()));
+}
+
+// The steps page for the steps recorded, each picture at its address in `pictures`, a
+// click on a pixel answered by the page around it (PixelQuestion::host) for an algorithm
+// that answers why at a pixel. The steps are let go: the page holds their pictures now.
+std::string stepsPage(const std::string& title, const emscripten::val& pictures) {
+  Shown& last = shown();
+  if (!last.steps) return messageJson("no steps recorded to show");
+  std::vector<std::pair<std::string, SourceLocation>> recorded;
+  std::vector<std::string> addresses;
+  for (const Step& step : last.steps->steps()) {
+    addresses.push_back(pictures[addresses.size()].as<std::string>());
+    recorded.emplace_back(step.caption, step.where);
+  }
+  last.steps.reset();
+  const PixelQuestion question{last.algorithm->answersWhy ? "hsr why" : "", last.prepared->width(), last.prepared->height(), true};
+  return hsr::stepsPage(title, pageSteps(recorded, addresses, kSourceRoot), question);
 }
 
 // The last render's images, as views of the module's memory (valid until the next render).
@@ -267,5 +340,8 @@ EMSCRIPTEN_BINDINGS(hsr) {
   emscripten::function("depthPixels", &hsr::web::depthPixels);
   emscripten::function("errorPixels", &hsr::web::errorPixels);
   emscripten::function("referenceIdPixels", &hsr::web::referenceIdPixels);
+  emscripten::function("recordSteps", &hsr::web::recordSteps);
+  emscripten::function("stepPicture", &hsr::web::stepPicture);
+  emscripten::function("stepsPage", &hsr::web::stepsPage);
   emscripten::function("identity", &hsr::web::identity);
 }

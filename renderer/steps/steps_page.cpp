@@ -1,7 +1,9 @@
 #include "renderer/steps/steps_page.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <tuple>
 
@@ -66,6 +68,8 @@ figure { margin: 0; flex: 1 1 520px; min-width: 0; overflow-x: auto; position: r
 #pixel { margin: .6em 0; padding: .3em .8em; border-left: 5px solid #e0e; background: #fdf6fd; }
 #pixel h2 { font-size: .95em; margin: .2em 0; }
 #pixel p { margin: .2em 0; }
+[hidden] { display: none !important; }
+#whyAnswer { white-space: pre-wrap; overflow-wrap: anywhere; font-size: 12.5px; background: #fff; padding: .3em .5em; max-height: 28em; overflow-y: auto; }
 #whyCommand { display: block; white-space: pre-wrap; overflow-wrap: anywhere; font-size: 12.5px; background: #fff; border: 1px solid #ddd;
               padding: .3em .5em; margin: .3em 0; }
 #source { flex: 1 1 480px; min-width: 0; }
@@ -117,7 +121,7 @@ function show(index) {
   $("first").disabled = $("previous").disabled = current === 0;
   $("next").disabled = $("last").disabled = current === steps.length - 1;
   showSource(sources[step.source]);
-  history.replaceState(null, "", `#step=${current + 1}`);
+  if (!question.host) history.replaceState(null, "", `#step=${current + 1}`);  // a page inside another has no address of its own
   showAsked();
   // The next picture is fetched now, so that "next" shows it at once.
   if (current + 1 < steps.length) new Image().src = steps[current + 1].picture;
@@ -173,13 +177,29 @@ function placeRing() {
   ring.style.left = `${picture.offsetLeft + picture.clientLeft + (asked[2] + 0.5) * sx}px`;
   ring.style.top = `${picture.offsetTop + picture.clientTop + (asked[3] + 0.5) * sy}px`;
 }
+// In the browser edition the page around this one answers: the question goes to it a
+// moment after the last move (a slider dragged asks once), and its answer is shown if it
+// is still the one asked.
+let askLater = null;
 function showAsked() {
   $("pixel").hidden = !asked;
   placeRing();
   if (!asked) return;
   $("pixelTitle").textContent = `Pixel (${asked[0]}, ${asked[1]}) up to step ${current + 1}`;
-  $("whyCommand").textContent = `${question.command} --pixel ${asked[0]},${asked[1]} --step ${current + 1}`;
+  if (!question.host) {
+    $("whyCommand").textContent = `${question.command} --pixel ${asked[0]},${asked[1]} --step ${current + 1}`;
+    return;
+  }
+  $("whyAnswer").textContent = "asking…";
+  clearTimeout(askLater);
+  const [x, y, step] = [asked[0], asked[1], current + 1];
+  askLater = setTimeout(() => parent.postMessage({ kind: "hsr-why", x, y, step }, "*"), 120);
 }
+window.addEventListener("message", (event) => {
+  const answer = event.data;
+  if (!question.host || event.source !== parent || !answer || answer.kind !== "hsr-why-answer") return;
+  if (asked && answer.x === asked[0] && answer.y === asked[1] && answer.step === current + 1) $("whyAnswer").textContent = answer.text;
+});
 if (question.command) {
   $("picture").classList.add("asks");
   $("picture").onclick = (event) => {
@@ -188,6 +208,8 @@ if (question.command) {
     asked = pixel;
     showAsked();
   };
+  $("whyCommand").hidden = $("copy").hidden = question.host;
+  $("whyAnswer").hidden = !question.host;
   $("copy").onclick = async () => {
     try {
       await navigator.clipboard.writeText($("whyCommand").textContent);
@@ -229,7 +251,16 @@ SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::
   std::error_code error;
   std::filesystem::path path = std::filesystem::weakly_canonical(where.file_name(), error);
   if (error) path = where.file_name();
-  const std::filesystem::path relative = path.lexically_relative(std::filesystem::weakly_canonical(HSR_SOURCE_DIR, error));
+  std::filesystem::path relative = path.lexically_relative(std::filesystem::weakly_canonical(HSR_SOURCE_DIR, error));
+  // Where the links are not (the browser edition's file system), a view's path is taken
+  // apart by hand: BUILD/include-views/TARGET/PATH is the suite's PATH.
+  for (auto part = relative.begin(); part != relative.end(); ++part)
+    if (*part == "include-views" && std::next(part) != relative.end()) {
+      std::filesystem::path inView;
+      for (auto rest = std::next(part, 2); rest != relative.end(); ++rest) inView /= *rest;
+      relative = inView;
+      break;
+    }
   const bool inSuite = !relative.empty() && *relative.begin() != "..";
   excerpt.file = (inSuite ? relative : path).generic_string();
 
@@ -265,6 +296,19 @@ SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::
   return excerpt;
 }
 
+std::vector<PageStep> pageSteps(const std::vector<std::pair<std::string, SourceLocation>>& recorded, const std::vector<std::string>& pictures,
+                                const std::filesystem::path& sourceRoot) {
+  std::vector<PageStep> steps;
+  std::map<std::pair<std::string, std::uint_least32_t>, SourceExcerpt> excerpts;
+  for (std::size_t s = 0; s < recorded.size(); ++s) {
+    const auto& [caption, where] = recorded[s];
+    auto [place, isNew] = excerpts.try_emplace({where.file_name(), where.line()});
+    if (isNew) place->second = sourceExcerpt(where, sourceRoot);
+    steps.push_back({pictures[s], caption, place->second});
+  }
+  return steps;
+}
+
 std::string stepsPage(const std::string& title, const std::vector<PageStep>& steps, const PixelQuestion& question) {
   // One excerpt per recording place: a loop's steps share theirs.
   std::map<std::tuple<std::string, int>, std::size_t> places;
@@ -282,10 +326,12 @@ std::string stepsPage(const std::string& title, const std::vector<PageStep>& ste
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
          "<title>Steps: " + escapedMarkup(title) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n"
          "<header>\n<h1>" + escapedMarkup(title) + "</h1>\n"
-         "<p>The algorithm's own state at its textbook steps, and the lines of its code that recorded each. "
-         "Also here: <a href=\"steps.gif\">the animation</a>, <a href=\"captions.txt\">the captions</a>. "
+         "<p>The algorithm's own state at its textbook steps, and the lines of its code that recorded each. " +
+         (question.host ? std::string() : "Also here: <a href=\"steps.gif\">the animation</a>, <a href=\"captions.txt\">the captions</a>. ") +
          "<span class=\"hint\">Keys: &larr; &rarr; Home End, space to play; double-click the picture for its actual size and back" +
-         (question.command.empty() ? std::string(".") : "; click a pixel for the command that shows its history up to the step.") +
+         (question.command.empty() ? "."
+          : question.host         ? "; click a pixel for its history up to the step."
+                                  : "; click a pixel for the command that shows its history up to the step.") +
          "</span></p>\n"
          "</header>\n"
          "<nav aria-label=\"steps\">\n"
@@ -301,15 +347,17 @@ std::string stepsPage(const std::string& title, const std::vector<PageStep>& ste
          "<main>\n<figure><img id=\"picture\" alt=\"\"><div id=\"ring\" hidden></div>\n"
          "<section id=\"pixel\" hidden aria-live=\"polite\">\n<h2 id=\"pixelTitle\"></h2>\n"
          "<p>Every event the algorithm's own loops met at this pixel up to this step, and the exact reference's answer "
-         "beside the algorithm's, from the suite's folder:</p>\n"
-         "<code id=\"whyCommand\"></code>\n<button id=\"copy\" title=\"copy the command\">copy</button>\n</section></figure>\n"
+         "beside the algorithm's" + (question.host ? ":" : ", from the suite's folder:") + "</p>\n"
+         "<code id=\"whyCommand\"></code>\n<button id=\"copy\" title=\"copy the command\">copy</button>\n"
+         "<pre id=\"whyAnswer\" hidden></pre>\n</section></figure>\n"
          "<section id=\"source\" aria-label=\"the code that recorded the step\">\n<h2 id=\"sourceTitle\"></h2>\n"
          "<p class=\"function\" id=\"function\"></p>\n<pre id=\"code\"></pre>\n</section>\n</main>\n"
          "<script type=\"application/json\" id=\"steps\">" + jsonInScript(list) + "</script>\n"
          "<script type=\"application/json\" id=\"sources\">" + jsonInScript(sources) + "</script>\n"
          "<script type=\"application/json\" id=\"question\">" +
          jsonInScript("{\"command\":" + jsonString(question.command) + ",\"width\":" + std::to_string(question.width) +
-                      ",\"height\":" + std::to_string(question.height) + ",\"panelGap\":" + std::to_string(kPanelGap) + "}") +
+                      ",\"height\":" + std::to_string(question.height) + ",\"panelGap\":" + std::to_string(kPanelGap) +
+                      ",\"host\":" + (question.host ? "true" : "false") + "}") +
          "</script>\n"
          "<script>" + kScript + "</script>\n</body>\n</html>\n";
 }

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/util/source_location.hpp"
@@ -40,14 +41,26 @@ struct PageStep {
   SourceExcerpt source;
 };
 
+// The page's steps: each step's caption and where it was recorded, with its picture's
+// address. A loop's steps share their recording place, whose lines are read once (from
+// `sourceRoot`, as sourceExcerpt reads them).
+std::vector<PageStep> pageSteps(const std::vector<std::pair<std::string, SourceLocation>>& recorded, const std::vector<std::string>& pictures,
+                                const std::filesystem::path& sourceRoot = "");
+
 // What a click on a pixel of a step's picture asks about: `command` is hsr why's for the
 // render the steps are of, without --pixel and --step (which the page adds: the pixel's
 // history up to the step shown), and the render is width x height, whose pixels each
 // panel of a picture shows from its top left. An empty command: the algorithm does not
 // answer why at a pixel, and a click asks nothing.
+//
+// In the browser edition the page is shown inside the edition's own page, which answers
+// the click itself (`host`): the steps page posts it {kind: "hsr-why", x, y, step} and
+// shows the text of the {kind: "hsr-why-answer", text} it posts back, the history up to
+// the step as hsr why prints it; `command` then only says that a click asks.
 struct PixelQuestion {
   std::string command;
   int width = 0, height = 0;
+  bool host = false;
 };
 // The white gap between pictures placed side by side (besideEachOther), which a click on
 // a later panel steps over.

@@ -19,7 +19,7 @@
 //   node tests/web/web_test.mjs [--full]     --full: every scene and 100 random scenes
 //                                            (default: the hard cases and 10 random scenes)
 import { spawn, spawnSync } from "node:child_process";
-import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { createServer } from "node:net";
 import { join } from "node:path";
 import { Checks, launchBrowser, openPage, root } from "./browser.mjs";
@@ -392,6 +392,108 @@ try {
   check(result.message === "" && counters.includes("frustum") && counters.includes("occlusion"), "culling stages (frustum, then occlusion) before the z-buffer");
   await page.uncheck('[id="use.frustum"]');
   await page.uncheck('[id="use.occlusion"]');
+
+  // The steps, recorded in the page and gone through in the steps page inside it: the
+  // same steps as hsr render --steps records (their captions, and their pictures bit for
+  // bit, labels too), each with the code that recorded it; a click on a pixel of a step's
+  // picture answers with its history up to that step, as hsr why --step does.
+  await page.selectOption("#algorithm", "zbuffer");
+  await page.selectOption("#scene", "counters.toml");
+  await page.fill("#size", "320x180");
+  result = await renderWith();
+  const recordInPage = async (every) => {
+    await page.fill("#every", every);
+    await page.click("#recordSteps");
+    await page.waitForFunction(() => !document.getElementById("recordSteps").disabled);
+    return { message: await text("#stepsMessage"), status: await text("#stepsStatus") };
+  };
+  let recorded = await recordInPage("");
+  const nativeSteps = join(out, "steps-native");
+  rmSync(nativeSteps, { recursive: true, force: true });
+  spawnSync(join(root, "build", "hsr"), ["render", "scenes/counters.toml", "--size", "320x180", "-o", join(out, "steps-native.png"), "--steps", nativeSteps], { cwd: root });
+  const nativeCaptions = readFileSync(join(nativeSteps, "captions.txt"), "utf8").trimEnd().split("\n").map((line) => line.slice(5));
+  const frame = page.frames().find((f) => f.parentFrame() === page.mainFrame());
+  const stepShown = () => frame.evaluate(() => ({
+    position: document.getElementById("position").textContent,
+    caption: document.getElementById("caption").textContent,
+    sourceTitle: document.getElementById("sourceTitle").textContent,
+    marked: [...document.querySelectorAll("#code span.marked")].map((line) => line.textContent).join("\n"),
+  }));
+  const m = nativeCaptions.length;
+  let now = await stepShown();
+  check(recorded.message === "" && recorded.status === `${m} steps` && now.position === `step 1 of ${m}` && now.caption === nativeCaptions[0],
+        `record its steps: the z-buffer's ${m} steps on counters, as hsr render --steps records them (${recorded.status}; ${now.position})`);
+  const pictures = await page.evaluate(async (natives) => {
+    const pixelsOf = async (blob) => {
+      const bitmap = await createImageBitmap(blob);
+      const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+      const context = canvas.getContext("2d");
+      context.drawImage(bitmap, 0, 0);
+      return context.getImageData(0, 0, bitmap.width, bitmap.height).data;
+    };
+    const differing = [];
+    for (const [index, address] of window.hsrPage.stepPictures.addresses.entries()) {
+      const mine = await pixelsOf(await (await fetch(address)).blob());
+      const native = await pixelsOf(new Blob([Uint8Array.from(atob(natives[index]), (c) => c.charCodeAt(0))], { type: "image/png" }));
+      if (mine.length !== native.length || mine.some((value, i) => value !== native[i])) differing.push(index + 1);
+    }
+    return { count: window.hsrPage.stepPictures.addresses.length, differing };
+  }, nativeCaptions.map((_, index) => readFileSync(join(nativeSteps, `step-${String(index + 1).padStart(4, "0")}.png`)).toString("base64")));
+  check(pictures.count === m && pictures.differing.length === 0,
+        `every step's picture is the native one bit for bit, its labels too (${pictures.count} pictures; differing: ${pictures.differing.join(", ") || "none"})`);
+  const captionsMatch = [];
+  for (const [button, n] of [["next", 2], ["next", 3], ["previous", 2], ["last", m], ["first", 1]]) {
+    await frame.click(`#${button}`);
+    now = await stepShown();
+    captionsMatch.push(now.position === `step ${n} of ${m}` && now.caption === nativeCaptions[n - 1]);
+  }
+  check(captionsMatch.every(Boolean), `next, next, previous, last, first: each step and its caption as captions.txt has them (${captionsMatch.join(", ")})`);
+  check(now.sourceTitle.startsWith("recorded at algorithms/zbuffer/") && now.marked.length > 0,
+        `each step beside the code that recorded it, read from the site's copy of the suite (${now.sourceTitle})`);
+  // Step 6, pixel (160, 90): the history up to the step.
+  await frame.$eval("#slider", (slider) => { slider.value = "6"; slider.dispatchEvent(new Event("input")); });
+  // A click at the whole CSS pixel (of the steps page's own coordinates: the frame sits at
+  // a fraction of a pixel in this page's) nearest the pixel's center that lies in it.
+  await frame.$eval("#picture", (picture, [x, y]) => {
+    const box = picture.getBoundingClientRect(), scale = (box.width - 2 * picture.clientLeft) / picture.naturalWidth;
+    const within = (start, n) => Math.min(Math.max(Math.round(start + (n + 0.5) * scale), Math.ceil(start + n * scale)), Math.ceil(start + (n + 1) * scale) - 1);
+    picture.dispatchEvent(new MouseEvent("click", { bubbles: true, clientX: within(box.left + picture.clientLeft, x), clientY: within(box.top + picture.clientTop, y) }));
+  }, [160, 90]);
+  await frame.waitForFunction(() => !document.getElementById("whyAnswer").textContent.startsWith("asking") && document.getElementById("whyAnswer").textContent !== "");
+  const answeredAtStep = await frame.evaluate(() => ({ title: document.getElementById("pixelTitle").textContent, answer: document.getElementById("whyAnswer").textContent }));
+  const nativeAtStep = whyPrints("counters.toml", ["--size", "320x180", "--pixel", "160,90", "--step", "6"]);
+  check(answeredAtStep.title === "Pixel (160, 90) up to step 6" && answeredAtStep.answer.split("\n").slice(1).join("\n").trim() === nativeAtStep,
+        `a click on pixel (160, 90) of step 6's picture: its history up to step 6, as hsr why --step 6 prints it (${answeredAtStep.title})`);
+  if (answeredAtStep.answer.split("\n").slice(1).join("\n").trim() !== nativeAtStep) console.log(`  page:\n${answeredAtStep.answer}\n  hsr why:\n${nativeAtStep}`);
+  // README's figure, on a screen wide enough for the code to sit beside the picture.
+  await page.setViewportSize({ width: 1900, height: 1150 });
+  await page.locator("#stepsBox").screenshot({ path: join(out, "web-steps.png") });
+  await page.setViewportSize({ width: 1400, height: 1000 });
+  // --every as typed: a bad value is the command line's line; the page records again after it.
+  recorded = await recordInPage("abc");
+  const nativeEvery = spawnSync(join(root, "build", "hsr"), ["render", "scenes/counters.toml", "-o", join(out, "x.png"), "--steps", join(out, "steps-bad"), "--every", "abc"], { cwd: root, encoding: "utf8" });
+  check(recorded.message === "hsr: error: --every: abc: expected a whole number from 0 to 999999999" && nativeEvery.status === 2 &&
+        nativeEvery.stderr.trim() === `${recorded.message} (see --help)`, `--every abc: one line, the command line's (${recorded.message})`);
+  recorded = await recordInPage("5");
+  const everyFifth = spawnSync(join(root, "build", "hsr"), ["why", "scenes/counters.toml", "--size", "320x180", "--pixel", "1,1", "--every", "5", "--step", "999"], { cwd: root, encoding: "utf8" });
+  check(recorded.message === "" && everyFifth.stderr.includes(`records ${Number(recorded.status.split(" ")[0])} steps here`),
+        `and records again after it: every 5th step, as many as the command line's --every 5 (${recorded.status})`);
+  // A line algorithm's steps, and the BSP painter's, whose tree the command line draws with Graphviz.
+  await page.selectOption("#algorithm", "appel");
+  await page.selectOption("#scene", "blocks.toml");
+  result = await renderWith();
+  recorded = await recordInPage("");
+  check(recorded.message === "" && Number(recorded.status.split(" ")[0]) > 2, `Appel's steps on blocks (${recorded.status})`);
+  await page.selectOption("#algorithm", "painter");
+  await page.selectOption('[id="painter.variant"]', "bsp");
+  result = await renderWith();
+  recorded = await recordInPage("");
+  check(recorded.message.startsWith("hsr: error: steps: cannot start Graphviz's dot") && recorded.message.endsWith("record these steps with hsr render --steps") &&
+        !recorded.message.includes("\n"), `the BSP painter's steps, whose tree Graphviz draws: one line saying to record them with the command line (${recorded.message})`);
+  await page.selectOption('[id="painter.variant"]', "newell");
+  result = await renderWith();
+  recorded = await recordInPage("");
+  check(recorded.message === "" && Number(recorded.status.split(" ")[0]) > 2, `and the page records steps again after it: Newell's (${recorded.status})`);
 
   // Bad input: the command line's one line, and the page renders again afterwards.
   const nativeMessage = (files, scene, extra = []) => {

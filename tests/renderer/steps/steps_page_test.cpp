@@ -84,9 +84,50 @@ TEST(StepsPage, CaptionsAndCodeWithMarkupStayText) {
   std::size_t closings = 0;
   for (std::size_t at = page.find("</script>"); at != std::string::npos; at = page.find("</script>", at + 1)) ++closings;
   EXPECT_EQ(closings, 4u);
-  EXPECT_NE(page.find(R"({"command":"hsr why a\u003c/script>.toml","width":64,"height":48,"panelGap":6})"), std::string::npos);
+  EXPECT_NE(page.find(R"({"command":"hsr why a\u003c/script>.toml","width":64,"height":48,"panelGap":6,"host":false})"), std::string::npos);
   EXPECT_NE(page.find(R"(caption \u003c/script>\u003cscript>alert(1)\u003c/script> & \"quotes\")"), std::string::npos);
   EXPECT_NE(page.find("<title>Steps: hsr render a&lt;b&gt;.toml</title>"), std::string::npos);
+}
+
+// Inside the browser edition's page, which answers a click itself: no links to files the
+// page does not have, and the click is posted to the page around it, not made a command.
+TEST(StepsPage, InsideTheBrowserEditionAClickIsAnsweredByThePageAroundIt) {
+  const SourceExcerpt source = sourceExcerpt(SourceLocation::current());
+  const std::vector<PageStep> steps{{"blob:step-1", "a step", source}};
+  const std::string written = stepsPage("t", steps, {"hsr why t.toml", 64, 48});
+  const std::string hosted = stepsPage("t", steps, {"hsr why", 64, 48, true});
+  EXPECT_NE(written.find("href=\"steps.gif\""), std::string::npos);
+  EXPECT_EQ(hosted.find("href=\"steps.gif\""), std::string::npos);
+  EXPECT_EQ(hosted.find("captions.txt"), std::string::npos);
+  EXPECT_NE(hosted.find(R"("host":true})"), std::string::npos);
+  EXPECT_NE(hosted.find("click a pixel for its history up to the step."), std::string::npos);
+  EXPECT_NE(written.find("click a pixel for the command that shows its history up to the step."), std::string::npos);
+}
+
+// The page's steps share one excerpt per recording place, read once.
+TEST(StepsPage, StepsRecordedAtOnePlaceShareItsExcerpt) {
+  const SourceLocation here = SourceLocation::current();
+  const SourceLocation there = SourceLocation::current();
+  const std::vector<PageStep> steps = pageSteps({{"first", here}, {"second", here}, {"third", there}}, {"a.png", "b.png", "c.png"});
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[1].picture, "b.png");
+  EXPECT_EQ(steps[2].caption, "third");
+  EXPECT_EQ(steps[0].source.line, steps[1].source.line);
+  EXPECT_EQ(steps[2].source.line, steps[0].source.line + 1);
+  EXPECT_FALSE(steps[0].source.lines.empty());
+}
+
+// A header included through a build folder's view of the sources (cmake/layers.cmake) is
+// the suite's own file, where the view's links cannot be followed too (the browser
+// edition's file system holds none): BUILD/include-views/TARGET/PATH is PATH.
+TEST(StepsPage, AHeaderSeenThroughAViewIsTheSuitesFile) {
+#line 1 "/nowhere/include-views/hsr_renderer_steps/renderer/steps/steps.hpp"
+  const SourceLocation inView = SourceLocation::current();
+#line 127 "tests/renderer/steps/steps_page_test.cpp"
+  const SourceExcerpt excerpt = sourceExcerpt(inView);
+  EXPECT_EQ(excerpt.file, "renderer/steps/steps.hpp");
+  ASSERT_FALSE(excerpt.lines.empty());
+  EXPECT_EQ(excerpt.lines[0].rfind("// Steps:", 0), 0u) << excerpt.lines[0];
 }
 
 }  // namespace
