@@ -368,8 +368,9 @@ VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& con
   return context.kept ? std::move(*context.kept) : VisibleSet::everything(scene);
 }
 
-void recordFinishedStep(StepRecorder& steps, const Frame& shown, bool lines) {
-  steps.record(lines ? "the finished drawing" : kFinishedImageStep, Image{shown.width, shown.height, 4, {shown.color.begin(), shown.color.end()}});
+void recordFinishedStep(StepRecorder& steps, const Frame& shown, bool lines, SourceLocation where) {
+  steps.record(lines ? "the finished drawing" : kFinishedImageStep, Image{shown.width, shown.height, 4, {shown.color.begin(), shown.color.end()}},
+               where);
 }
 
 std::vector<PassTime> passTimes(const Stats& stats) {

@@ -17,6 +17,7 @@
 #include "renderer/image/frame.hpp"
 #include "renderer/lines/line_set.hpp"
 #include "renderer/scene/prepare.hpp"
+#include "renderer/util/source_location.hpp"
 #include "renderer/util/stats.hpp"
 
 namespace hsr::pipeline {
@@ -98,8 +99,8 @@ VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& con
 // the algorithm's own: the finished image.
 inline constexpr const char* kFinishedImageStep = "the finished image, after the passes that follow visibility (hsr render --explain)";
 // That last step recorded: `shown` is the finished image, or for a line algorithm the
-// drawing as it is shown (in its --line-style).
-void recordFinishedStep(StepRecorder& steps, const Frame& shown, bool lines);
+// drawing as it is shown (in its --line-style); the steps page shows the caller's lines.
+void recordFinishedStep(StepRecorder& steps, const Frame& shown, bool lines, SourceLocation where = SourceLocation::current());
 
 // The time of each pass that ran, in pipeline order, from a render's Stats.
 struct PassTime {

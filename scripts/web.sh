@@ -4,7 +4,7 @@
 # "ports": nothing is downloaded), single-threaded, and lays out a static site in
 # web/dist/: index.html, app.js, quiz.js, style.css, hsr_web.js and .wasm, the shipped
 # scenes and models, scenes.json (each scene's files), and under src/ the suite's code
-# (algorithms/, renderer/, pipeline/), whose lines the steps page shows beside each step
+# (algorithms/, renderer/, pipeline/ and this bridge), whose lines the steps page shows beside each step
 # (fetched only for the files that recorded the steps shown). Serve it with any static
 # file server:
 #   python3 -m http.server -d web/dist     then open http://localhost:8000
@@ -53,7 +53,7 @@ with open(os.path.join(dist, "scenes.json"), "w") as out:
 print(f"{len(scenes)} scenes")
 PYTHON
 # The code the steps are recorded in, as the steps page reads it beside a native build.
-find algorithms renderer pipeline -name '*.cpp' -o -name '*.hpp' | while read -r file; do
+find algorithms renderer pipeline web -name '*.cpp' -o -name '*.hpp' | grep -v '^web/dist/' | while read -r file; do
   mkdir -p "$dist/src/$(dirname "$file")"
   cp "$file" "$dist/src/$file"
 done

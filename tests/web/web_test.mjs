@@ -446,6 +446,8 @@ try {
     await frame.click(`#${button}`);
     now = await stepShown();
     captionsMatch.push(now.position === `step ${n} of ${m}` && now.caption === nativeCaptions[n - 1]);
+    if (n === m) check(now.sourceTitle.startsWith("recorded at web/hsr_web.cpp:") && now.marked.includes("recordFinishedStep("),
+                       `the finished image, the last step, is recorded by the page's bridge, its lines shown (${now.sourceTitle})`);
   }
   check(captionsMatch.every(Boolean), `next, next, previous, last, first: each step and its caption as captions.txt has them (${captionsMatch.join(", ")})`);
   check(now.sourceTitle.startsWith("recorded at algorithms/zbuffer/") && now.marked.length > 0,
