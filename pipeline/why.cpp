@@ -92,10 +92,14 @@ std::vector<PixelEvent> cullingEvents(const PreparedScene& scene, const culling:
     const auto variant = std::find(variants.choices.begin(), variants.choices.end(), stages[s].variant());
     const std::size_t which = std::size_t(variant - variants.choices.begin());
     const std::string test = which < variants.choiceHelp.size() ? variants.choiceHelp[which] : stages[s].stage->summary;
-    const std::string* found = culled.byStage[s].about(instance);
+    // What the test found: for the triangle, where the stage tests triangles, else for its object.
+    const std::string* forTriangle = culled.byStage[s].aboutTriangle(id - 1);
+    const std::string* forObject = culled.byStage[s].about(instance);
+    const std::string found = forTriangle && !forTriangle->empty() ? "; for the triangle the test found " + *forTriangle
+                              : forObject && !forObject->empty()   ? "; the test found " + *forObject
+                                                                   : "";
     events.push_back({id, keeps ? "kept the reference's triangle" : "removed the reference's triangle; its test: " + test,
-                      "of its object's " + std::to_string(given) + " triangles given to the stage, it kept " + std::to_string(keptOfObject) +
-                          (found && !found->empty() ? "; the test found " + *found : ""),
+                      "of its object's " + std::to_string(given) + " triangles given to the stage, it kept " + std::to_string(keptOfObject) + found,
                       std::numeric_limits<double>::quiet_NaN(), false, "culling stage " + stages[s].name()});
     if (!keeps) {
       culledBy = stages[s].name();
@@ -257,11 +261,15 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
     answer.reference = reference.trace(
         camera, camera.rayThroughPixel(conventions::pixelCenter(answer.pixel.x), conventions::pixelCenter(answer.pixel.y)), counters,
         &answer.tied);
-    if (answer.reference.id != conventions::kBackgroundId)
+    if (answer.reference.id != conventions::kBackgroundId) {
       culled.instances.push_back(std::uint32_t(&scene.instanceOf(answer.reference.id - 1) - scene.instances().data()));
+      culled.triangles.push_back(answer.reference.id - 1);
+    }
   }
-  std::sort(culled.instances.begin(), culled.instances.end());
-  culled.instances.erase(std::unique(culled.instances.begin(), culled.instances.end()), culled.instances.end());
+  for (std::vector<std::uint32_t>* asked : {&culled.instances, &culled.triangles}) {
+    std::sort(asked->begin(), asked->end());
+    asked->erase(std::unique(asked->begin(), asked->end()), asked->end());
+  }
   Visibility visibility;
   // With a step asked about: each step's mark, the events each pixel's history held when
   // it was recorded (on one thread, so that no loop adds to a history meanwhile).

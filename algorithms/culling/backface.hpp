@@ -35,9 +35,10 @@ namespace hsr::culling::backface {
 enum class Variant { object, screen, viewDirection };
 
 // The triangles of `in` that face the eye. Counts "backface: triangles tested" and
-// "backface: triangles culled".
+// "backface: triangles culled". With why, says for hsr why's triangles what the sign
+// was read from (the eye's distance from the plane, the projected area, the cosine).
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
-                int threads, Stats& stats);
+                int threads, Stats& stats, StageWitness* why = nullptr);
 
 struct Knobs {
   Variant variant = Variant::object;

@@ -132,7 +132,9 @@ VisibleSet runPipeline(const PreparedScene& scene, const Pipeline& pipeline, int
     const StageChoice& choice = pipeline[s];
     std::unique_ptr<StageMemory>* memory = previous && previous->memory ? &(*previous->memory)[s] : nullptr;
     StageWitness* const witness =
-        why ? &why->byStage.emplace_back(StageWitness{why->instances, std::vector<std::string>(why->instances.size())}) : nullptr;
+        why ? &why->byStage.emplace_back(StageWitness{why->instances, std::vector<std::string>(why->instances.size()), why->triangles,
+                                                      std::vector<std::string>(why->triangles.size())})
+            : nullptr;
     VisibleSet kept = choice.stage->run(choice.knobs, {scene, camera, set, threads, stats, previous, steps, memory, witness});
     if (steps) recordStage(scene, camera, choice, set, kept, *steps);
     if (why) why->keptByStage.push_back(kept);

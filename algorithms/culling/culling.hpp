@@ -56,23 +56,32 @@ struct PreviousFrame {
   SimulatedGpu* gpu = nullptr;
 };
 
-// hsr why: what a stage's own test found for the objects asked about, in its terms
-// ("outside the left plane", "behind every texel of its footprint"). Handed to a stage
-// only when asked (StageInput::why), as PixelWitness is to an algorithm; a stage that
-// does not test objects one by one (backface, the BVH's frustum test) says nothing.
+// hsr why: what a stage's own test found for the objects and triangles asked about (the
+// reference's, at the pixels asked about), in its terms ("outside the left plane",
+// "behind every texel of its footprint", "the eye lies behind its plane"). Handed to a
+// stage only when asked (StageInput::why), as PixelWitness is to an algorithm: a stage
+// that tests objects fills `found`, one that tests triangles `foundForTriangle`.
 struct StageWitness {
   std::vector<std::uint32_t> instances;  // the objects asked about, ascending
   std::vector<std::string> found;        // what the test found for each ("": nothing said)
+  std::vector<std::uint32_t> triangles;  // the triangles asked about, ascending
+  std::vector<std::string> foundForTriangle;
   // The slot of an object asked about, or null for any other.
-  std::string* about(std::uint32_t instance) {
-    const auto at = std::lower_bound(instances.begin(), instances.end(), instance);
-    return at != instances.end() && *at == instance ? &found[std::size_t(at - instances.begin())] : nullptr;
+  std::string* about(std::uint32_t instance) { return slotOf(instances, found, instance); }
+  // The slot of a triangle asked about, or null for any other.
+  std::string* aboutTriangle(std::uint32_t triangle) { return slotOf(triangles, foundForTriangle, triangle); }
+
+ private:
+  static std::string* slotOf(const std::vector<std::uint32_t>& asked, std::vector<std::string>& slots, std::uint32_t which) {
+    const auto at = std::lower_bound(asked.begin(), asked.end(), which);
+    return at != asked.end() && *at == which ? &slots[std::size_t(at - asked.begin())] : nullptr;
   }
 };
 
 // hsr why's view of a pipeline: each stage's kept set and its witness, in order.
 struct CullingWitness {
   std::vector<std::uint32_t> instances;  // the objects asked about, ascending
+  std::vector<std::uint32_t> triangles;  // the triangles asked about, ascending
   std::vector<VisibleSet> keptByStage;
   std::vector<StageWitness> byStage;
 };

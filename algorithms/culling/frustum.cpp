@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 #include "algorithms/culling/culling.hpp"
 
@@ -57,20 +58,34 @@ namespace {
 // The planes by FrustumSide, as hsr why names them.
 constexpr std::array<const char*, 6> kSideNames = {"left", "right", "bottom", "top", "near", "far"};
 
+// The instances under a BVH node, for hsr why: each(instance) for every one of them.
+template <typename Each>
+void forEachInstanceUnder(const Bvh& bvh, std::uint32_t index, Each&& each) {
+  const BvhNode& node = bvh.nodes()[index];
+  if (node.leaf()) {
+    for (std::uint32_t slot = node.index; slot < node.index + node.count; ++slot) each(bvh.order()[slot]);
+    return;
+  }
+  forEachInstanceUnder(bvh, node.index, each);
+  forEachInstanceUnder(bvh, node.index + 1, each);
+}
+
 // The hierarchical test: down the object BVH with plane masking. Marks the instances not
-// proven outside; counts the objects tested in the leaves reached.
+// proven outside; counts the objects tested in the leaves reached. With why: for hsr
+// why's objects, the box (a node's above it, or its own) found wholly outside a plane, or
+// that its own box lies outside none of the planes still open.
 std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolume& volume, std::int64_t& objectsTested,
-                                            Stats& stats) {
+                                            Stats& stats, StageWitness* why) {
   const Bvh& bvh = scene.objectBvh(stats);
   std::vector<std::uint8_t> keep(scene.instances().size(), 0);
   struct Visit {
-    std::uint32_t node, mask;
+    std::uint32_t node, mask, depth;  // depth: the root's 0
   };
   std::vector<Visit> stack;
-  if (!bvh.empty()) stack.push_back({0, ViewVolume::kAllPlanes});
+  if (!bvh.empty()) stack.push_back({0, ViewVolume::kAllPlanes, 0});
   std::int64_t visited = 0;
   while (!stack.empty()) {
-    auto [index, mask] = stack.back();
+    auto [index, mask, depth] = stack.back();
     stack.pop_back();
     ++visited;
     const BvhNode& node = bvh.nodes()[index];
@@ -78,10 +93,19 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
     const dvec3 hi(node.bounds[1][0], node.bounds[1][1], node.bounds[1][2]);
     // The node's box (rounded outward from its contents) outside a plane: nothing
     // below it can be seen. Wholly inside a plane: nothing below it needs that plane.
-    if (!volume.boxMayBeInside((lo + hi) * 0.5, (hi - lo) * 0.5, mask)) continue;
+    int outsideOf = -1;
+    if (!volume.boxMayBeInside((lo + hi) * 0.5, (hi - lo) * 0.5, mask, &outsideOf)) {
+      if (why) [[unlikely]]
+        forEachInstanceUnder(bvh, index, [&](std::uint32_t instance) {
+          if (std::string* found = why->about(instance))
+            *found = "the box of a BVH node holding it (depth " + std::to_string(depth) + ") lies wholly outside the view volume's " +
+                     kSideNames[std::size_t(outsideOf)] + " plane";
+        });
+      continue;
+    }
     if (!node.leaf()) {
-      stack.push_back({node.index + 1, mask});
-      stack.push_back({node.index, mask});
+      stack.push_back({node.index + 1, mask, depth + 1});
+      stack.push_back({node.index, mask, depth + 1});
       continue;
     }
     // A leaf's objects, each by its own (tighter) box against the planes still open.
@@ -90,7 +114,12 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
       std::uint32_t objectMask = mask;
       ++objectsTested;
       const Aabb& box = scene.instances()[instance].box;
-      keep[instance] = volume.boxMayBeInside(box, objectMask);
+      keep[instance] = volume.boxMayBeInside(box, objectMask, &outsideOf);
+      if (std::string* found = why ? why->about(instance) : nullptr) [[unlikely]]
+        *found = keep[instance] ? "its box, reached in a BVH leaf at depth " + std::to_string(depth) +
+                                      ", lies outside none of the view volume's planes (near a corner it may still miss the volume: the test is conservative)"
+                                : "its box, reached in a BVH leaf at depth " + std::to_string(depth) + ", lies wholly outside the view volume's " +
+                                      kSideNames[std::size_t(outsideOf)] + " plane";
     }
   }
   stats.add("frustum: bvh nodes visited", visited);
@@ -133,7 +162,7 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
       });
       break;
     case Variant::bvh: {
-      const std::vector<std::uint8_t> keep = traverseObjectBvh(scene, volume, objectsTested, stats);
+      const std::vector<std::uint8_t> keep = traverseObjectBvh(scene, volume, objectsTested, stats, why);
       out = keepObjects(scene, in, [&](std::uint32_t instance) {
         objectsCulled += keep[instance] == 0;
         return keep[instance] != 0;
@@ -150,16 +179,27 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
         return [&](std::uint32_t index) {
           const Triangle& t = triangles[index];
           const dvec3 corners[3] = {positions[t[0]], positions[t[1]], positions[t[2]]};
+          std::string* const found = why ? why->aboutTriangle(index) : nullptr;
           if (variant == Variant::triangle) {
             // Outside only when all three corners are behind the same plane.
-            return std::none_of(planes.begin(), planes.end(), [&](const Plane& plane) {
+            const auto outside = std::find_if(planes.begin(), planes.end(), [&](const Plane& plane) {
               return std::all_of(corners, corners + 3, [&](const dvec3& p) { return plane.distance(p) < -slack; });
             });
+            if (found) [[unlikely]]
+              *found = outside == planes.end() ? "no plane of the view volume has all three of its corners outside it"
+                                               : "all three of its corners lie outside the view volume's " +
+                                                     std::string(kSideNames[std::size_t(outside - planes.begin())]) + " plane";
+            return outside == planes.end();
           }
           // Any vertex inside: some corner in front of all six planes.
-          return std::any_of(corners, corners + 3, [&](const dvec3& p) {
+          const dvec3* inside = std::find_if(corners, corners + 3, [&](const dvec3& p) {
             return std::all_of(planes.begin(), planes.end(), [&](const Plane& plane) { return plane.distance(p) >= -slack; });
           });
+          if (found) [[unlikely]]
+            *found = inside != corners + 3 ? "its corner " + std::to_string(inside - corners + 1) + " lies inside all six planes"
+                                           : "none of its corners lies inside all six planes (it may still cross the view volume: why this "
+                                             "variant is wrong)";
+          return inside != corners + 3;
         };
       });
       stats.add("frustum: triangles tested", static_cast<std::int64_t>(in.triangles.size()));

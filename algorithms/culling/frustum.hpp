@@ -64,8 +64,9 @@ struct ViewVolume {
 // The triangles of `in` not proven outside the view volume. Counts, as they apply:
 // "frustum: objects tested", "frustum: objects culled", "frustum: planes tested",
 // "frustum: bvh nodes visited", "frustum: triangles tested", "frustum: triangles culled".
-// `why`: hsr why's objects, where the sphere and aabb tests say which plane an object
-// lies wholly outside, or that it meets the view volume; null: not asked.
+// `why`: hsr why's objects and triangles, where each test says which plane an object's
+// bound (or a BVH node's above it) or a triangle's corners lie wholly outside, or that
+// it may meet the view volume; null: not asked.
 VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Variant variant, const VisibleSet& in,
                 int threads, Stats& stats, StageWitness* why = nullptr);
 

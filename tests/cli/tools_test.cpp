@@ -630,14 +630,14 @@ TEST(Why, SaysWhatACullingStagesTestFound) {
   const test::CommandResult center = test::runCommand(why + "occlusion:raster=center");
   ASSERT_EQ(center.exitCode, 0) << center.output;
   for (const char* line : {"the test found every texel of its footprint on the 256x128 map (x 123 to 134, y 60 to 67) holds an occluder nearer "
-                           "than its box's nearest point (distance 7.85)",
+                           "than its box's nearest point (distance 7.84999896)",
                            "=> differs: the reference shows triangle 34 of \"seen through the gap\", which the culling stage "
                            "occlusion:depth-map:raster=center removed before the algorithm ran"})
     EXPECT_NE(center.output.find(line), std::string::npos) << line << "\n" << center.output;
   const test::CommandResult conservative = test::runCommand(why + "occlusion");
   ASSERT_EQ(conservative.exitCode, 0) << conservative.output;
   EXPECT_NE(conservative.output.find("the test found texel (128, 60) of the 256x128 map holds no occluder, not nearer than its box's nearest "
-                                     "point (distance 7.85): it may show there"), std::string::npos) << conservative.output;
+                                     "point (distance 7.84999896): it may show there"), std::string::npos) << conservative.output;
   const test::CommandResult pyramid = test::runCommand(why + "occlusion:pyramid=on");
   ASSERT_EQ(pyramid.exitCode, 0) << pyramid.output;
   EXPECT_NE(pyramid.output.find("the test found texel (16, 7) of pyramid level 3 of the 256x128 map holds no occluder"), std::string::npos)
@@ -647,6 +647,14 @@ TEST(Why, SaysWhatACullingStagesTestFound) {
   ASSERT_EQ(portals.exitCode, 0) << portals.output;
   EXPECT_NE(portals.output.find("the test found a chain of portals from the eye's cell reaches its cells \"room 0 0\", \"room 1 0\", and its "
                                 "box lies within a view narrowed through the portals"), std::string::npos) << portals.output;
+  // An occlusion query's count: 12 of the box's fragments pass through the gap, which a
+  // threshold of 20 calls hidden.
+  const test::CommandResult query = test::runCommand(why + "occlusion:queries:stop-and-wait:threshold=20");
+  ASSERT_EQ(query.exitCode, 0) << query.output;
+  for (const char* line : {"the test found for its leaf of the hierarchy (depth 1): its query, waited for: 12 of its box's fragments passed the depth "
+                           "test (visible: more than 20): hidden, nothing below it drawn",
+                           "which the culling stage occlusion:queries:stop-and-wait:threshold=20 removed before the algorithm ran"})
+    EXPECT_NE(query.output.find(line), std::string::npos) << line << "\n" << query.output;
 }
 
 // Culling before the z-buffer on hard/cull_off_center: the view-direction backface test
@@ -661,13 +669,17 @@ TEST(Why, NamesTheCullingStageThatRemovedTheReferencesTriangle) {
                            "only: wrong under perspective, kept to show why",
                            "pixel (72, 120): 1 event, in the order they happened: the culling stages', then the algorithm's loop's",
                            "of its object's 12 triangles given to the stage, it kept 4", "shows the background",
+                           "for the triangle the test found its normal turns away from the eye along the view axis (cosine -0.258819045); the "
+                           "eye itself lies in front of its plane, 0.63137085 from it",
                            "=> differs: the reference shows triangle 3 of \"left\", which the culling stage backface:view-direction removed "
                            "before the algorithm ran"})
     EXPECT_NE(wrong.output.find(line), std::string::npos) << line << "\n" << wrong.output;
   EXPECT_EQ(wrong.output.find("culling stage frustum"), std::string::npos) << "no stage after the one that removed it\n" << wrong.output;
   const test::CommandResult right = test::runCommand(why + "backface,frustum");
   ASSERT_EQ(right.exitCode, 0) << right.output;
-  for (const char* line : {"1. culling stage backface:object: kept the reference's triangle", "of its object's 12 triangles given to the stage, it kept 4",
+  for (const char* line : {"1. culling stage backface:object: kept the reference's triangle",
+                           "of its object's 12 triangles given to the stage, it kept 4; for the triangle the test found the eye lies in front of its "
+                           "plane, 0.63137085 from it",
                            "2. culling stage frustum:sphere: kept the reference's triangle", "of its object's 4 triangles given to the stage, it kept 4",
                            "=> agrees with the exact reference"})
     EXPECT_NE(right.output.find(line), std::string::npos) << line << "\n" << right.output;

@@ -260,7 +260,9 @@ TEST(Culling, TheWitnessSaysWhatEachStageDid) {
                         Case{"scenes/hard/occ_gap.toml", "occlusion:raster=center", "every texel of its footprint", "texel (", "its box"},
                         Case{"scenes/hard/portal_rooms.toml", "portals", "no chain of portals", "a chain of portals from the eye's cell reaches", "\n",
                              "a chain of portals reaches"},
-                        Case{"scenes/hard/portal_rooms.toml", "pvs", "it is not in", "it is in"}}) {
+                        Case{"scenes/hard/portal_rooms.toml", "pvs", "it is not in", "it is in"},
+                        Case{"scenes/trees.toml", "frustum:bvh", "the box of a BVH node holding it", "its box, reached in a BVH leaf",
+                             "\n", "its box, reached in a BVH leaf at depth"}}) {
     const std::string where = std::string(c.scene) + " --cull " + c.pipeline;
     test::LoadedScene loaded(test::sourcePath(c.scene));
     const culling::Pipeline pipeline = culling::parsePipeline(c.pipeline);
@@ -282,6 +284,53 @@ TEST(Culling, TheWitnessSaysWhatEachStageDid) {
     }
   }
   EXPECT_GT(culledSeen, 20) << "too few objects culled to test anything";
+}
+
+// The tests of triangles (backface, the frustum's per-triangle variants) say what they
+// found for each triangle asked about; the occlusion queries, for each object, what was
+// decided at its leaf or where the walk stopped above it.
+TEST(Culling, TheWitnessSaysWhatEachTriangleTestAndEachQueryFound) {
+  struct Case {
+    const char* scene;
+    const char* pipeline;
+    std::vector<const char*> culledSays, keptSays;  // one of them is in what it found, for each triangle (object) it removed (kept)
+  };
+  std::int64_t culledSeen = 0;
+  const std::vector<const char*> outsideOnePlane{"all three of its corners lie outside the view volume's"};
+  for (const Case& c : {Case{"scenes/counters.toml", "backface", {"the eye lies behind its plane"}, {"the eye lies in front of its plane"}},
+                        Case{"scenes/counters.toml", "backface:screen", {"clockwise on the screen or is flat"}, {"counter-clockwise on the screen", "nothing projects"}},
+                        Case{"scenes/counters.toml", "backface:view-direction", {"turns away from the eye"}, {"turns toward the eye"}},
+                        Case{"scenes/trees.toml", "frustum:triangle", outsideOnePlane, {"no plane of the view volume has all three"}},
+                        Case{"scenes/trees.toml", "frustum:any-vertex", {"none of its corners lies inside all six planes"}, {"lies inside all six planes"}},
+                        Case{"scenes/city.toml", "occlusion:queries:stop-and-wait", {"hidden, nothing below it drawn", "outside the view volume"},
+                             {"visible", "drawn"}},
+                        Case{"scenes/city.toml", "occlusion:queries:chc", {"hidden, nothing below it drawn", "outside the view volume"}, {"visible", "drawn"}},
+                        Case{"scenes/city.toml", "occlusion:queries:chcpp", {"nothing below it drawn", "outside the view volume"}, {"visible", "drawn"}}}) {
+    const std::string where = std::string(c.scene) + " --cull " + c.pipeline;
+    test::LoadedScene loaded(test::sourcePath(c.scene));
+    const PreparedScene& scene = loaded.prepared;
+    const culling::Pipeline pipeline = culling::parsePipeline(c.pipeline);
+    Stats plainStats, stats;
+    const VisibleSet plain = culling::runPipeline(scene, pipeline, 1, plainStats);
+    const bool byObject = std::string(c.pipeline).starts_with("occlusion");
+    culling::CullingWitness why;
+    for (std::uint32_t i = 0; i < (byObject ? scene.instances().size() : scene.triangles().size()); ++i)
+      (byObject ? why.instances : why.triangles).push_back(i);
+    const VisibleSet kept = culling::runPipeline(scene, pipeline, 1, stats, nullptr, nullptr, &why);
+    ASSERT_EQ(kept.triangles, plain.triangles) << where;
+    ASSERT_EQ(why.byStage.size(), 1u) << where;
+    const std::vector<std::string>& found = byObject ? why.byStage[0].found : why.byStage[0].foundForTriangle;
+    for (std::uint32_t i = 0; i < found.size(); ++i) {
+      const std::uint32_t first = byObject ? scene.instances()[i].firstTriangle : i;
+      const bool keeps = std::binary_search(kept.triangles.begin(), kept.triangles.end(), first);
+      const std::vector<const char*>& says = keeps ? c.keptSays : c.culledSays;
+      const bool saysWhatItDid = std::any_of(says.begin(), says.end(), [&](const char* part) { return found[i].find(part) != std::string::npos; }) &&
+                                 (!keeps || found[i].find("nothing below it drawn") == std::string::npos);
+      EXPECT_TRUE(saysWhatItDid) << where << (byObject ? ", object " : ", triangle ") << i << (keeps ? " kept" : " culled") << ": " << found[i];
+      culledSeen += !keeps;
+    }
+  }
+  EXPECT_GT(culledSeen, 100) << "too few culled to test anything";
 }
 
 TEST(Culling, PipelineSyntax) {

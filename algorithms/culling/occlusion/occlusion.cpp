@@ -2,6 +2,7 @@
 #include "algorithms/culling/occlusion/occlusion.hpp"
 
 #include "algorithms/culling/occlusion/queries.hpp"
+#include "renderer/steps/why.hpp"
 #include "renderer/util/simd.hpp"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ StageEntry stage() {
     const Knobs& knobs = values.as<Knobs>();
     if (knobs.method == Method::queries)
       return cullWithQueries(input.scene, input.camera, knobs, input.in, input.memory, input.previous ? input.previous->gpu : nullptr,
-                             input.stats);
+                             input.stats, input.why);
     return cull(input.scene, input.camera, knobs, input.in, input.previous, input.stats, input.steps, input.why);
   };
   return entry;
@@ -222,11 +223,7 @@ std::string decided(const MapView& view, const DepthMap& level, const MapDecisio
   const BoxFootprint& box = decision.tested;
   if (box.crossesNear) return "its box crosses the near plane, so its footprint is unbounded: never hidden";
   if (box.empty()) return "its box's footprint covers no texel of the map";
-  const auto distance = [&](double key) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", view.camera.perspective() ? -1.0 / key : key);
-    return std::string(text);
-  };
+  const auto distance = [&](double key) { return whyNumber(view.camera.perspective() ? -1.0 / key : key); };
   const std::string where = (decision.level == 0 ? "the " : "pyramid level " + std::to_string(decision.level) + " of the ") +
                             std::to_string(view.width) + "x" + std::to_string(view.height) + " map";
   const std::string nearest = "its box's nearest point (distance " + distance(box.nearest) + ")";

@@ -69,11 +69,12 @@ struct InFlight {
 
 class Traversal {
  public:
+  // `watched`: hsr why asks what was decided about some objects (explain()).
   Traversal(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in, QueryMemory& memory,
-            SimulatedGpu& gpu)
+            SimulatedGpu& gpu, bool watched)
       : scene_(scene), camera_(camera), knobs_(knobs), in_(in), memory_(memory), gpu_(gpu), hierarchy_(*memory.hierarchy),
         volume_(scene, camera), runs_(trianglesByInstance(scene, in)), drawn_(scene.instances().size(), 0), frame_(memory.frame),
-        worldPerPixel_(worldPerPixelAtUnitDepth(camera)) {}
+        worldPerPixel_(worldPerPixelAtUnitDepth(camera)), decided_(watched ? hierarchy_.nodes().size() : 0) {}
 
   void stopAndWait();
   void delayed();
@@ -82,6 +83,9 @@ class Traversal {
   // The triangles of `in` of the objects drawn, in order.
   VisibleSet drawnSet() const;
   void count(Stats& stats) const;
+  // hsr why: for each object asked about, what was last decided on the way down to it:
+  // at its leaf, or at the node above it where the walk stopped (watched only).
+  void explain(StageWitness& why) const;
 
  private:
   // Shared steps.
@@ -99,6 +103,12 @@ class Traversal {
   std::vector<Aabb> boundingBoxes(std::uint32_t index) const;
   std::vector<Aabb> queryBoxes(std::uint32_t index) const;
   bool visible(std::int64_t passed) const { return passed > knobs_.threshold; }
+  // hsr why: what a query's answer said, and what was decided at a node (watched only).
+  std::string answered(std::int64_t passed) const;
+  void decide(std::uint32_t index, std::string what) {
+    if (!decided_.empty()) [[unlikely]]
+      decided_[index] = std::move(what);
+  }
   void drawLeaf(std::uint32_t index);
   // A leaf drawn, an inner node's children queued.
   void open(const Queued& entry);
@@ -128,6 +138,8 @@ class Traversal {
   std::deque<InFlight> inFlight_;
   std::vector<Queued> hiddenBatch_;  // chcpp: nodes hidden last frame, their queries not yet issued
   std::deque<Queued> visibleBatch_;  // chcpp: leaves visible last frame, queried when the CPU would wait
+
+  std::vector<std::string> decided_;  // per node, with hsr why: what was last decided there
 
   std::int64_t visited_ = 0, issued_ = 0, nodesQueried_ = 0, answeredVisible_ = 0;
   std::int64_t multiqueries_ = 0, multiqueriesReasked_ = 0, atEye_ = 0, objectsDrawn_ = 0;
@@ -159,7 +171,14 @@ Queued Traversal::nearest() {
 
 bool Traversal::inView(Queued& entry) {
   ++visited_;
-  return volume_.boxMayBeInside(node(entry.node).box, entry.planes);
+  const bool mayBeInside = volume_.boxMayBeInside(node(entry.node).box, entry.planes);
+  if (!mayBeInside) decide(entry.node, "its box lies wholly outside the view volume: not queried, nothing below it drawn");
+  return mayBeInside;
+}
+
+std::string Traversal::answered(std::int64_t passed) const {
+  return std::to_string(passed) + " of its box's fragments passed the depth test (visible: more than " + std::to_string(knobs_.threshold) + "): " +
+         (visible(passed) ? "visible" : "hidden");
 }
 
 Aabb Traversal::widened(const Aabb& box) const {
@@ -265,6 +284,27 @@ void Traversal::count(Stats& stats) const {
   stats.add("queries: objects drawn", objectsDrawn_);
 }
 
+void Traversal::explain(StageWitness& why) const {
+  for (std::uint32_t leaf = 0; leaf < hierarchy_.nodes().size(); ++leaf) {
+    const HierarchyNode& at = node(leaf);
+    if (!at.leaf()) continue;
+    for (std::uint32_t slot = at.firstObject; slot < at.firstObject + at.objectCount; ++slot) {
+      std::string* const found = why.about(hierarchy_.objects()[slot]);
+      if (!found || !found->empty()) continue;  // not asked about, or said at another leaf that lists it
+      // Up from the leaf to the deepest node the walk decided something at.
+      std::uint32_t depth = 0;
+      for (std::int32_t up = at.parent; up >= 0; up = node(std::uint32_t(up)).parent) ++depth;
+      for (std::int32_t up = std::int32_t(leaf), above = 0; up >= 0; up = node(std::uint32_t(up)).parent, ++above) {
+        const std::string& decided = decided_[std::size_t(up)];
+        if (decided.empty()) continue;
+        *found = (above == 0 ? std::string("for its leaf of the hierarchy") : "for a node " + std::to_string(above) + " above its leaf in the hierarchy") +
+                 " (depth " + std::to_string(depth - std::uint32_t(above)) + "): " + decided;
+        break;
+      }
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------
 // stop-and-wait: down the hierarchy, each answer waited for.
 
@@ -276,11 +316,14 @@ void Traversal::stopAndWait() {
     bool isVisible = true;
     if (atEye(node(entry.node).box)) {
       ++atEye_;
+      decide(entry.node, "its box reaches the near plane: visible without a query");
     } else {
       const PendingQuery query = gpu_.query(queryBoxes(entry.node));
       ++issued_, ++nodesQueried_;
-      isVisible = visible(gpu_.answer(query));  // the CPU waits here, every time
+      const std::int64_t passed = gpu_.answer(query);  // the CPU waits here, every time
+      isVisible = visible(passed);
       answeredVisible_ += isVisible;
+      decide(entry.node, "its query, waited for: " + answered(passed) + (isVisible ? "" : ", nothing below it drawn"));
     }
     if (isVisible) open(entry);
   }
@@ -310,15 +353,20 @@ void Traversal::delayed() {
     QueryMemory::Node& at = state(leaf);
     if (at.lastVisited != frame_ - 1) at.inFlight.clear(), at.answered = false;
     at.lastVisited = frame_;
+    std::int64_t newest = 0;
     while (!at.inFlight.empty() && gpu_.answered(at.inFlight.front())) {
-      at.visible = visible(gpu_.answer(at.inFlight.front()));
+      newest = gpu_.answer(at.inFlight.front());
+      at.visible = visible(newest);
       answeredVisible_ += at.visible;
       at.answered = true;
       at.inFlight.pop_front();
     }
+    decide(leaf, !at.answered ? std::string("no answer about it in yet: drawn")
+                              : "its newest answer in, from an earlier frame's query: " + answered(newest) + (at.visible ? ", drawn" : ", not drawn"));
     if (atEye(node(leaf).box)) {
       ++atEye_;
       at.inFlight.clear(), at.answered = false;  // drawn until the eye leaves its box
+      decide(leaf, "its box reaches the near plane: drawn without a query");
     } else {
       at.inFlight.push_back(gpu_.query(queryBoxes(leaf)));
       ++issued_, ++nodesQueried_;
@@ -349,7 +397,8 @@ void Traversal::issue(std::vector<Queued> nodes, bool wasVisible) {
 }
 
 void Traversal::handleAnswer(const InFlight& answer) {
-  const bool isVisible = answer.atEye || visible(gpu_.answer(answer.query));
+  const std::int64_t passed = answer.atEye ? 0 : gpu_.answer(answer.query);
+  const bool isVisible = answer.atEye || visible(passed);
   if (answer.nodes.size() > 1) {
     // A multiquery: hidden means all of its nodes are; visible says only that one of
     // them is, so each is asked again on its own.
@@ -357,12 +406,19 @@ void Traversal::handleAnswer(const InFlight& answer) {
       ++multiqueriesReasked_;
       for (const Queued& entry : answer.nodes) issue({entry}, false);
     } else {
-      for (const Queued& entry : answer.nodes) ++state(entry.node).framesHidden;
+      for (const Queued& entry : answer.nodes) {
+        ++state(entry.node).framesHidden;
+        decide(entry.node, "a multiquery of " + std::to_string(answer.nodes.size()) + " nodes hidden last frame, with it: " + answered(passed) +
+                               ", all of them: nothing below it drawn");
+      }
     }
     return;
   }
   const Queued& entry = answer.nodes.front();
   QueryMemory::Node& at = state(entry.node);
+  decide(entry.node, answer.atEye         ? std::string("its box reaches the near plane: visible without a query")
+                     : answer.wasVisible  ? "visible last frame, so drawn without waiting; its query, for the next frame: " + answered(passed)
+                                          : "its query: " + answered(passed) + (isVisible ? "" : ", nothing below it drawn"));
   if (!isVisible) {
     ++at.framesHidden;
     return;
@@ -454,6 +510,7 @@ void Traversal::coherent(bool plusPlus) {
           }
         } else if (!leaf) {
           open(entry);  // visible last frame: opened without a query
+          decide(entry.node, "visible last frame: opened without a query");
         } else if (!plusPlus) {
           // A leaf visible last frame: asked again, for the next frame, and drawn at once
           // without waiting for the answer. The query goes first: after the leaf is drawn
@@ -465,6 +522,7 @@ void Traversal::coherent(bool plusPlus) {
         } else {
           pullUpVisibility(entry.node);  // chcpp: assumed visible this frame, drawn unasked
           open(entry);
+          decide(entry.node, "visible when last asked: assumed visible this frame and drawn, next asked in frame " + std::to_string(at.nextQuery));
         }
       }
     }
@@ -482,7 +540,7 @@ void Traversal::coherent(bool plusPlus) {
 }  // namespace
 
 VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
-                           std::unique_ptr<StageMemory>* memory, SimulatedGpu* gpu, Stats& stats) {
+                           std::unique_ptr<StageMemory>* memory, SimulatedGpu* gpu, Stats& stats, StageWitness* why) {
   PhaseTimer timer(stats, "culling: occlusion queries");
   // The memory of the walk, or of this frame alone; rebuilt for another scene or hierarchy.
   std::unique_ptr<StageMemory> ownMemory;
@@ -506,7 +564,7 @@ VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& ca
   device.setLatency({knobs.latency, knobs.latencyIn});
 
   const GpuCounts before = device.counts();
-  Traversal traversal(scene, camera, knobs, in, *remembered, device);
+  Traversal traversal(scene, camera, knobs, in, *remembered, device, why != nullptr);
   if (!remembered->hierarchy->nodes().empty()) {
     switch (knobs.strategy) {
       case QueryStrategy::stopAndWait: traversal.stopAndWait(); break;
@@ -516,6 +574,7 @@ VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& ca
     }
   }
   traversal.count(stats);
+  if (why) traversal.explain(*why);
   // What this stage asked of the GPU (a walk's GPU counts the whole frame).
   const GpuCounts& after = device.counts();
   stats.add("queries: stalls", after.stalls - before.stalls);

@@ -82,7 +82,10 @@ struct QueryMemory : StageMemory {
 // multiqueries", "queries: multiqueries re-asked", "queries: boxes at the eye",
 // "queries: objects drawn", and the GPU's work for it: "queries: boxes queried", "box
 // fragments tested", "box fragments passed", "triangles drawn", "fragments written".
+// `why`: hsr why's objects, for each what was last decided on the way down to it (its
+// query's count of passed fragments, a multiquery's, visible last frame, outside the view
+// volume) at its leaf or at the node above it where the walk stopped; null: not asked.
 VisibleSet cullWithQueries(const PreparedScene& scene, const CameraTransform& camera, const Knobs& knobs, const VisibleSet& in,
-                           std::unique_ptr<StageMemory>* memory, SimulatedGpu* gpu, Stats& stats);
+                           std::unique_ptr<StageMemory>* memory, SimulatedGpu* gpu, Stats& stats, StageWitness* why = nullptr);
 
 }  // namespace hsr::culling::occlusion
