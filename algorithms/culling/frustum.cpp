@@ -85,8 +85,11 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
   if (!bvh.empty()) stack.push_back({0, ViewVolume::kAllPlanes, 0});
   std::int64_t visited = 0;
   while (!stack.empty()) {
-    auto [index, mask, depth] = stack.back();
+    // (Not a structured binding: clang 14, the browser edition's, cannot capture one.)
+    const Visit visit = stack.back();
     stack.pop_back();
+    const std::uint32_t index = visit.node, depth = visit.depth;
+    std::uint32_t mask = visit.mask;
     ++visited;
     const BvhNode& node = bvh.nodes()[index];
     const dvec3 lo(node.bounds[0][0], node.bounds[0][1], node.bounds[0][2]);
