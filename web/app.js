@@ -271,6 +271,9 @@ async function render() {
     if (result.message) {
       $("message").textContent = asTheStudentNamesIt(result.message);
       $("status").textContent = "";
+      // Bad input leaves the last render shown, to be asked about still; a render that ran
+      // out of memory let it go, and with it what it showed.
+      if (!hsr.module.hasRender()) forgetShown();
       return result;
     }
     const { width, height } = result;
@@ -318,6 +321,19 @@ async function render() {
   } finally {
     $("render").disabled = false;
   }
+}
+
+// Nothing rendered to show: the images, the answer to why and the steps put away.
+function forgetShown() {
+  for (const canvas of document.querySelectorAll(".images canvas")) canvasOf(canvas.id, 1, 1);
+  Object.assign(against, { views: {} });
+  showAgainst(against.chosen);
+  $("whyBox").hidden = true;
+  showEdge(null);
+  for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
+  $("metrics").replaceChildren();
+  $("counters").replaceChildren();
+  putStepsAway();
 }
 
 // ---- Why a pixel came out as it did: hsr why's answer for the last render's pixel.
@@ -437,6 +453,7 @@ async function recordSteps() {
     frame.srcdoc = hsr.module.stepsPage(`${$("status").textContent}: its steps`, stepPictures.addresses);
     frame.hidden = false;
     await shown;
+    frame.contentWindow.focus();  // the arrow keys go to the steps at once
     $("stepsStatus").textContent = `${recorded.steps.length} steps`;
     return recorded;
   } finally {

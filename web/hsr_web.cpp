@@ -7,7 +7,8 @@
 //                         same registry `hsr list` prints: the page builds its controls
 //                         from it, so a new algorithm or knob needs no change to the page
 //   render(request)       one render: the images (colour, ids, depth) as views of the
-//                         module's memory, and the counters and times as JSON
+//                         module's memory, and the counters and times as JSON; after bad
+//                         input the render before stays (hasRender())
 //   compare()             that render against the exact reference: the metrics hsr
 //                         compare prints, as JSON, the error heat map, and the
 //                         reference's ids (the page toggles between them and the render's)
@@ -100,7 +101,7 @@ struct Shown {
   LineSet drawing;
   std::vector<std::uint8_t> error;  // RGBA: the reference dimmed, wrong pixels red, ambiguous blue
   PixelBuffer<std::uint32_t> referenceIds;  // the exact reference's visible triangle per pixel, as frame.ids
-  std::unique_ptr<StepRecorder> steps;      // its steps, from recordSteps() until stepsPage() is made
+  std::vector<Step> steps;                  // its steps, from recordSteps() until stepsPage() is made
   std::size_t stepsEvery = 0;               // their stride, which why() at a step records with again
 };
 Shown& shown() {
@@ -120,7 +121,6 @@ std::string outOfMemoryJson() { return messageJson(std::string(pipeline::kOutOfM
 std::string render(const emscripten::val& request) {
   const auto text = [&](const char* key) { return request[key].isUndefined() ? std::string() : request[key].as<std::string>(); };
   Shown& last = shown();
-  last = Shown();
   try {
     const AlgorithmEntry& algorithm = findAlgorithm(text("algorithm"));
     KnobSettings settings;
@@ -137,6 +137,9 @@ std::string render(const emscripten::val& request) {
     }
     pipeline::checkRenders(configuration, text("scene"), *prepared);
 
+    // Bad input stops above, and the last render stays, still shown and asked about; it
+    // is let go here, before this one takes its memory.
+    last = Shown();
     Stats stats;
     const auto start = std::chrono::steady_clock::now();
     pipeline::Rendered rendered;
@@ -254,27 +257,41 @@ const char* const kSourceRoot = "/hsr/src";
 // for stepPicture() and stepsPage(): {"steps": [{"width", "height", "caption"}...],
 // "files": the suite's files the steps were recorded in, for the page to write under
 // kSourceRoot}, or the command line's line of error.
+// The most memory the steps' pictures may take in the page: a run of every triangle of a
+// large render is refused as soon as it would pass this, not when the page runs out.
+constexpr std::size_t kMostStepBytes = std::size_t(512) << 20;
+
 std::string recordSteps(const std::string& everyAsTyped) {
   Shown& last = shown();
   if (!last.algorithm) return messageJson("nothing rendered to record the steps of");
-  last.steps.reset();
+  last.steps.clear();
   if (const std::string error = stepCountError(everyAsTyped); !everyAsTyped.empty() && !error.empty()) return messageJson("--every: " + error);
   const std::size_t every = everyAsTyped.empty() ? 0 : std::stoul(everyAsTyped);
   try {
-    auto recorder = std::make_unique<StepRecorder>(every);
+    std::vector<Step> kept;
+    std::size_t bytes = 0;
+    StepRecorder recorder(every, [&](const Step& step) {
+      bytes += step.picture.pixels.size();
+      if (bytes > kMostStepBytes)
+        throw InputError((every > 0 ? "--every " + std::to_string(every) + ": the steps" : std::string("the steps, about 40 of each run,")) + " would take more than " +
+                         std::to_string(kMostStepBytes >> 20) + " MiB of the page's memory (" + std::to_string(kept.size()) + " recorded so far, " +
+                         std::to_string(step.picture.width) + "x" + std::to_string(step.picture.height) +
+                         " pixels each); expected a larger --every, or a smaller --size");
+      kept.push_back(step);
+    });
     Stats stats;
-    const pipeline::Rendered rendered = pipeline::render(*last.prepared, last.configuration, 1, stats, nullptr, recorder.get());
-    pipeline::recordFinishedStep(*recorder, rendered.frame, last.algorithm->kind == AlgorithmKind::line);
+    const pipeline::Rendered rendered = pipeline::render(*last.prepared, last.configuration, 1, stats, nullptr, &recorder);
+    pipeline::recordFinishedStep(recorder, rendered.frame, last.algorithm->kind == AlgorithmKind::line);
     std::string json = "{\"steps\":[";
     std::set<std::string> files;
-    for (const Step& step : recorder->steps()) {
+    for (const Step& step : kept) {
       json += std::string(json.back() == '[' ? "" : ",") + "{\"width\":" + std::to_string(step.picture.width) +
               ",\"height\":" + std::to_string(step.picture.height) + ",\"caption\":" + jsonString(step.caption) + "}";
       files.insert(sourceExcerpt(step.where, kSourceRoot).file);
     }
     json += "],\"files\":[";
     for (const std::string& file : files) json += std::string(json.back() == '[' ? "" : ",") + jsonString(file);
-    last.steps = std::move(recorder);
+    last.steps = std::move(kept);
     last.stepsEvery = every;
     return json + "]}";
   } catch (const InputError& error) {
@@ -285,8 +302,7 @@ std::string recordSteps(const std::string& everyAsTyped) {
 }
 
 emscripten::val stepPicture(int index) {
-  const std::vector<Step>& steps = shown().steps->steps();
-  const Image& picture = steps.at(std::size_t(index)).picture;
+  const Image& picture = shown().steps.at(std::size_t(index)).picture;
   return emscripten::val(emscripten::typed_memory_view(picture.pixels.size(), picture.pixels.data()));
 }
 
@@ -295,17 +311,21 @@ emscripten::val stepPicture(int index) {
 // that answers why at a pixel. The steps are let go: the page holds their pictures now.
 std::string stepsPage(const std::string& title, const emscripten::val& pictures) {
   Shown& last = shown();
-  if (!last.steps) return messageJson("no steps recorded to show");
+  if (last.steps.empty()) return messageJson("no steps recorded to show");
   std::vector<std::pair<std::string, SourceLocation>> recorded;
   std::vector<std::string> addresses;
-  for (const Step& step : last.steps->steps()) {
+  for (const Step& step : last.steps) {
     addresses.push_back(pictures[addresses.size()].as<std::string>());
     recorded.emplace_back(step.caption, step.where);
   }
-  last.steps.reset();
+  last.steps.clear();
   const PixelQuestion question{last.algorithm->answersWhy ? "hsr why" : "", last.prepared->width(), last.prepared->height(), true};
   return hsr::stepsPage(title, pageSteps(recorded, addresses, kSourceRoot), question);
 }
+
+// Whether a render is kept to be compared, asked about and stepped through: after bad
+// input the one before stays; a render that ran out of memory let it go.
+bool hasRender() { return shown().algorithm != nullptr; }
 
 // The last render's images, as views of the module's memory (valid until the next render).
 emscripten::val colorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.color.size(), shown().frame.color.data())); }
@@ -333,6 +353,7 @@ std::string identity(int width, int randomScenes, const std::string& only) {
 EMSCRIPTEN_BINDINGS(hsr) {
   emscripten::function("registry", &hsr::web::registry);
   emscripten::function("render", &hsr::web::render);
+  emscripten::function("hasRender", &hsr::web::hasRender);
   emscripten::function("compare", &hsr::web::compare);
   emscripten::function("why", &hsr::web::why);
   emscripten::function("colorPixels", &hsr::web::colorPixels);

@@ -191,7 +191,7 @@ class Roberts {
         steps_->record("step 2: edge " + std::to_string(e + 1) + " of " + std::to_string(lines.edges.size()) + " (green) " +
                            (selfHidden[e] ? "lies between two back faces: hidden by its own body (step 1)"
                                           : "tested in full against " + std::to_string(bodyTests_ - testsBefore) +
-                                                " bodies the minimax boxes could not rule out"),
+                                                (bodyTests_ - testsBefore == 1 ? " body" : " bodies") + " the minimax boxes could not rule out"),
                        lineStepPicture(lines, std::span(&e, 1), LineStyle::hidden));
     }
     stats_.add("edge-body pairs", pairs_);

@@ -216,10 +216,14 @@ Image graphvizPicture(const std::string& graph) {
   const std::filesystem::path drawn = std::filesystem::temp_directory_path() / ("hsr-diagram-" + std::to_string(::getpid()) + ".png");
   const std::string command = "dot -Tpng -Gdpi=72 -o '" + drawn.string() + "' 2>/dev/null";
   FILE* pipe = popen(command.c_str(), "w");
-  // Where no program can be started at all (the browser edition), these steps are the command line's.
-  if (!pipe)
-    throw InputError("steps: cannot start Graphviz's dot, which draws this algorithm's diagram (" + std::string(std::strerror(errno)) +
-                     "); the browser edition starts no program: record these steps with hsr render --steps");
+  // Where no program can be started at all (the browser edition), the step is recorded
+  // with a picture that says where the diagram is drawn; the other steps are as anywhere.
+  if (!pipe) {
+    Image notice = blankPicture(520, 64, {250, 246, 225});
+    drawLabel(notice, 12, 26, "This diagram is drawn by Graphviz's dot, which this build cannot start", {0, 0, 0});
+    drawLabel(notice, 12, 48, "(" + std::string(std::strerror(errno)) + "): hsr render --steps draws it.", {0, 0, 0});
+    return notice;
+  }
   std::fwrite(graph.data(), 1, graph.size(), pipe);
   const int status = pclose(pipe);
   Image picture;

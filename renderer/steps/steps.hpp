@@ -103,7 +103,8 @@ void drawWireframe(Image& picture, const PreparedScene& scene, const CameraTrans
                    Rgb color);
 // A legend in the top left corner: one coloured line sample and its text per entry.
 void drawLegend(Image& picture, const std::vector<std::pair<Rgb, std::string>>& entries);
-// A Graphviz diagram (the text of a `dot` graph) drawn by Graphviz's dot program.
+// A Graphviz diagram (the text of a `dot` graph) drawn by Graphviz's dot program; where
+// no program can be started (the browser edition), a picture saying so.
 Image graphvizPicture(const std::string& graph);
 // The picture with a white band above it holding the caption, for an animation frame.
 Image withCaption(const Image& picture, const std::string& caption);

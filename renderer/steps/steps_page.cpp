@@ -160,18 +160,24 @@ function scaleOf(picture) {
   const box = picture.getBoundingClientRect();
   return [(box.width - 2 * picture.clientLeft) / picture.naturalWidth, (box.height - 2 * picture.clientTop) / picture.naturalHeight];
 }
+// Whether a picture shows the render: panels of its size side by side, from the top (a
+// legend may follow below). Another picture (a depth map, a diagram) asks nothing.
+function showsRender(picture) {
+  const panels = (picture.naturalWidth + question.panelGap) / (question.width + question.panelGap);
+  return Number.isInteger(panels) && picture.naturalHeight >= question.height;
+}
 function pixelUnder(event) {
   const picture = $("picture"), box = picture.getBoundingClientRect(), [sx, sy] = scaleOf(picture);
   const px = Math.floor((event.clientX - box.left - picture.clientLeft) / sx);
   const py = Math.floor((event.clientY - box.top - picture.clientTop) / sy);
-  const panels = (picture.naturalWidth + question.panelGap) / (question.width + question.panelGap);
-  const x = Number.isInteger(panels) ? px % (question.width + question.panelGap) : px;
-  if (px < 0 || py < 0 || x >= question.width || py >= question.height) return null;
+  const x = px % (question.width + question.panelGap);
+  if (!showsRender(picture) || px < 0 || py < 0 || x >= question.width || py >= question.height) return null;
   return [x, py, px, py];
 }
 function placeRing() {
   const picture = $("picture"), ring = $("ring");
-  ring.hidden = !asked || !picture.naturalWidth;
+  picture.classList.toggle("asks", Boolean(question.command) && picture.naturalWidth > 0 && showsRender(picture));
+  ring.hidden = !asked || !picture.naturalWidth || !showsRender(picture);
   if (ring.hidden) return;
   const [sx, sy] = scaleOf(picture);
   ring.style.left = `${picture.offsetLeft + picture.clientLeft + (asked[2] + 0.5) * sx}px`;
@@ -201,7 +207,6 @@ window.addEventListener("message", (event) => {
   if (asked && answer.x === asked[0] && answer.y === asked[1] && answer.step === current + 1) $("whyAnswer").textContent = answer.text;
 });
 if (question.command) {
-  $("picture").classList.add("asks");
   $("picture").onclick = (event) => {
     const pixel = pixelUnder(event);
     if (!pixel) return;
@@ -222,7 +227,10 @@ if (question.command) {
 }
 window.addEventListener("resize", placeRing);
 document.addEventListener("keydown", (event) => {
-  if (event.target === slider || event.altKey || event.ctrlKey || event.metaKey) return;
+  // The slider takes the arrow keys, and a focused button space and enter, themselves.
+  if (event.target === slider || (event.target.tagName === "BUTTON" && (event.key === " " || event.key === "Enter")) || event.altKey ||
+      event.ctrlKey || event.metaKey)
+    return;
   const moves = { ArrowLeft: current - 1, ArrowRight: current + 1, Home: 0, End: steps.length - 1 };
   if (event.key in moves) { stop(); show(moves[event.key]); event.preventDefault(); }
   else if (event.key === " ") { play(); event.preventDefault(); }

@@ -164,6 +164,22 @@ try {
     check(second.command === expectedCommand, `a click on the second panel asks about the same pixel (${second.command})`);
   }
 
+  // A picture that is not the render (the occluder map of the occlusion stage's first
+  // step) asks nothing: no pixel, no ring; on the render's pictures the clicks ask again.
+  const occlusion = recordSteps("steps-occlusion", ["scenes/city.toml", "--size", "320x180", "--cull", "occlusion"]);
+  await page.goto(`${occlusion.url}#step=1`);
+  await page.waitForFunction(() => document.getElementById("picture").complete);
+  const map = await page.$eval("#picture", (picture) => [picture.naturalWidth, picture.naturalHeight, picture.classList.contains("asks")]);
+  await clickPicture(100, 60);
+  const onMap = await page.evaluate(() => ({ hidden: document.getElementById("pixel").hidden, ring: !document.getElementById("ring").hidden }));
+  await page.keyboard.press("End");
+  await page.waitForFunction(() => document.getElementById("picture").complete);
+  await clickPicture(100, 60);
+  const onImage = await page.evaluate(() => ({ hidden: document.getElementById("pixel").hidden, title: document.getElementById("pixelTitle").textContent }));
+  check(occlusion.captions[0].includes("map") && map[0] !== 320 && !map[2] && onMap.hidden && !onMap.ring &&
+        !onImage.hidden && onImage.title === `Pixel (100, 60) up to step ${occlusion.captions.length}`,
+        `a click on the occluder map (${map[0]} x ${map[1]}, step 1) asks nothing; on the finished image it asks (${onImage.title})`);
+
   // Names with markup: shown as written, the page still working.
   const folder = join(out, "steps-markup-scene");
   mkdirSync(folder, { recursive: true });
