@@ -148,7 +148,7 @@ void witnessMissedScene(std::vector<PixelEvent>& history) {
 }
 
 void witnessLeaf(std::uint32_t node, std::uint32_t triangles, double entry, const PixelRay& pixel, std::vector<PixelEvent>& history) {
-  witnessNode(node, "entered a leaf: its " + std::to_string(triangles) + (triangles == 1 ? " triangle" : " triangles") + " tested",
+  witnessNode(node, "a leaf: its " + std::to_string(triangles) + (triangles == 1 ? " triangle" : " triangles") + " tested",
               "its box begins at " + where(entry, pixel), history);
 }
 
@@ -158,9 +158,11 @@ void witnessChildren(std::uint32_t node, double entry, std::uint32_t nearer, dou
     return "node " + std::to_string(which) +
            (whichEntry == kMiss ? " missed (or begins beyond the nearest hit)" : " entered at " + where(whichEntry, pixel));
   };
-  const std::string outcome = nearerEntry == kMiss    ? "entered: both children missed"
-                              : fartherEntry == kMiss ? "entered: one child to go on with"
-                                                      : "entered: the nearer child first, the farther stacked";
+  // What the traversal decides at an inner node it entered: the outcome names it first, so
+  // that a question about the node (the browser edition's quiz) asks which of the three.
+  const std::string outcome = nearerEntry == kMiss    ? "both children missed"
+                              : fartherEntry == kMiss ? "one child to go on with"
+                                                      : "the nearer child first, the farther stacked";
   witnessNode(node, outcome, "its box begins at " + where(entry, pixel) + "; " + child(nearer, nearerEntry) + ", " + child(farther, fartherEntry),
               history);
 }

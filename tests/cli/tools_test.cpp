@@ -489,10 +489,10 @@ TEST(Why, FollowsRayCastingsNodesAndTrianglesTested) {
   for (const char* path : {" --knob path=packet", " --knob path=scalar"}) {
     const test::CommandResult bvh = test::runCommand(why + path);
     ASSERT_EQ(bvh.exitCode, 0) << bvh.output;
-    for (const char* line : {"pixel (160, 120): 6 events", "1. BVH node 0: entered: the nearer child first, the farther stacked",
-                             "2. BVH node 1: entered a leaf: its 2 triangles tested", "3. triangle 0 of \"front\": nearest so far",
+    for (const char* line : {"pixel (160, 120): 6 events", "1. BVH node 0: the nearer child first, the farther stacked",
+                             "2. BVH node 1: a leaf: its 2 triangles tested", "3. triangle 0 of \"front\": nearest so far",
                              "(of one sign: inside); distance 3.03086711", "4. triangle 1 of \"front\": missed: the ray passes outside an edge",
-                             "5. BVH node 2: entered a leaf: its 1 triangle tested",
+                             "5. BVH node 2: a leaf: its 1 triangle tested",
                              "6. triangle 2 of \"back\": met, but beyond the nearest hit so far", "=> agrees with the exact reference"})
       EXPECT_NE(bvh.output.find(line), std::string::npos) << path << ": " << line << "\n" << bvh.output;
   }

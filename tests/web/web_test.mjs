@@ -149,6 +149,7 @@ try {
   const quizShown = () => page.evaluate(() => ({
     progress: document.getElementById("quizProgress").textContent,
     prompt: document.getElementById("quizQuestion").textContent,
+    context: document.getElementById("quizContext").textContent,
     choices: [...document.querySelectorAll("#quizChoices button")].map((button) => button.textContent),
     feedback: document.getElementById("quizFeedback").textContent,
     whyHidden: document.getElementById("why").hidden,
@@ -275,7 +276,27 @@ try {
   const painterQuiz = await takeQuiz(paintedPixel, 1, 0);
   check(painterQuiz.problems.length === 0 && painterQuiz.asked === 2 && (await text("#quizProgress")) === "2 of 2 predicted right; the whole answer:",
         `and the last piece, forced, is not asked (${painterQuiz.problems.join("; ") || painterQuiz.asked + " asked"})`);
+  // Ray casting: at a BVH node the quiz asks what the traversal decides there.
+  await page.selectOption("#algorithm", "ray_casting");
+  await page.selectOption("#scene", "counters.toml");
+  await page.fill("#size", "320x180");
+  result = await renderWith();
+  await clickPixel("color", 160, 90);
+  let nodeQuestion = null;
+  for (let asked = 0; asked < 10 && !nodeQuestion; ++asked) {
+    const now = await quizShown();
+    if (now.choices.length === 0) break;
+    if (now.prompt.startsWith("What does the loop decide")) nodeQuestion = now;
+    else {
+      await page.click("#quizChoices button:nth-child(1)");
+      await page.click("#quizNext");
+    }
+  }
+  check(nodeQuestion !== null && nodeQuestion.context.includes("BVH node") && nodeQuestion.choices.includes("the nearer child first, the farther stacked") &&
+        !nodeQuestion.choices.some((choice) => choice.startsWith("entered")),
+        `ray casting's quiz asks what the traversal decides at a BVH node (${nodeQuestion ? nodeQuestion.choices.join(" | ") : "not asked"})`);
   await page.uncheck("#quizMode");
+  await page.fill("#size", "");
   await page.dblclick("#color");
 
   // A line drawing answers along the edge nearest the pixel clicked, as hsr why --edge
