@@ -284,10 +284,7 @@ async function render() {
     drawDepth(width, height, hsr.module.depthPixels());
     Object.assign(against, { width, height, views: {} });
     showAgainst(against.chosen);
-    $("whyBox").hidden = true;  // it answered for the render before
-    putStepsAway();
-    showEdge(null);
-    for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
+    putAnswersAway();  // they answered for the render before
     showMetrics(result, null);
     $("note").textContent = result.kind === "line" ? "A line drawing: its colour is the drawing, and it has no ids or depth." : "";
     hsr.lineDrawing = result.kind === "line";
@@ -323,17 +320,23 @@ async function render() {
   }
 }
 
-// Nothing rendered to show: the images, the answer to why and the steps put away.
+// What was asked of a render put away: the answer to why, its edge and ringed pixel, and
+// the steps.
+function putAnswersAway() {
+  $("whyBox").hidden = true;
+  showEdge(null);
+  for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
+  putStepsAway();
+}
+
+// Nothing rendered to show: the images and metrics, and what was asked of them, put away.
 function forgetShown() {
   for (const canvas of document.querySelectorAll(".images canvas")) canvasOf(canvas.id, 1, 1);
   Object.assign(against, { views: {} });
   showAgainst(against.chosen);
-  $("whyBox").hidden = true;
-  showEdge(null);
-  for (const marker of document.querySelectorAll(".marker")) marker.hidden = true;
   $("metrics").replaceChildren();
   $("counters").replaceChildren();
-  putStepsAway();
+  putAnswersAway();
 }
 
 // ---- Why a pixel came out as it did: hsr why's answer for the last render's pixel.

@@ -33,6 +33,7 @@
 #include <new>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -270,14 +271,14 @@ std::string recordSteps(const std::string& everyAsTyped) {
   try {
     std::vector<Step> kept;
     std::size_t bytes = 0;
-    StepRecorder recorder(every, [&](const Step& step) {
+    StepRecorder recorder(every, [&](Step step) {
       bytes += step.picture.pixels.size();
       if (bytes > kMostStepBytes)
         throw InputError((every > 0 ? "--every " + std::to_string(every) + ": the steps" : std::string("the steps, about 40 of each run,")) + " would take more than " +
                          std::to_string(kMostStepBytes >> 20) + " MiB of the page's memory (" + std::to_string(kept.size()) + " recorded so far, " +
                          std::to_string(step.picture.width) + "x" + std::to_string(step.picture.height) +
                          " pixels each); expected a larger --every, or a smaller --size");
-      kept.push_back(step);
+      kept.push_back(std::move(step));
     });
     Stats stats;
     const pipeline::Rendered rendered = pipeline::render(*last.prepared, last.configuration, 1, stats, nullptr, &recorder);
@@ -287,7 +288,7 @@ std::string recordSteps(const std::string& everyAsTyped) {
     for (const Step& step : kept) {
       json += std::string(json.back() == '[' ? "" : ",") + "{\"width\":" + std::to_string(step.picture.width) +
               ",\"height\":" + std::to_string(step.picture.height) + ",\"caption\":" + jsonString(step.caption) + "}";
-      files.insert(sourceExcerpt(step.where, kSourceRoot).file);
+      files.insert(recordedIn(step.where));
     }
     json += "],\"files\":[";
     for (const std::string& file : files) json += std::string(json.back() == '[' ? "" : ",") + jsonString(file);

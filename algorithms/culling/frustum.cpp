@@ -58,6 +58,13 @@ namespace {
 // The planes by FrustumSide, as hsr why names them.
 constexpr std::array<const char*, 6> kSideNames = {"left", "right", "bottom", "top", "near", "far"};
 
+// hsr why: what a bound's test found, `bound` naming it ("its bounding sphere"): the
+// plane it lies wholly outside, or none.
+std::string boundFinding(const std::string& bound, bool mayBeInside, int outsideOf) {
+  return bound + (mayBeInside ? " lies outside none of the view volume's planes (near a corner it may still miss the volume: the test is conservative)"
+                              : " lies wholly outside the view volume's " + std::string(kSideNames[std::size_t(outsideOf)]) + " plane");
+}
+
 // The instances under a BVH node, for hsr why: each(instance) for every one of them.
 template <typename Each>
 void forEachInstanceUnder(const Bvh& bvh, std::uint32_t index, Each&& each) {
@@ -101,8 +108,7 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
       if (why) [[unlikely]]
         forEachInstanceUnder(bvh, index, [&](std::uint32_t instance) {
           if (std::string* found = why->about(instance))
-            *found = "the box of a BVH node holding it (depth " + std::to_string(depth) + ") lies wholly outside the view volume's " +
-                     kSideNames[std::size_t(outsideOf)] + " plane";
+            *found = boundFinding("the box of a BVH node holding it (depth " + std::to_string(depth) + ")", false, outsideOf);
         });
       continue;
     }
@@ -119,10 +125,7 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
       const Aabb& box = scene.instances()[instance].box;
       keep[instance] = volume.boxMayBeInside(box, objectMask, &outsideOf);
       if (std::string* found = why ? why->about(instance) : nullptr) [[unlikely]]
-        *found = keep[instance] ? "its box, reached in a BVH leaf at depth " + std::to_string(depth) +
-                                      ", lies outside none of the view volume's planes (near a corner it may still miss the volume: the test is conservative)"
-                                : "its box, reached in a BVH leaf at depth " + std::to_string(depth) + ", lies wholly outside the view volume's " +
-                                      kSideNames[std::size_t(outsideOf)] + " plane";
+        *found = boundFinding("its box, reached in a BVH leaf at depth " + std::to_string(depth) + ",", keep[instance] != 0, outsideOf);
     }
   }
   stats.add("frustum: bvh nodes visited", visited);
@@ -145,8 +148,7 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, Varia
       const bool kept = mayBeVisible(scene.instances()[instance]);
       objectsCulled += !kept;
       if (std::string* found = why ? why->about(instance) : nullptr) [[unlikely]]
-        *found = std::string("its ") + bound + (kept ? " lies outside none of the view volume's planes (near a corner it may still miss the volume: the test is conservative)"
-                                                      : " lies wholly outside the view volume's " + std::string(kSideNames[std::size_t(outsideOf)]) + " plane");
+        *found = boundFinding(std::string("its ") + bound, kept, outsideOf);
       return kept;
     });
   };

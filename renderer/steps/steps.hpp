@@ -39,7 +39,7 @@ class StepRecorder {
   // Where the steps go: kept in steps() (no sink), or handed one by one to a sink that
   // writes them as they come (StepsWriter), so that no frame stays in memory longer
   // than it takes to write it.
-  using Sink = std::function<void(const Step&)>;
+  using Sink = std::function<void(Step)>;  // the step is the sink's to keep (moved in)
   // A repeated step (a triangle drawn, a row cast, a curve added) is recorded every
   // `every`th time; 0 chooses, for each run of repeated steps, the stride that records
   // about kFramesPerRun of them.

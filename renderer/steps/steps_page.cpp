@@ -250,10 +250,15 @@ window.addEventListener("hashchange", () => {
 
 }  // namespace
 
-SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::path& sourceRoot) {
-  SourceExcerpt excerpt;
-  excerpt.function = where.function_name();
-  excerpt.line = excerpt.firstLine = excerpt.markedTo = int(where.line());  // until the file is read
+namespace {
+
+// The file a call was recorded in: relative to the suite's folder where it is in it
+// (`inSuite`), else as the compiler named it, made canonical.
+struct RecordedFile {
+  std::filesystem::path path;
+  bool inSuite = false;
+};
+RecordedFile recordedFile(const SourceLocation& where) {
   // A header may have been included through a build folder's view of the sources
   // (cmake/layers.cmake), whose links lead back to the suite's own file.
   std::error_code error;
@@ -270,9 +275,21 @@ SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::
       break;
     }
   const bool inSuite = !relative.empty() && *relative.begin() != "..";
-  excerpt.file = (inSuite ? relative : path).generic_string();
+  return {inSuite ? relative : path, inSuite};
+}
 
-  std::ifstream in(inSuite ? (sourceRoot.empty() ? std::filesystem::path(HSR_SOURCE_DIR) : sourceRoot) / relative : path);
+}  // namespace
+
+std::string recordedIn(const SourceLocation& where) { return recordedFile(where).path.generic_string(); }
+
+SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::path& sourceRoot) {
+  SourceExcerpt excerpt;
+  excerpt.function = where.function_name();
+  excerpt.line = excerpt.firstLine = excerpt.markedTo = int(where.line());  // until the file is read
+  const RecordedFile file = recordedFile(where);
+  excerpt.file = file.path.generic_string();
+
+  std::ifstream in(file.inSuite ? (sourceRoot.empty() ? std::filesystem::path(HSR_SOURCE_DIR) : sourceRoot) / file.path : file.path);
   std::vector<std::string> lines;
   for (std::string text; std::getline(in, text);) {
     if (!text.empty() && text.back() == '\r') text.pop_back();  // a file saved with Windows' line ends

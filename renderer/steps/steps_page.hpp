@@ -33,6 +33,8 @@ struct SourceExcerpt {
 // lines more. The suite's files are read from `sourceRoot`: the folder the program was
 // built from by default.
 SourceExcerpt sourceExcerpt(const SourceLocation& where, const std::filesystem::path& sourceRoot = "");
+// The file alone, as the excerpt names it (nothing is read).
+std::string recordedIn(const SourceLocation& where);
 inline constexpr int kLinesBefore = 24;
 
 struct PageStep {

@@ -67,6 +67,9 @@ struct InFlight {
   bool atEye = false;  // a box at the eye: visible, no query asked
 };
 
+// hsr why's word for a node whose box reaches the near plane, visible without a query.
+constexpr const char* kVisibleAtEye = "its box reaches the near plane: visible without a query";
+
 class Traversal {
  public:
   // `watched`: hsr why asks what was decided about some objects (explain()).
@@ -103,11 +106,13 @@ class Traversal {
   std::vector<Aabb> boundingBoxes(std::uint32_t index) const;
   std::vector<Aabb> queryBoxes(std::uint32_t index) const;
   bool visible(std::int64_t passed) const { return passed > knobs_.threshold; }
-  // hsr why: what a query's answer said, and what was decided at a node (watched only).
+  // hsr why: what a query's answer said, and what was decided at a node: `say()` (the
+  // text) is called only when watched, so that a render not asked about builds none.
   std::string answered(std::int64_t passed) const;
-  void decide(std::uint32_t index, std::string what) {
+  template <typename Say>
+  void decide(std::uint32_t index, Say&& say) {
     if (!decided_.empty()) [[unlikely]]
-      decided_[index] = std::move(what);
+      decided_[index] = say();
   }
   void drawLeaf(std::uint32_t index);
   // A leaf drawn, an inner node's children queued.
@@ -172,7 +177,7 @@ Queued Traversal::nearest() {
 bool Traversal::inView(Queued& entry) {
   ++visited_;
   const bool mayBeInside = volume_.boxMayBeInside(node(entry.node).box, entry.planes);
-  if (!mayBeInside) decide(entry.node, "its box lies wholly outside the view volume: not queried, nothing below it drawn");
+  if (!mayBeInside) decide(entry.node, [] { return "its box lies wholly outside the view volume: not queried, nothing below it drawn"; });
   return mayBeInside;
 }
 
@@ -316,14 +321,14 @@ void Traversal::stopAndWait() {
     bool isVisible = true;
     if (atEye(node(entry.node).box)) {
       ++atEye_;
-      decide(entry.node, "its box reaches the near plane: visible without a query");
+      decide(entry.node, [] { return kVisibleAtEye; });
     } else {
       const PendingQuery query = gpu_.query(queryBoxes(entry.node));
       ++issued_, ++nodesQueried_;
       const std::int64_t passed = gpu_.answer(query);  // the CPU waits here, every time
       isVisible = visible(passed);
       answeredVisible_ += isVisible;
-      decide(entry.node, "its query, waited for: " + answered(passed) + (isVisible ? "" : ", nothing below it drawn"));
+      decide(entry.node, [&] { return "its query, waited for: " + answered(passed) + (isVisible ? "" : ", nothing below it drawn"); });
     }
     if (isVisible) open(entry);
   }
@@ -361,12 +366,14 @@ void Traversal::delayed() {
       at.answered = true;
       at.inFlight.pop_front();
     }
-    decide(leaf, !at.answered ? std::string("no answer about it in yet: drawn")
-                              : "its newest answer in, from an earlier frame's query: " + answered(newest) + (at.visible ? ", drawn" : ", not drawn"));
+    decide(leaf, [&] {
+      return !at.answered ? std::string("no answer about it in yet: drawn")
+                          : "its newest answer in, from an earlier frame's query: " + answered(newest) + (at.visible ? ", drawn" : ", not drawn");
+    });
     if (atEye(node(leaf).box)) {
       ++atEye_;
       at.inFlight.clear(), at.answered = false;  // drawn until the eye leaves its box
-      decide(leaf, "its box reaches the near plane: drawn without a query");
+      decide(leaf, [] { return "its box reaches the near plane: drawn without a query"; });
     } else {
       at.inFlight.push_back(gpu_.query(queryBoxes(leaf)));
       ++issued_, ++nodesQueried_;
@@ -408,17 +415,21 @@ void Traversal::handleAnswer(const InFlight& answer) {
     } else {
       for (const Queued& entry : answer.nodes) {
         ++state(entry.node).framesHidden;
-        decide(entry.node, "a multiquery of " + std::to_string(answer.nodes.size()) + " nodes hidden last frame, with it: " + answered(passed) +
-                               ", all of them: nothing below it drawn");
+        decide(entry.node, [&] {
+          return "a multiquery of " + std::to_string(answer.nodes.size()) + " nodes hidden last frame, with it: " + answered(passed) +
+                 ", all of them: nothing below it drawn";
+        });
       }
     }
     return;
   }
   const Queued& entry = answer.nodes.front();
   QueryMemory::Node& at = state(entry.node);
-  decide(entry.node, answer.atEye         ? std::string("its box reaches the near plane: visible without a query")
-                     : answer.wasVisible  ? "visible last frame, so drawn without waiting; its query, for the next frame: " + answered(passed)
-                                          : "its query: " + answered(passed) + (isVisible ? "" : ", nothing below it drawn"));
+  decide(entry.node, [&] {
+    return answer.atEye        ? std::string(kVisibleAtEye)
+           : answer.wasVisible ? "visible last frame, so drawn without waiting; its query, for the next frame: " + answered(passed)
+                               : "its query: " + answered(passed) + (isVisible ? "" : ", nothing below it drawn");
+  });
   if (!isVisible) {
     ++at.framesHidden;
     return;
@@ -510,7 +521,7 @@ void Traversal::coherent(bool plusPlus) {
           }
         } else if (!leaf) {
           open(entry);  // visible last frame: opened without a query
-          decide(entry.node, "visible last frame: opened without a query");
+          decide(entry.node, [] { return "visible last frame: opened without a query"; });
         } else if (!plusPlus) {
           // A leaf visible last frame: asked again, for the next frame, and drawn at once
           // without waiting for the answer. The query goes first: after the leaf is drawn
@@ -522,7 +533,7 @@ void Traversal::coherent(bool plusPlus) {
         } else {
           pullUpVisibility(entry.node);  // chcpp: assumed visible this frame, drawn unasked
           open(entry);
-          decide(entry.node, "visible when last asked: assumed visible this frame and drawn, next asked in frame " + std::to_string(at.nextQuery));
+          decide(entry.node, [&] { return "visible when last asked: assumed visible this frame and drawn, next asked in frame " + std::to_string(at.nextQuery); });
         }
       }
     }
