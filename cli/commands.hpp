@@ -4,7 +4,9 @@
 // exits 2), and writes its output files only when all of them are complete.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,22 @@ struct DiffOptions {
   double tolerance = 0;  // per channel, in [0, 1]
 };
 int diff(const DiffOptions& options);
+
+// hsr grade: a submission's answers to an exercise, judged against the exact reference
+// (grading/grading.hpp). Exit 0 when every test passed, 1 when one failed, 2 on bad input.
+struct GradeOptions {
+  std::filesystem::path submission;
+  int exercise = 0;
+  bool hidden = false;                  // the hidden tests too, generated from the seed
+  std::optional<std::uint64_t> seed;    // default 1
+  std::string test;                     // that test alone (a command grader's test per command)
+  std::filesystem::path out = "out/grade";
+  double buildSeconds = 600, runSeconds = 20;
+  int threads = 0;
+  bool selfCheck = false;          // the grader graded: the catalogue of bugs and the correct variants
+  std::vector<std::string> bugs;   // --self-check: these bugs alone
+};
+int grade(const GradeOptions& options);
 
 // hsr pvs build: a level's potentially visible sets, cached beside it
 // (algorithms/culling/cells/pvs.hpp).

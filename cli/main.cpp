@@ -149,6 +149,20 @@ int main(int argc, char** argv) {
   diffCommand->add_option("--heatmap", diff.heatmap, "write where they differ (.png)");
   diffCommand->add_option("--tolerance", diff.tolerance, "largest allowed channel difference, in [0, 1]")->capture_default_str();
 
+  hsr::cli::GradeOptions grade;
+  CLI::App* gradeCommand = app.add_subcommand("grade", "judge a submission's answers to an exercise against the exact reference");
+  gradeCommand->add_option("submission", grade.submission, "the submission's folder: a Makefile (make build, make run file=SCENE out=IDS.png) and implemented.txt");
+  gradeCommand->add_option("--exercise", grade.exercise, "the coursework exercise: 1, 3, 4, 7, 8, 14, 15 or 16");
+  gradeCommand->add_flag("--self-check", grade.selfCheck, "grade the catalogue of classic bugs (each must fail) and the correct variants (each must pass)");
+  gradeCommand->add_option("--bugs", grade.bugs, "--self-check: these bugs of course/bugs/catalogue.toml alone")->delimiter(',');
+  gradeCommand->add_flag("--hidden", grade.hidden, "the hidden tests too: new scenes of every hard case, made from --seed");
+  gradeCommand->add_option("--seed", grade.seed, "the hidden tests' seed (default 1): the same seed, the same scenes");
+  gradeCommand->add_option("--test", grade.test, "run this test alone (exit 0 passed, 1 failed): a command grader's test");
+  gradeCommand->add_option("--out", grade.out, "folder for feedback.html, results.json, junit.xml and the scenes")->capture_default_str();
+  gradeCommand->add_option("--build-limit", grade.buildSeconds, "seconds make build may take")->check(CLI::Range(1.0, 86400.0))->capture_default_str();
+  gradeCommand->add_option("--run-limit", grade.runSeconds, "seconds each make run may take")->check(CLI::Range(0.1, 86400.0))->capture_default_str();
+  threadsOption(gradeCommand, grade.threads);
+
   CLI::App* listCommand = app.add_subcommand("list", "list algorithms, their knobs, and the shipped scenes");
 
   hsr::cli::PvsOptions pvs;
@@ -188,6 +202,7 @@ int main(int argc, char** argv) {
     if (*sweepCommand) return reported(hsr::studies::sweep(sweep), sweep.out, "hsr sweep");
     if (*studyCommand) return reported(hsr::studies::study(study), hsr::studies::studyFolder(study), "hsr study " + study.name);
     if (*diffCommand) return hsr::cli::diff(diff);
+    if (*gradeCommand) return hsr::cli::grade(grade);
     if (*listCommand) return hsr::cli::list();
     if (*pvsCommand) return hsr::cli::pvsBuild(pvs);
   } catch (const hsr::InputError& error) {

@@ -1,4 +1,5 @@
 #include "renderer/scene/scene.hpp"
+#include "renderer/scene/triangle_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -502,7 +503,10 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& where)
   return {static_cast<int>(width), static_cast<int>(height)};
 }
 
-Scene loadScene(const std::filesystem::path& file) { return parseScene(readInputFile(file, "scene"), file); }
+Scene loadScene(const std::filesystem::path& file) {
+  if (file.extension() == ".tri") return parseTriangleFile(readInputFile(file, "triangle"), file);
+  return parseScene(readInputFile(file, "scene"), file);
+}
 
 Scene parseScene(const std::string& text, const std::filesystem::path& file) {
   const toml::table root = parseTomlText(text, file.string());

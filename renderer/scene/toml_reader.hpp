@@ -23,7 +23,7 @@ namespace hsr {
 // A TOML integer's value, or nothing for any other node. (toml++'s value<int64_t>() also
 // converts floats, through a cast that is undefined behaviour for 4e80: the scene fuzz
 // target found it.)
-std::optional<std::int64_t> integerOf(const toml::node& node) {
+inline std::optional<std::int64_t> integerOf(const toml::node& node) {
   if (const auto* integer = node.as_integer()) return integer->get();
   return std::nullopt;
 }

@@ -1,0 +1,305 @@
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "algorithms/registry.hpp"
+#include "grading/grading.hpp"
+#include "grading/judge.hpp"
+#include "grading/run.hpp"
+#include "pipeline/pipeline.hpp"
+#include "renderer/image/image_library.hpp"
+#include "renderer/reference/reference.hpp"
+#include "renderer/scene/triangle_file.hpp"
+#include "renderer/util/error.hpp"
+
+namespace hsr::grading {
+namespace {
+
+// The shipped scenes every exercise's visible tests hand over, by the hard case each tests.
+struct ShippedTest {
+  const char* skill;
+  const char* scene;  // under scenes/
+};
+constexpr ShippedTest kShipped[] = {
+    {"visibility", "cube.toml"},
+    {"visibility", "counters.toml"},
+    {"visibility", "bunny.toml"},
+    {"orthographic", "hard/aligned_edges.toml"},
+    {"orthographic", "ripple.toml"},
+    {"fill-rule", "hard/shared_edges.toml"},
+    {"fill-rule", "hard/watertight.toml"},
+    {"near-plane", "hard/near_plane.toml"},
+    {"near-plane", "hard/huge_triangle.toml"},
+    {"far-from-origin", "hard/large_coordinates.toml"},
+    {"far-from-origin", "hard/far_layers.toml"},
+    {"coplanar", "hard/coplanar.toml"},
+    {"coplanar", "hard/many_coplanar.toml"},
+    {"slivers", "hard/slivers.toml"},
+    {"slivers", "hard/near_degenerate_splits.toml"},
+    {"interpenetrating", "hard/interpenetrating.toml"},
+    {"interpenetrating", "hard/box_junctions.toml"},
+    {"cycles", "hard/cyclic_overlap.toml"},
+};
+// The visible sample of each generator's scenes, and how many hidden ones each makes.
+constexpr std::uint64_t kSampleSeed = 2026;
+constexpr int kHiddenPerGenerator = 2;
+// The widest image a shipped scene is graded at (its own size up to this).
+constexpr int kMostWidth = 400;
+
+std::uint64_t mixed(std::uint64_t seed, std::uint64_t generator, std::uint64_t k) {
+  return seed * 0x9E3779B97F4A7C15ull ^ (generator << 32) ^ k;
+}
+
+std::string fileNameOf(const std::string& testName) {
+  std::string name = testName;
+  std::replace(name.begin(), name.end(), '/', '-');
+  return name;
+}
+
+std::string withCommas(std::int64_t n) {
+  const std::string digits = std::to_string(n);
+  std::string grouped;
+  for (std::size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0 && digits[k - 1] != '-') grouped += ',';
+    grouped += digits[k];
+  }
+  return grouped;
+}
+
+std::vector<std::string> claimedSkills(const std::filesystem::path& submission, std::string& notes) {
+  std::ifstream file(submission / "implemented.txt");
+  std::vector<std::string> claimed;
+  if (!file) {
+    notes += "implemented.txt is missing: it lists the hard cases your program handles, one per line.\n";
+    return claimed;
+  }
+  const std::vector<std::string> known = skills();
+  for (std::string line; std::getline(file, line);) {
+    if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words(line);
+    for (std::string word; words >> word;) {
+      if (std::find(known.begin(), known.end(), word) == known.end())
+        notes += "implemented.txt: '" + word + "' is not a hard case this grader tests (it knows: " + [&] {
+          std::string list;
+          for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+          return list;
+        }() + ").\n";
+      else
+        claimed.push_back(word);
+    }
+  }
+  return claimed;
+}
+
+// The submission's image as ids, or why it cannot be read as one.
+std::string readIds(const std::filesystem::path& file, int width, int height, std::vector<std::uint32_t>& ids) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) return "wrote no image at " + file.filename().string();
+  Image image;
+  if (const std::string problem = imageLibrary().readImage(file.string(), image); !problem.empty())
+    return "its image cannot be read as a PNG: " + problem;
+  if (image.width != width || image.height != height)
+    return "its image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + "; expected " + std::to_string(width) +
+           "x" + std::to_string(height) + ", the scene's size line";
+  if (image.channels < 3) return "its image has " + std::to_string(image.channels) + " channel(s); expected RGB, the id in 24 bits";
+  ids.resize(std::size_t(width) * std::size_t(height));
+  for (std::size_t p = 0; p < ids.size(); ++p) {
+    const std::uint8_t* rgb = &image.pixels[p * std::size_t(image.channels)];
+    ids[p] = std::uint32_t(rgb[0]) << 16 | std::uint32_t(rgb[1]) << 8 | rgb[2];
+  }
+  return "";
+}
+
+// The feedback for a judged image: how much is wrong, each cause with its first pixel
+// and what to check, and how to see the shipped algorithm decide that pixel.
+std::string feedbackOf(const Judgement& judgement, const std::string& algorithm, const std::string& sceneFile, const std::string& heatMap) {
+  char line[256];
+  std::snprintf(line, sizeof line, "%s of %s pixels wrong (%s certified ties, %s differences within the tolerances)\n",
+                withCommas(judgement.wrong).c_str(), withCommas(judgement.pixels).c_str(), withCommas(judgement.ties).c_str(),
+                withCommas(judgement.excused).c_str());
+  std::string text = line;
+  if (judgement.passed()) return text;
+  for (const CauseCount& cause : judgement.causes) {
+    text += "- " + std::string(causeName(cause.cause)) + ": " + withCommas(cause.pixels) + " pixels, first at " + cause.first + "\n";
+    text += "  " + std::string(causeAdvice(cause.cause)) + "\n";
+  }
+  const std::string& first = judgement.causes.front().first;
+  if (const std::size_t open = first.find('('), close = first.find(')'); open != std::string::npos && close != std::string::npos) {
+    std::string pixel = first.substr(open + 1, close - open - 1);
+    pixel.erase(std::remove(pixel.begin(), pixel.end(), ' '), pixel.end());
+    text += "How the shipped algorithm decides that pixel: hsr why " + sceneFile + " --pixel " + pixel + " " + algorithm + "\n";
+  }
+  text += "Where: " + heatMap + " (wrong pixels red, differences within the tolerances yellow, certified ties blue)\n";
+  return text;
+}
+
+}  // namespace
+
+const std::vector<Exercise>& gradedExercises() {
+  static const std::vector<Exercise> exercises = {
+      {1, "the z-buffer", "zbuffer"},
+      {3, "ray casting", "ray_casting", false},
+      {4, "the painter's algorithm", "painter"},
+      {7, "culling: backface and frustum", "zbuffer", true, {"visibility", "orthographic", "far-from-origin"}, "backface,frustum"},
+      {8, "occlusion culling", "zbuffer", true, {}, "occlusion"},
+      {14, "Warnock's area subdivision", "warnock"},
+      {15, "Watkins' scanline", "watkins"},
+      {16, "Weiler-Atherton", "weiler_atherton"},
+  };
+  return exercises;
+}
+
+const Exercise& findExercise(int number) {
+  std::string graded;
+  for (const Exercise& exercise : gradedExercises()) {
+    if (exercise.number == number) return exercise;
+    graded += (graded.empty() ? "" : ", ") + std::to_string(exercise.number);
+  }
+  throw InputError("--exercise " + std::to_string(number) + ": not graded automatically; expected one of " + graded +
+                   " (the visible-surface exercises)");
+}
+
+std::vector<std::string> skills() {
+  std::vector<std::string> names;
+  for (const SceneGenerator& generator : sceneGenerators()) names.push_back(generator.skill);
+  return names;
+}
+
+Scene GradingTest::scene() const {
+  if (generator) return generator->make(seed);
+  Scene scene = loadScene(file);
+  if (scene.width > width) {
+    scene.height = std::max(1, int(std::int64_t(scene.height) * width / scene.width));
+    scene.width = width;
+  }
+  return scene;
+}
+
+std::vector<GradingTest> testsOf(const Exercise& exercise, std::optional<std::uint64_t> hiddenSeed) {
+  std::vector<GradingTest> tests;
+  for (const ShippedTest& shipped : kShipped) {
+    GradingTest test;
+    test.name = "visible/" + std::filesystem::path(shipped.scene).replace_extension().string();
+    test.skill = shipped.skill;
+    test.file = std::filesystem::path(HSR_SCENES_DIR) / shipped.scene;
+    test.width = kMostWidth;
+    tests.push_back(test);
+  }
+  const std::vector<SceneGenerator>& generators = sceneGenerators();
+  for (std::size_t g = 0; g < generators.size(); ++g) {
+    GradingTest sample;
+    sample.name = "visible/" + std::string(generators[g].skill) + "-sample";
+    sample.skill = generators[g].skill;
+    sample.generator = &generators[g];
+    sample.seed = mixed(kSampleSeed, g, 0);
+    tests.push_back(sample);
+    for (int k = 1; hiddenSeed && k <= kHiddenPerGenerator; ++k) {
+      GradingTest hidden = sample;
+      hidden.name = "hidden/" + std::string(generators[g].skill) + "-" + std::to_string(k);
+      hidden.hidden = true;
+      hidden.seed = mixed(*hiddenSeed, g, std::uint64_t(k));
+      tests.push_back(hidden);
+    }
+  }
+  const std::vector<std::string>& only = exercise.skills;
+  if (!only.empty())
+    std::erase_if(tests, [&](const GradingTest& test) { return std::find(only.begin(), only.end(), test.skill) == only.end(); });
+  return tests;
+}
+
+std::vector<std::string> skillsOf(const Exercise& exercise) { return exercise.skills.empty() ? skills() : exercise.skills; }
+
+double GradeReport::score() const {
+  double sum = 0;
+  for (const TestResult& test : tests) sum += test.score;
+  return sum;
+}
+double GradeReport::maxScore() const {
+  double sum = 0;
+  for (const TestResult& test : tests) sum += test.maxScore;
+  return sum;
+}
+int GradeReport::failed() const {
+  return int(std::count_if(tests.begin(), tests.end(), [](const TestResult& test) { return !test.passed; }));
+}
+
+GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
+  const Exercise& exercise = findExercise(options.exercise);
+  std::error_code error;
+  if (!std::filesystem::is_directory(options.submission, error))
+    throw InputError(options.submission.string() + ": no such folder; expected a submission's folder, with its Makefile");
+  std::vector<GradingTest> tests = testsOf(exercise, options.hiddenSeed);
+  if (!options.onlyTest.empty()) {
+    std::erase_if(tests, [&](const GradingTest& test) { return test.name != options.onlyTest; });
+    if (tests.empty()) {
+      std::string names;
+      for (const GradingTest& test : testsOf(exercise, options.hiddenSeed)) names += (names.empty() ? "" : ", ") + test.name;
+      throw InputError("--test " + options.onlyTest + ": no such test; expected one of " + names);
+    }
+  }
+  const std::filesystem::path submission = std::filesystem::absolute(options.submission);
+  std::filesystem::create_directories(options.work);
+  const std::filesystem::path work = std::filesystem::absolute(options.work);
+
+  GradeReport report;
+  report.exercise = exercise.number;
+  report.submission = options.submission.string();
+  report.seed = options.hiddenSeed;
+  std::string notes;
+  report.claimed = claimedSkills(submission, notes);
+  const RunResult build = runCommand({"make", "build"}, submission, work / "build.log", options.limits.buildSeconds);
+  report.built = build.succeeded();
+  report.buildOutput = notes + "make build " + build.outcome() + "\n" + build.output;
+
+  for (const GradingTest& test : tests) {
+    TestResult result;
+    result.name = test.name;
+    result.skill = test.skill;
+    result.hidden = test.hidden;
+    const std::string file = fileNameOf(test.name);
+    if (!report.built) {
+      result.output = "the submission did not build: make build " + build.outcome() + "\n" + build.output;
+    } else if (std::find(report.claimed.begin(), report.claimed.end(), test.skill) == report.claimed.end()) {
+      result.output = "not run: implemented.txt does not claim " + test.skill + "\n";
+    } else {
+      const Scene scene = test.scene();
+      PreparedScene prepared(scene);
+      prepared.setSize(scene.width, scene.height);
+      const std::filesystem::path sceneFile = work / (file + ".tri"), image = work / (file + ".png");
+      std::ofstream(sceneFile, std::ios::binary) << triangleFileText(prepared);
+      std::filesystem::remove(image, error);
+      const RunResult run = runCommand({"make", "-s", "run", "file=" + sceneFile.string(), "out=" + image.string()}, submission,
+                                       work / (file + ".log"), options.limits.runSeconds);
+      result.seconds = run.seconds;
+      std::vector<std::uint32_t> ids;
+      if (!run.succeeded()) {
+        result.output = "make run " + run.outcome() + " on " + sceneFile.filename().string() + "\n" + run.output;
+      } else if (const std::string problem = readIds(image, scene.width, scene.height, ids); !problem.empty()) {
+        result.output = "make run " + problem + "\n";
+      } else {
+        Stats stats;
+        const ReferenceImage reference = traceReference(prepared, options.threads, stats);
+        // A fill-rule scene's every pixel is decided by the conventions: the z-buffer's answer.
+        const Frame conventions = test.pixelExact() && exercise.fillRule
+                                      ? pipeline::render(prepared, pipeline::configurationOf(findAlgorithm("zbuffer"), {}), options.threads, stats).frame
+                                      : Frame();
+        const Judgement judgement = judge(prepared, reference, ids, conventions.ids);
+        result.passed = judgement.passed();
+        result.score = result.passed ? result.maxScore : 0;
+        const std::string heatMap = file + "-where.png";
+        const std::string shipped = std::string("--algo ") + exercise.algorithm + (*exercise.cull ? std::string(" --cull ") + exercise.cull : "");
+        result.output = feedbackOf(judgement, shipped, sceneFile.string(), heatMap);
+        if (!result.passed) {
+          result.heatMap = heatMap;
+          heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});
+        }
+      }
+    }
+    report.tests.push_back(std::move(result));
+  }
+  return report;
+}
+
+}  // namespace hsr::grading

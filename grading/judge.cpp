@@ -1,0 +1,203 @@
+#include "grading/judge.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include "renderer/reference/agreement.hpp"
+#include "renderer/util/stats.hpp"
+
+namespace hsr::grading {
+namespace {
+
+struct CauseText {
+  const char* name;
+  const char* advice;
+};
+constexpr std::array<CauseText, kCauses> kCauseTexts = {{
+    {"nothing drawn",
+     "every pixel is background: is the depth buffer cleared to the far end (the largest value the test can "
+     "beat), and does a fragment pass when it is nearer than the stored depth?"},
+    {"crack on a shared edge (fill rule)",
+     "a pixel center exactly on an edge two triangles share belongs to exactly one of them: the top-left rule "
+     "(conventions.hpp). A strict test on every edge leaves such centers to neither"},
+    {"shared edge given to the wrong triangle (fill rule)",
+     "a center on an edge belongs to the triangle for which that edge is a top or a left edge; testing >= 0 on "
+     "every edge gives it to both, and the depth test then keeps whichever came first"},
+    {"near-plane clipping",
+     "a triangle that crosses the near plane must be clipped there (d >= near) before it is projected: a corner "
+     "behind the eye projects through w < 0 to the wrong side of the image"},
+    {"a farther surface won",
+     "the triangle shown is met farther along the pixel's ray than the nearest one: check the depth test's "
+     "direction, the depth's sign, and that depth is interpolated (1/w under perspective) before it is compared"},
+    {"coverage: the triangle does not hold the pixel center",
+     "the triangle shown does not cover this pixel's center: check the edge functions and the bounding box"},
+    {"sampled at a pixel corner, not its center",
+     "pixel (i, j) is sampled at (i + 0.5, j + 0.5): the triangle shown covers the pixel's corner, not its center"},
+    {"a triangle is missing",
+     "nothing is shown where a triangle covers the center and is nearest: check the bounding box's clamping to "
+     "the image, the edge functions' signs for both windings, and degenerate-looking slivers"},
+    {"beyond the far plane", "the triangle shown is met beyond the far plane there: clip at d <= far too"},
+    {"not a triangle of the scene", "the id is larger than the scene's triangle count (24-bit RGB, R the high byte)"},
+}};
+
+// Whether any corner of the triangle lies in front of the near plane (d < near).
+bool crossesNearPlane(const PreparedScene& scene, std::uint32_t triangle) {
+  const CameraTransform& camera = scene.camera();
+  for (const std::uint32_t vertex : scene.triangles()[triangle])
+    if (camera.clipFromWorld(scene.positions()[vertex]).d < camera.camera().near) return true;
+  return false;
+}
+
+// Eight points 1/1024 pixel around a center: whether something covers all around it.
+constexpr double kNear = 1.0 / 1024;
+const std::array<dvec2, 8> kAround = {dvec2(kNear, 0),     dvec2(kNear, kNear),   dvec2(0, kNear),   dvec2(-kNear, kNear),
+                                      dvec2(-kNear, 0),    dvec2(-kNear, -kNear), dvec2(0, -kNear),  dvec2(kNear, -kNear)};
+
+std::string distanceText(double distance) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%.9g", distance);
+  return text;
+}
+
+}  // namespace
+
+const char* causeName(Cause cause) { return kCauseTexts[std::size_t(cause)].name; }
+const char* causeAdvice(Cause cause) { return kCauseTexts[std::size_t(cause)].advice; }
+
+Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
+                std::span<const std::uint32_t> conventions) {
+  const CameraTransform& camera = scene.camera();
+  const int width = scene.width();
+  const std::uint32_t triangles = std::uint32_t(scene.triangleCount());
+  const DepthTie depthTie = float32DepthTie(camera);
+  Stats stats;
+  const SurfaceReference rays(scene, stats);
+
+  Judgement result;
+  result.pixels = std::int64_t(shown.size());
+  result.heatMap.resize(shown.size() * 4);
+  std::array<CauseCount, kCauses> found;
+  for (int c = 0; c < kCauses; ++c) found[std::size_t(c)].cause = Cause(c);
+  bool anythingShown = false;
+
+  for (std::size_t p = 0; p < shown.size(); ++p) {
+    const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
+    const std::uint32_t mine = shown[p], exact = reference.frame.ids[p];
+    anythingShown |= mine != 0;
+    const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5);
+    const auto metAt = [&](std::uint32_t id) { return id == 0 ? NAN : hitDistance(scene, camera, id - 1, ray); };
+    // The verdict: right, excused, or wrong with a cause.
+    enum class Verdict { right, tie, excused, wrong } verdict = Verdict::right;
+    Cause cause = Cause::missing;
+    const dvec2 center(x + 0.5, y + 0.5);
+    const double near = camera.camera().near, far = camera.camera().far;
+    // The cause of a wrong pixel, from what its ray meets.
+    const auto causeOf = [&](bool onAnEdge) {
+      const double mineAt = metAt(mine), exactAt = metAt(exact);
+      if (onAnEdge) return mine == 0 ? Cause::crack : Cause::doubleCovered;
+      if (mine == 0) return exact != 0 && crossesNearPlane(scene, exact - 1) ? Cause::nearPlane : Cause::missing;
+      if (crossesNearPlane(scene, mine - 1) && !(mineAt >= near)) return Cause::nearPlane;
+      if (std::isnan(mineAt))
+        return std::isfinite(hitDistance(scene, camera, mine - 1, camera.rayThroughPixel(x, y))) ? Cause::cornerSampled
+                                                                                               : Cause::notCovering;
+      if (mineAt > far) return Cause::beyondFar;
+      if (exact != 0 && mineAt > exactAt) return Cause::fartherWon;
+      return Cause::notCovering;
+    };
+    if (reference.ambiguous[p]) ++result.ties;
+    if (mine > triangles) {
+      verdict = Verdict::wrong;
+      cause = Cause::unknownId;
+    } else if (!conventions.empty()) {
+      // A fill-rule scene: the rasterizer places every vertex exactly, so every pixel,
+      // a center on an edge too, has one right answer: the conventions'.
+      if (mine == conventions[p]) {
+        verdict = reference.ambiguous[p] ? Verdict::tie : Verdict::right;
+      } else {
+        verdict = Verdict::wrong;
+        cause = causeOf(reference.ambiguous[p] || nearestProjectedEdge(scene, camera, {mine, conventions[p], exact}, center) < kSnapDistance);
+      }
+    } else if (reference.ambiguous[p]) {
+      std::vector<std::uint32_t> tied;
+      SurfaceReference::Counters counters;
+      rays.trace(camera, ray, counters, &tied);
+      const double tiedAt = metAt(tied.front()), mineAt = metAt(mine);
+      if (std::find(tied.begin(), tied.end(), mine) != tied.end()) {
+        verdict = Verdict::tie;
+      } else if (mine == 0) {
+        // Background at a tie. On the scene's outline (a vertex or edge on the
+        // silhouette), the fill rule may give the center to none of the tied triangles.
+        // Inside it, the center lies on an edge the tied triangles share, which snaps
+        // alike in both: background there is a crack, or coplanar faces both dropped.
+        const bool enclosed = std::all_of(kAround.begin(), kAround.end(), [&](const dvec2& offset) {
+          return rays.trace(camera, camera.rayThroughPixel(center.x + offset.x, center.y + offset.y), counters).id != 0;
+        });
+        if (!enclosed) {
+          verdict = Verdict::excused;
+        } else {
+          verdict = Verdict::wrong;
+          cause = nearestProjectedEdge(scene, camera, {tied.front()}, center) < kSnapDistance ? Cause::crack : Cause::missing;
+        }
+      } else if (std::any_of(tied.begin(), tied.end(),
+                             [&](std::uint32_t id) { return nearestProjectedEdge(scene, camera, {mine, id}, center) < kSnapDistance; }) ||
+                 (std::isfinite(mineAt) && depthTie(mineAt, tiedAt))) {
+        verdict = Verdict::excused;
+      } else {
+        verdict = Verdict::wrong;
+        cause = causeOf(false);
+      }
+    } else if (mine != exact) {
+      const double mineAt = metAt(mine), exactAt = metAt(exact);
+      if (nearestProjectedEdge(scene, camera, {mine, exact}, center) < kSnapDistance ||
+          (std::isfinite(mineAt) && std::isfinite(exactAt) && depthTie(mineAt, exactAt))) {
+        verdict = Verdict::excused;
+      } else {
+        verdict = Verdict::wrong;
+        cause = causeOf(false);
+      }
+    }
+
+    std::uint8_t* heat = &result.heatMap[4 * p];
+    const auto grey = std::uint8_t(exact == 0 ? 24 : 70 + (exact * 37) % 90);
+    heat[0] = heat[1] = heat[2] = grey;
+    heat[3] = 255;
+    if (verdict == Verdict::tie) {
+      heat[2] = 220;
+    } else if (verdict == Verdict::excused) {
+      ++result.excused;
+      heat[0] = heat[1] = 200;
+      heat[2] = 40;
+    } else if (verdict == Verdict::wrong) {
+      ++result.wrong;
+      heat[0] = 255;
+      heat[1] = heat[2] = 0;
+      CauseCount& count = found[std::size_t(cause)];
+      if (count.pixels++ == 0) {
+        const double mineAt = metAt(mine <= triangles ? mine : 0), exactAt = metAt(exact);
+        count.first = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): shows " +
+                      (mine == 0 ? std::string("background") : "triangle " + std::to_string(mine)) +
+                      (mine != 0 && mine <= triangles
+                           ? (std::isfinite(mineAt) ? " (met at distance " + distanceText(mineAt) + ")" : " (not met by the pixel's ray)")
+                           : "") +
+                      "; exactly, " +
+                      (exact == 0 ? std::string("background") : "triangle " + std::to_string(exact) + " at distance " + distanceText(exactAt)) +
+                      (reference.ambiguous[p] ? " (a certified tie)" : "");
+      }
+    }
+  }
+  const bool referenceShowsSomething =
+      std::any_of(reference.frame.ids.begin(), reference.frame.ids.end(), [](std::uint32_t id) { return id != 0; });
+  if (!anythingShown && referenceShowsSomething) {
+    found = {};
+    found[std::size_t(Cause::nothingDrawn)] = {Cause::nothingDrawn, result.wrong, "every pixel is background"};
+  }
+  for (const CauseCount& count : found)
+    if (count.pixels > 0) result.causes.push_back(count);
+  std::stable_sort(result.causes.begin(), result.causes.end(),
+                   [](const CauseCount& a, const CauseCount& b) { return a.pixels > b.pixels; });
+  return result;
+}
+
+}  // namespace hsr::grading

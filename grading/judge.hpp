@@ -1,0 +1,67 @@
+// Judging one id image against the exact reference, pixel by pixel, and saying in words
+// what is wrong where it is.
+//
+// A pixel is right when it shows the reference's triangle; where the reference certifies
+// a tie (two or more triangles exactly nearest: coplanar faces, a center on a shared
+// edge), when it shows any of the tied triangles. Two more differences are excused, the
+// tolerances every shipped algorithm is held to (renderer/reference/agreement.hpp): a
+// center within 1/256 pixel of either triangle's outline (where rounding the vertices
+// may decide), and two surfaces whose depths there lie within two float32 steps.
+// Everything else is wrong, and each wrong pixel gets its cause, a broken convention
+// named where one explains it (Cause).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "renderer/reference/reference.hpp"
+#include "renderer/scene/prepare.hpp"
+
+namespace hsr::grading {
+
+// Why a pixel is wrong, from what the submission shows there and what the pixel's ray
+// meets. In the order feedback lists them.
+enum class Cause {
+  nothingDrawn,      // the whole image is background: nothing passed the depth test
+  crack,             // background at a center on an edge two triangles share: the fill rule
+  doubleCovered,     // a shared edge's center shows the triangle the fill rule gives away
+  nearPlane,         // shows or misses a triangle that crosses the near plane
+  fartherWon,        // shows a triangle the ray meets farther than the nearest
+  notCovering,       // shows a triangle whose outline does not hold the pixel's center
+  cornerSampled,     // ...that would, sampled at the pixel's corner: not its center
+  missing,           // background where a triangle is nearest
+  beyondFar,         // shows a triangle met beyond the far plane
+  unknownId,         // an id that names no triangle of the scene
+};
+inline constexpr int kCauses = 10;
+const char* causeName(Cause cause);
+// What a student should check for it, in a sentence.
+const char* causeAdvice(Cause cause);
+
+struct CauseCount {
+  Cause cause;
+  std::int64_t pixels = 0;
+  std::string first;  // "pixel (x, y): shows triangle 12 at distance 3.2; the nearest is triangle 9 at 3.1"
+};
+
+struct Judgement {
+  std::int64_t pixels = 0, wrong = 0;
+  std::int64_t ties = 0;         // pixels the reference certifies tied
+  std::int64_t excused = 0;      // differences within snapping or depth resolution
+  std::vector<CauseCount> causes;  // the causes found, most pixels first
+  std::vector<std::uint8_t> heatMap;  // RGBA: the reference grey, wrong red, excused yellow, ties blue
+  bool passed() const { return wrong == 0; }
+};
+
+// `shown`: the submission's ids (triangle id, 0 background), width x height of the
+// scene. `conventions`: the answer the suite's rasterization conventions give (the
+// z-buffer's ids), demanded exactly at every pixel the reference certifies tied, on
+// scenes whose vertices the rasterizer places exactly (the fill-rule tests); empty on
+// other scenes.
+Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
+                std::span<const std::uint32_t> conventions);
+
+}  // namespace hsr::grading
