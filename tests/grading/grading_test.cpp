@@ -1,0 +1,239 @@
+// hsr grade: the triangle file, the generated scenes, the judge's causes, the reports,
+// and submissions that fail in every way a program can (grading/).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "grading/grading.hpp"
+#include "grading/judge.hpp"
+#include "json_reader.hpp"
+#include "renderer/scene/triangle_file.hpp"
+#include "renderer/util/error.hpp"
+#include "test_support.hpp"
+
+namespace hsr {
+namespace {
+
+// The scene prepared at a size (a PreparedScene stays where it was made: it keeps its BVHs' once-flags).
+std::unique_ptr<PreparedScene> preparedAt(const Scene& scene, int width, int height) {
+  auto prepared = std::make_unique<PreparedScene>(scene);
+  prepared->setSize(width, height);
+  return prepared;
+}
+
+// The reference and the z-buffer see a scene read back from its triangle file exactly
+// as they saw the scene itself: a program handed the file is judged on the same scene.
+TEST(TriangleFile, ReadBackGivesTheSameReferenceAndTheSameZBuffer) {
+  for (const char* name : {"scenes/cube.toml", "scenes/hard/near_plane.toml", "scenes/hard/large_coordinates.toml"}) {
+    const Scene scene = loadScene(test::sourcePath(name));
+    const auto prepared = preparedAt(scene, 160, 120);
+    const PreparedScene& original = *prepared;
+    const Scene readBack = parseTriangleFile(triangleFileText(original), "read-back.tri");
+    const auto preparedAgain = preparedAt(readBack, 160, 120);
+    const PreparedScene& again = *preparedAgain;
+    EXPECT_EQ(again.triangleCount(), original.triangleCount()) << name;
+    Stats stats;
+    EXPECT_EQ(traceReference(again, 1, stats).frame.ids, traceReference(original, 1, stats).frame.ids) << name;
+    EXPECT_EQ(test::renderZBuffer(again).ids, test::renderZBuffer(original).ids) << name;
+  }
+}
+
+TEST(TriangleFile, BadInputNamesTheLineAndWhatWasExpected) {
+  const Scene cube = loadScene(test::sourcePath("scenes/cube.toml"));
+  const std::string good = triangleFileText(*preparedAt(cube, 16, 12));
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const struct {
+    std::string text, expected;
+  } cases[] = {
+      {"hsr-triangles 2\n", "bad.tri:1: expected the first line 'hsr-triangles 1'"},
+      {replaced("size 16 12", "size 16"), "bad.tri:3: size: 1 numbers; expected 2"},
+      {replaced("size 16 12", "size 16 1e999"), "bad.tri:3: size '1e999': expected a number from 1 to 16384"},
+      {replaced("size 16 12", "size 16.5 12"), "bad.tri:3: size: expected two whole numbers"},
+      {replaced("near ", "nearer "), "bad.tri:9: 'nearer': expected size, projection, eye"},
+      {replaced("far 1000", "far 0.01"), "far must be greater than near"},
+      {replaced("triangles 12", "triangles 13"), "triangles: 12 triangle lines; expected 13"},
+      {good + "1 2 3\n", "a line after the last triangle; expected the end of the file"},
+      {replaced("projection perspective", "projection fisheye"), "bad.tri:4: projection: expected perspective or orthographic"},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parseTriangleFile(text, "bad.tri");
+      ADD_FAILURE() << "accepted: " << expected;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+    }
+  }
+}
+
+// The same seed makes the same scene, bit for bit (its triangle file's text); another
+// seed another; and every generator's scene shows something.
+TEST(GeneratedScenes, TheSameSeedMakesTheSameSceneAndEveryOneShowsSomething) {
+  for (const grading::SceneGenerator& generator : grading::sceneGenerators()) {
+    const Scene first = generator.make(42), again = generator.make(42), other = generator.make(43);
+    const auto a = preparedAt(first, first.width, first.height);
+    EXPECT_EQ(triangleFileText(*a), triangleFileText(*preparedAt(again, again.width, again.height))) << generator.skill;
+    EXPECT_NE(triangleFileText(*a), triangleFileText(*preparedAt(other, other.width, other.height))) << generator.skill;
+    Stats stats;
+    const ReferenceImage reference = traceReference(*a, 1, stats);
+    const auto shown = std::count_if(reference.frame.ids.begin(), reference.frame.ids.end(), [](std::uint32_t id) { return id != 0; });
+    EXPECT_GT(shown, std::int64_t(reference.frame.ids.size() / 20)) << generator.skill;
+  }
+}
+
+std::vector<grading::Cause> causesOf(const grading::Judgement& judgement) {
+  std::vector<grading::Cause> causes;
+  for (const grading::CauseCount& count : judgement.causes) causes.push_back(count.cause);
+  return causes;
+}
+
+// Each broken convention is named: nothing drawn, a farther surface won (no depth test),
+// a crack on a shared edge, an id that is no triangle; a right answer passes.
+TEST(Judge, NamesWhatIsWrong) {
+  const Scene scene = loadScene(test::sourcePath("scenes/counters.toml"));
+  const auto preparedScene = preparedAt(scene, 160, 90);
+  const PreparedScene& prepared = *preparedScene;
+  Stats stats;
+  const ReferenceImage reference = traceReference(prepared, 1, stats);
+  const Frame right = test::renderZBuffer(prepared);
+  EXPECT_TRUE(grading::judge(prepared, reference, right.ids, {}).passed());
+
+  const std::vector<std::uint32_t> nothing(right.ids.size(), 0);
+  EXPECT_EQ(causesOf(grading::judge(prepared, reference, nothing, {})), std::vector{grading::Cause::nothingDrawn});
+
+  Stats noTest;
+  const Frame lastDrawn = test::render(prepared, zbuffer::Knobs{.depthTest = false}, 1, noTest);
+  const grading::Judgement overdrawn = grading::judge(prepared, reference, lastDrawn.ids, {});
+  ASSERT_FALSE(overdrawn.passed());
+  EXPECT_EQ(overdrawn.causes.front().cause, grading::Cause::fartherWon);
+  EXPECT_NE(overdrawn.causes.front().first.find("met at distance"), std::string::npos);
+
+  std::vector<std::uint32_t> unknown(right.ids.begin(), right.ids.end());
+  unknown[100] = std::uint32_t(prepared.triangleCount()) + 1;
+  EXPECT_EQ(causesOf(grading::judge(prepared, reference, unknown, {})), std::vector{grading::Cause::unknownId});
+}
+
+// On a fill-rule scene every pixel has the conventions' answer: background at a center
+// on a shared edge is a crack, and the later of two coplanar triangles a broken tie.
+TEST(Judge, DemandsTheFillRuleAndTheTieRuleOnPixelExactScenes) {
+  const grading::SceneGenerator& fillRule = grading::sceneGenerators()[2];
+  ASSERT_TRUE(fillRule.pixelExact);
+  const Scene scene = fillRule.make(7);
+  const auto preparedScene = preparedAt(scene, scene.width, scene.height);
+  const PreparedScene& prepared = *preparedScene;
+  Stats stats;
+  const ReferenceImage reference = traceReference(prepared, 1, stats);
+  const Frame conventions = test::renderZBuffer(prepared);
+  EXPECT_TRUE(grading::judge(prepared, reference, conventions.ids, conventions.ids).passed());
+  std::vector<std::uint32_t> cracked(conventions.ids.begin(), conventions.ids.end());
+  std::size_t tie = 0;
+  while (!reference.ambiguous[tie] || conventions.ids[tie] == 0) ++tie;
+  cracked[tie] = 0;
+  const grading::Judgement judgement = grading::judge(prepared, reference, cracked, conventions.ids);
+  EXPECT_EQ(judgement.wrong, 1);
+  EXPECT_EQ(causesOf(judgement), std::vector{grading::Cause::crack});
+}
+
+// A submission folder with this Makefile and implemented.txt claiming every hard case.
+std::filesystem::path submission(const std::string& name, const std::string& makefile) {
+  const std::filesystem::path folder = test::outputPath("grading") / name;
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Makefile") << makefile;
+  std::ofstream claims(folder / "implemented.txt");
+  for (const std::string& skill : grading::skills()) claims << skill << "\n";
+  return folder;
+}
+
+grading::GradeReport graded(const std::filesystem::path& folder, const std::string& test = "visible/cube", double runSeconds = 20) {
+  grading::GradeOptions options;
+  options.submission = folder;
+  options.exercise = 1;
+  options.onlyTest = test;
+  options.work = folder / "work";
+  options.limits.runSeconds = runSeconds;
+  std::vector<grading::HeatMap> heatMaps;
+  return grading::grade(options, heatMaps);
+}
+
+std::string hsrRun(const std::string& options) {
+  return std::string("build:\n\ttrue\nrun:\n\t") + HSR_BINARY + " render $(file) " + options +
+         " --threads 1 --ids $(out) -o $(out).color.png\n";
+}
+
+// A program that fails in any way fails the test with the reason, and the grader goes on.
+TEST(Grade, ASubmissionThatFailsFailsItsTestWithTheReason) {
+  const struct {
+    const char* name;
+    std::string makefile;
+    const char* reason;
+  } cases[] = {
+      {"no-build", "build:\n\texit 3\nrun:\n\ttrue\n", "the submission did not build: make build exited with 2"},
+      {"crashes", "build:\n\ttrue\nrun:\n\tsh -c 'kill -SEGV $$$$'\n", "make run exited with 2"},
+      {"no-image", "build:\n\ttrue\nrun:\n\ttrue\n", "make run wrote no image at visible-cube.png"},
+      {"not-png", "build:\n\ttrue\nrun:\n\techo hello > $(out)\n", "make run its image cannot be read as a PNG"},
+      {"wrong-size", hsrRun("--size 32x24"), "make run its image is 32x24; expected 400x300"},
+  };
+  for (const auto& [name, makefile, reason] : cases) {
+    const grading::GradeReport report = graded(submission(name, makefile));
+    ASSERT_EQ(report.tests.size(), 1u) << name;
+    EXPECT_FALSE(report.tests[0].passed) << name;
+    EXPECT_NE(report.tests[0].output.find(reason), std::string::npos) << name << ": " << report.tests[0].output;
+  }
+  // A program that hangs is stopped at the limit, with everything it started.
+  const auto start = std::chrono::steady_clock::now();
+  const grading::GradeReport hung = graded(submission("hangs", "build:\n\ttrue\nrun:\n\tsleep 30 & sleep 30\n"), "visible/cube", 0.5);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10);
+  EXPECT_NE(hung.tests[0].output.find("make run was stopped after 0.5 s"), std::string::npos) << hung.tests[0].output;
+}
+
+TEST(Grade, HsrItselfPassesAndItsReportsSayWhat) {
+  const std::filesystem::path folder = submission("hsr", hsrRun("--algo zbuffer"));
+  const grading::GradeReport report = graded(folder, "");
+  EXPECT_EQ(report.failed(), 0);
+  EXPECT_EQ(report.score(), report.maxScore());
+  EXPECT_GE(report.tests.size(), 27u);
+  // Gradescope's results.json: a score, and per test a name, score, max_score and output.
+  const test::JsonValue json = test::JsonReader(grading::gradescopeJson(report)).document();
+  EXPECT_EQ(json["score"].number(), report.score());
+  EXPECT_EQ(json["tests"].array().size(), report.tests.size() + 1);  // and make build's
+  EXPECT_EQ(json["tests"].array()[1]["name"].string(), "visible/cube");
+  EXPECT_EQ(json["tests"].array()[1]["max_score"].number(), 1);
+  const std::string junit = grading::junitXml(report), page = grading::feedbackPage(report);
+  EXPECT_NE(junit.find("failures=\"0\""), std::string::npos);
+  for (const grading::TestResult& test : report.tests) EXPECT_NE(page.find(test.name), std::string::npos);
+}
+
+// A test of a hard case implemented.txt does not claim is not run, and scores nothing.
+TEST(Grade, UnclaimedHardCasesAreNotRun) {
+  const std::filesystem::path folder = submission("claims-little", hsrRun("--algo zbuffer"));
+  std::ofstream(folder / "implemented.txt") << "visibility\nfisheye\n";
+  const grading::GradeReport report = graded(folder, "");
+  for (const grading::TestResult& test : report.tests) {
+    EXPECT_EQ(test.passed, test.skill == "visibility") << test.name;
+    if (test.skill != "visibility") {
+      EXPECT_EQ(test.output, "not run: implemented.txt does not claim " + test.skill + "\n");
+    }
+  }
+  EXPECT_NE(report.buildOutput.find("implemented.txt: 'fisheye' is not a hard case this grader tests"), std::string::npos);
+}
+
+TEST(Grade, ItsOwnBadInputIsOneLine) {
+  const std::filesystem::path folder = submission("bad-input", hsrRun("--algo zbuffer"));
+  EXPECT_THROW(graded(folder, "visible/no-such-scene"), InputError);
+  grading::GradeOptions options;
+  options.submission = folder / "missing";
+  options.exercise = 1;
+  std::vector<grading::HeatMap> heatMaps;
+  EXPECT_THROW(grading::grade(options, heatMaps), InputError);
+  options.submission = folder;
+  options.exercise = 2;
+  EXPECT_THROW(grading::grade(options, heatMaps), InputError);
+}
+
+}  // namespace
+}  // namespace hsr
