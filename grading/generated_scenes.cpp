@@ -155,6 +155,10 @@ Scene fillRule(std::uint64_t seed) {
         triangle(b, c, d, false);
       }
     }
+  // Last, a triangle on the grid's plane across it: exactly as near as the grid, so
+  // the grid, drawn first, keeps every center both cover.
+  const dvec3 inside = origin + dvec3(std::floor(columns * cell / 2.0), std::floor(rows * cell / 2.0), 0);
+  triangle(inside + dvec3(-6, -5, 0), inside + dvec3(7, -3, 0), inside + dvec3(1, 6, 0), random.coin());
   add(scene, triangles(corners));
   return scene;
 }

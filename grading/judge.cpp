@@ -25,6 +25,9 @@ constexpr std::array<CauseText, kCauses> kCauseTexts = {{
     {"shared edge given to the wrong triangle (fill rule)",
      "a center on an edge belongs to the triangle for which that edge is a top or a left edge; testing >= 0 on "
      "every edge gives it to both, and the depth test then keeps whichever came first"},
+    {"a tie kept by the later triangle",
+     "two triangles exactly as near at a center: the one drawn first keeps it (conventions.hpp), so the depth "
+     "test is strictly nearer, not nearer-or-equal"},
     {"near-plane clipping",
      "a triangle that crosses the near plane must be clipped there (d >= near) before it is projected: a corner "
      "behind the eye projects through w < 0 to the wrong side of the image"},
@@ -117,7 +120,9 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
         verdict = reference.ambiguous[p] ? Verdict::tie : Verdict::right;
       } else {
         verdict = Verdict::wrong;
-        cause = causeOf(reference.ambiguous[p] || nearestProjectedEdge(scene, camera, {mine, conventions[p], exact}, center) < kSnapDistance);
+        const double mineAt = metAt(mine), conventionsAt = metAt(conventions[p]);
+        const bool onAnEdge = nearestProjectedEdge(scene, camera, {mine, conventions[p], exact}, center) < kSnapDistance;
+        cause = !onAnEdge && std::isfinite(mineAt) && mineAt == conventionsAt ? Cause::laterTie : causeOf(onAnEdge);
       }
     } else if (reference.ambiguous[p]) {
       std::vector<std::uint32_t> tied;

@@ -28,6 +28,7 @@ enum class Cause {
   nothingDrawn,      // the whole image is background: nothing passed the depth test
   crack,             // background at a center on an edge two triangles share: the fill rule
   doubleCovered,     // a shared edge's center shows the triangle the fill rule gives away
+  laterTie,          // two triangles exactly as near: the later one kept, where the first keeps it
   nearPlane,         // shows or misses a triangle that crosses the near plane
   fartherWon,        // shows a triangle the ray meets farther than the nearest
   notCovering,       // shows a triangle whose outline does not hold the pixel's center
@@ -36,7 +37,7 @@ enum class Cause {
   beyondFar,         // shows a triangle met beyond the far plane
   unknownId,         // an id that names no triangle of the scene
 };
-inline constexpr int kCauses = 10;
+inline constexpr int kCauses = 11;
 const char* causeName(Cause cause);
 // What a student should check for it, in a sentence.
 const char* causeAdvice(Cause cause);

@@ -52,6 +52,24 @@ def mutated_text(bug):
     return text.replace(bug['find'], bug['replace'])
 
 
+def in_hsr(build, link, commands):
+    """The compile commands of hsr's own objects: on its link line, or members of the
+    libraries it links (not the tests', benchmarks' or other programs')."""
+    members = set()
+    for word in link:
+        if word.endswith('.a'):
+            listed = subprocess.run(['ar', 't', word], cwd=build, capture_output=True, text=True, check=True)
+            members.update(listed.stdout.split())
+    linked = {os.path.normpath(os.path.join(build, w)) for w in link if w.endswith('.o')}
+    elsewhere = (str(build / 'tests') + '/', str(build / 'bench') + '/')
+    own = []
+    for entry in commands:
+        out = os.path.normpath(os.path.join(entry['directory'], output_of(entry)))
+        if out in linked or (os.path.basename(out) in members and not out.startswith(elsewhere)):
+            own.append(entry)
+    return own
+
+
 def readers_of(build, relative, commands):
     """The translation units whose last compile read the file (their .o.d lists it)."""
     readers = []
@@ -95,14 +113,14 @@ def build(name, build_dir, out):
     (overlay / bug['file']).write_text(mutated_text(bug))
     with open(build_dir / 'compile_commands.json') as f:
         commands = json.load(f)
-    readers = readers_of(build_dir, bug['file'], commands)
+    link = shlex.split((build_dir / 'CMakeFiles' / 'hsr.dir' / 'link.txt').read_text())
+    readers = readers_of(build_dir, bug['file'], in_hsr(build_dir, link, commands))
     if not readers:
         fail(f"{name}: no translation unit of {build_dir} reads {bug['file']}")
     with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
         replaced = dict(pool.map(lambda entry: compile_one(entry, overlay, bug['file'], objects), readers))
     # The link, with each mutated object in its original's place on the command line or,
     # for one inside a library, ahead of the libraries.
-    link = shlex.split((build_dir / 'CMakeFiles' / 'hsr.dir' / 'link.txt').read_text())
     link = [replaced.pop(os.path.normpath(os.path.join(build_dir, w)), w) for w in link]
     at = link.index('-o')
     link[at + 1] = str(out / 'hsr')
