@@ -70,6 +70,7 @@ struct GradeOptions {
   int threads = 0;
   bool selfCheck = false;          // the grader graded: the catalogue of bugs and the correct variants
   std::vector<std::string> bugs;   // --self-check: these bugs alone
+  bool variants = false;           // --self-check --bugs: the correct variants too
 };
 int grade(const GradeOptions& options);
 

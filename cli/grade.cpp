@@ -21,11 +21,12 @@ int grade(const GradeOptions& options) {
       throw InputError("--self-check: " + check.build.string() + " holds no compile_commands.json; expected the build folder hsr was built in");
     check.work = options.out / "self-check";
     check.bugs = options.bugs;
+    check.variants = options.variants;
     if (options.seed) check.seed = options.seed;
     check.threads = options.threads;
     return grading::selfCheck(check);
   }
-  if (!options.bugs.empty()) throw InputError("--bugs: chooses bugs for --self-check; give --self-check too");
+  if (!options.bugs.empty() || options.variants) throw InputError("--bugs, --variants: choose what --self-check grades; give --self-check too");
   if (options.submission.empty()) throw InputError("grade: expected a submission's folder (or --self-check)");
   if (options.exercise == 0) throw InputError("grade: --exercise is required: 1, 3, 4, 7, 8, 14, 15 or 16");
   if (options.seed && !options.hidden) throw InputError("--seed: makes the hidden tests; give --hidden too");

@@ -154,7 +154,8 @@ int main(int argc, char** argv) {
   gradeCommand->add_option("submission", grade.submission, "the submission's folder: a Makefile (make build, make run file=SCENE out=IDS.png) and implemented.txt");
   gradeCommand->add_option("--exercise", grade.exercise, "the coursework exercise: 1, 3, 4, 7, 8, 14, 15 or 16");
   gradeCommand->add_flag("--self-check", grade.selfCheck, "grade the catalogue of classic bugs (each must fail) and the correct variants (each must pass)");
-  gradeCommand->add_option("--bugs", grade.bugs, "--self-check: these bugs of course/bugs/catalogue.toml alone")->delimiter(',');
+  gradeCommand->add_option("--bugs", grade.bugs, "--self-check: these bugs of course/bugs/catalogue.toml alone (and no variant)")->delimiter(',');
+  gradeCommand->add_flag("--variants", grade.variants, "--self-check --bugs: the correct variants too");
   gradeCommand->add_flag("--hidden", grade.hidden, "the hidden tests too: new scenes of every hard case, made from --seed");
   gradeCommand->add_option("--seed", grade.seed, "the hidden tests' seed (default 1): the same seed, the same scenes");
   gradeCommand->add_option("--test", grade.test, "run this test alone (exit 0 passed, 1 failed): a command grader's test");

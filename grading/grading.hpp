@@ -111,7 +111,8 @@ struct SelfCheckOptions {
   std::filesystem::path source;  // the checkout (course/ is read from it)
   std::filesystem::path build;   // the build hsr was built in: its compile commands build the bugs
   std::filesystem::path work;
-  std::vector<std::string> bugs;  // these alone; all when empty
+  std::vector<std::string> bugs;  // these alone (and no variant unless `variants`); all when empty
+  bool variants = false;          // with `bugs`: the correct variants too
   std::optional<std::uint64_t> seed = 1;  // the hidden tests too
   int threads = 0;
 };

@@ -87,6 +87,8 @@ std::string feedbackPage(const GradeReport& report) {
 }
 
 std::string summary(const GradeReport& report) {
+  if (!report.built)
+    return report.buildOutput + "score 0 of " + points(report.maxScore()) + ": the submission did not build, so no test ran\n";
   std::string text;
   for (const TestResult& test : report.tests) {
     char line[160];
@@ -94,7 +96,7 @@ std::string summary(const GradeReport& report) {
                   points(test.score).c_str(), points(test.maxScore).c_str(), test.output.substr(0, test.output.find('\n')).c_str());
     text += line;
   }
-  text += "score " + points(report.score()) + " of " + points(report.maxScore()) + (report.built ? "" : " (the submission did not build)") + "\n";
+  text += "score " + points(report.score()) + " of " + points(report.maxScore()) + "\n";
   return text;
 }
 

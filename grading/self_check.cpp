@@ -4,6 +4,7 @@
 // (course/variants/) must pass all it claims. Ends with the line
 // "caught N of N bugs, M of M correct variants passed".
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 #include "grading/grading.hpp"
@@ -23,6 +24,7 @@ struct Bug {
 struct Variant {
   std::string folder, story;
   int exercise = 0;
+  std::vector<std::string> environment;  // "NAME=VALUE": what its make reads
 };
 
 std::vector<std::string> strings(TableReader& table, const std::string& key) {
@@ -53,8 +55,10 @@ void readCatalogue(const std::filesystem::path& file, std::vector<Bug>& bugs, st
         entry.rejectUnknown({"name", "story", "exercise", "file", "find", "replace", "render", "expect"});  // the text is mutant.py's
         bugs.push_back(bug);
       } else {
-        variants.push_back({entry.string("folder"), entry.string("story"), entry.integer("exercise", std::nullopt, 1, 99)});
-        entry.rejectUnknown({"folder", "story", "exercise"});
+        Variant variant{entry.string("folder"), entry.string("story"), entry.integer("exercise", std::nullopt, 1, 99), {}};
+        if (entry.has("environment")) variant.environment = strings(entry, "environment");
+        entry.rejectUnknown({"folder", "story", "exercise", "environment"});
+        variants.push_back(variant);
       }
     }
   }
@@ -88,6 +92,7 @@ int selfCheck(const SelfCheckOptions& options) {
       chosen.push_back(*found);
     }
     bugs = chosen;
+    if (!options.variants) variants.clear();
   }
   const auto gradeOne = [&](const std::filesystem::path& submission, int exercise, const std::string& name) {
     GradeOptions grading;
@@ -99,6 +104,12 @@ int selfCheck(const SelfCheckOptions& options) {
     std::vector<HeatMap> heatMaps;
     return grade(grading, heatMaps);
   };
+
+  // The variants are graded in a copy: their builds leave the checkout as it was.
+  const std::filesystem::path variantCopies = options.work / "variants";
+  std::filesystem::create_directories(variantCopies);
+  std::filesystem::copy(options.source / "course/variants", variantCopies,
+                        std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
 
   int caught = 0, passed = 0;
   for (const Bug& bug : bugs) {
@@ -118,8 +129,17 @@ int selfCheck(const SelfCheckOptions& options) {
     if (!report.built) std::printf("%s", report.buildOutput.c_str());
     std::fflush(stdout);
   }
-  for (const Variant& variant : variants) {
-    const GradeReport report = gradeOne(options.source / variant.folder, variant.exercise, std::filesystem::path(variant.folder).filename());
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const Variant& variant = variants[v];
+    for (const std::string& setting : variant.environment) {
+      const std::size_t equals = setting.find('=');
+      setenv(setting.substr(0, equals).c_str(), setting.substr(equals + 1).c_str(), 1);
+    }
+    const std::filesystem::path copy = variantCopies / std::filesystem::path(variant.folder).lexically_relative("course/variants");
+    const GradeReport report = gradeOne(copy, variant.exercise, "variant-" + std::to_string(v + 1));
+    for (const std::string& setting : variant.environment) unsetenv(setting.substr(0, setting.find('=')).c_str());
+    std::string name = variant.folder;
+    for (const std::string& setting : variant.environment) name += " " + setting;
     int claimedTests = 0;
     std::string firstFailure;
     for (const TestResult& test : report.tests) {
@@ -129,7 +149,7 @@ int selfCheck(const SelfCheckOptions& options) {
     }
     const bool ok = report.built && firstFailure.empty() && claimedTests > 0;
     passed += ok;
-    std::printf("%s variant %-32s %d tests claimed\n%s", ok ? "passed" : "FAILED", variant.folder.c_str(), claimedTests, firstFailure.c_str());
+    std::printf("%s variant %-45s %d tests claimed\n%s", ok ? "passed" : "FAILED", name.c_str(), claimedTests, firstFailure.c_str());
     std::fflush(stdout);
   }
   std::printf("caught %d of %zu bugs, %d of %zu correct variants passed\n", caught, bugs.size(), passed, variants.size());

@@ -3,7 +3,10 @@
 hsr grade --self-check must pass. It keeps each pixel's view distance as a double
 (hsr's z-buffer stores float32 z): where the two disagree, only the reference decides.
 
-    python3 zbuffer.py SCENE.tri IDS.png
+    python3 zbuffer.py SCENE.tri IDS.png [--order submission|reverse]
+
+reverse: the triangles drawn last to first, a tie then given to the lower id, so that
+the image is the one submission order gives: the same answer by another traversal.
 
 It reads the triangle file (renderer/scene/triangle_file.hpp) through its clip_from_world
 matrix alone, clips each triangle to near <= d <= far, samples pixel centers with the
@@ -55,14 +58,15 @@ def lerp(a, b, s):
     return tuple(x + (y - x) * s for x, y in zip(a, b))
 
 
-def render(scene):
+def render(scene, reverse):
     width, height = int(scene['size'][0]), int(scene['size'][1])
     near, far = float(scene['near'][0]), float(scene['far'][0])
     perspective = scene['projection'][0] == 'perspective'
     m = scene['matrix']
     ids = [0] * (width * height)
     depth = [float('inf')] * (width * height)
-    for number, corners in enumerate(scene['triangles'], start=1):
+    numbered = list(enumerate(scene['triangles'], start=1))
+    for number, corners in reversed(numbered) if reverse else numbered:
         # Clip space: (x, y, d, w), each linear in the position.
         polygon = [tuple(sum(m[r][c] * p[c] for c in range(3)) + m[r][3] for r in range(4)) for p in corners]
         polygon = clip(polygon, lambda v: v[2] >= near, lambda a, b: lerp(a, b, (near - a[2]) / (b[2] - a[2])))
@@ -71,11 +75,11 @@ def render(scene):
             continue
         screen = [((x / w * 0.5 + 0.5) * width, (0.5 - y / w * 0.5) * height, d) for x, y, d, w in polygon]
         for k in range(1, len(screen) - 1):
-            draw(screen[0], screen[k], screen[k + 1], number, perspective, width, height, ids, depth)
+            draw(screen[0], screen[k], screen[k + 1], number, perspective, width, height, ids, depth, reverse)
     return width, height, ids
 
 
-def draw(a, b, c, number, perspective, width, height, ids, depth):
+def draw(a, b, c, number, perspective, width, height, ids, depth, reverse):
     area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
     if area == 0:
         return
@@ -107,7 +111,7 @@ def draw(a, b, c, number, perspective, width, height, ids, depth):
                 else:
                     d = sum(wk * vk[2] for wk, vk in zip(weights, v))
                 pixel = py * width + px
-                if d < depth[pixel]:
+                if d < depth[pixel] or (reverse and d == depth[pixel] and number < ids[pixel]):
                     depth[pixel] = d
                     ids[pixel] = number
 
@@ -124,5 +128,6 @@ def write_png(path, width, height, ids):
 
 
 if __name__ == '__main__':
-    width, height, ids = render(read_scene(sys.argv[1]))
+    reverse = sys.argv[3:] == ['--order', 'reverse']
+    width, height, ids = render(read_scene(sys.argv[1]), reverse)
     write_png(sys.argv[2], width, height, ids)
