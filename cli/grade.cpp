@@ -8,6 +8,13 @@
 #include "renderer/util/error.hpp"
 
 namespace hsr::cli {
+namespace {
+
+// The build this hsr came from: its compile commands build a bug or an algorithm folder
+// into an hsr of its own.
+std::filesystem::path buildOfThisHsr() { return std::filesystem::canonical("/proc/self/exe").parent_path(); }
+
+}  // namespace
 
 int grade(const GradeOptions& options) {
   if (options.selfCheck) {
@@ -15,8 +22,7 @@ int grade(const GradeOptions& options) {
       throw InputError("--self-check: grades the catalogue and the variants; give no submission, --exercise, --hidden or --test");
     grading::SelfCheckOptions check;
     check.source = HSR_SOURCE_DIR;
-    // The build this hsr came from: its compile commands build each bug.
-    check.build = std::filesystem::canonical("/proc/self/exe").parent_path();
+    check.build = buildOfThisHsr();
     if (!std::filesystem::exists(check.build / "compile_commands.json"))
       throw InputError("--self-check: " + check.build.string() + " holds no compile_commands.json; expected the build folder hsr was built in");
     check.work = options.out / "self-check";
@@ -35,6 +41,8 @@ int grade(const GradeOptions& options) {
   grading.exercise = options.exercise;
   if (options.hidden) grading.hiddenSeed = options.seed.value_or(1);
   grading.onlyTest = options.test;
+  grading.source = HSR_SOURCE_DIR;
+  grading.build = buildOfThisHsr();
   grading.work = options.out / "work";
   grading.limits.buildSeconds = options.buildSeconds;
   grading.limits.runSeconds = options.runSeconds;

@@ -135,11 +135,46 @@ std::string feedbackOf(const Judgement& judgement, const std::string& algorithm,
   return text;
 }
 
+// A C++ algorithm folder as a program: a Makefile in the work folder whose make build
+// builds it into an hsr of its own and whose make run renders with that hsr. Its
+// implemented.txt, if it has one, says what it claims; else all of the exercise.
+std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, const Exercise& exercise, const std::filesystem::path& work) {
+  const std::filesystem::path folder = std::filesystem::absolute(options.submission);
+  std::ifstream cmake(folder / "CMakeLists.txt");
+  std::stringstream text;
+  text << cmake.rdbuf();
+  const std::string lists = text.str();
+  const std::size_t call = lists.find("hsr_algorithm(");
+  if (call == std::string::npos)
+    throw InputError(options.submission.string() + ": has no Makefile, and no CMakeLists.txt calling hsr_algorithm(NAME ...); expected a "
+                     "program's folder (make build, make run) or an algorithm folder");
+  std::istringstream words(lists.substr(call + std::string("hsr_algorithm(").size()));
+  std::string algorithm;
+  words >> algorithm;
+  algorithm = algorithm.substr(0, algorithm.find(')'));
+  if (options.source.empty() || !std::filesystem::exists(options.build / "compile_commands.json"))
+    throw InputError(options.submission.string() + ": an algorithm folder is built with hsr's own build, and " + options.build.string() +
+                     " holds no compile_commands.json; expected the build folder hsr was built in");
+  const std::filesystem::path wrapper = work / "algorithm-folder";
+  std::filesystem::create_directories(wrapper);
+  std::ofstream(wrapper / "Makefile") << "# " << folder.string() << " in place of algorithms/" << algorithm << "/\nbuild:\n\tpython3 "
+                                      << (options.source / "course/folder_build.py").string() << " " << folder.string() << " --algorithm "
+                                      << algorithm << " --build " << options.build.string() << " --out .\n\nrun:\n\t./hsr render $(file) --algo "
+                                      << algorithm << " " << exercise.folderOptions << (*exercise.cull ? std::string(" --cull ") + exercise.cull : "")
+                                      << " --threads 1 --ids $(out) -o $(out).color.png\n\n.PHONY: build run\n";
+  std::ofstream claims(wrapper / "implemented.txt");
+  if (std::ifstream own(folder / "implemented.txt"); own)
+    claims << own.rdbuf();
+  else
+    for (const std::string& skill : skillsOf(exercise)) claims << skill << "\n";
+  return wrapper;
+}
+
 }  // namespace
 
 const std::vector<Exercise>& gradedExercises() {
   static const std::vector<Exercise> exercises = {
-      {1, "the z-buffer", "zbuffer"},
+      {1, "the z-buffer", "zbuffer", true, {}, "", "--knob path=scalar"},
       {3, "ray casting", "ray_casting", false},
       {4, "the painter's algorithm", "painter"},
       {7, "culling: backface and frustum", "zbuffer", true, {"visibility", "orthographic", "far-from-origin"}, "backface,frustum"},
@@ -239,9 +274,11 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
       throw InputError("--test " + options.onlyTest + ": no such test; expected one of " + names);
     }
   }
-  const std::filesystem::path submission = std::filesystem::absolute(options.submission);
   std::filesystem::create_directories(options.work);
   const std::filesystem::path work = std::filesystem::absolute(options.work);
+  const std::filesystem::path submission = std::filesystem::is_regular_file(options.submission / "Makefile")
+                                               ? std::filesystem::absolute(options.submission)
+                                               : algorithmFolderSubmission(options, exercise, work);
 
   GradeReport report;
   report.exercise = exercise.number;

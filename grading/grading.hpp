@@ -1,7 +1,9 @@
 // hsr grade: a submission's answers to a coursework exercise, judged against the exact
 // reference, test by test, with feedback that names what is wrong and shows where.
 //
-// A submission is a folder with a Makefile, in any language (coursework.md, "Handing in a
+// A submission is a C++ algorithm folder (one like algorithms/zbuffer/, built into hsr
+// in place of the shipped one by course/folder_build.py), or a folder with a Makefile,
+// in any language (coursework.md, "Handing in a
 // program"): `make build` builds it; `make run file=SCENE out=IDS.png` reads a triangle
 // file (renderer/scene/triangle_file.hpp) and writes the id image (24-bit RGB, the
 // triangle's number, R the high byte; 0 for the background); `implemented.txt` lists the
@@ -33,6 +35,9 @@ struct Exercise {
   // right for closed solids only, so that exercise's scenes are boxes and spheres.
   std::vector<std::string> skills = {};
   const char* cull = "";  // the culling stages the shipped answer runs first (hsr render --cull)
+  // What a C++ algorithm folder is rendered with: the options that run the code the
+  // student edition asks for (the z-buffer's textbook loop, not its SIMD fast path).
+  const char* folderOptions = "";
 };
 const std::vector<Exercise>& gradedExercises();
 // The exercise numbered so; InputError naming the graded ones otherwise.
@@ -90,6 +95,9 @@ struct GradeOptions {
   std::optional<std::uint64_t> hiddenSeed;  // --hidden [--seed S]
   std::string onlyTest;                     // --test NAME: that test alone
   std::filesystem::path work;               // the scenes and images handed back and forth
+  // For a C++ algorithm folder: the checkout (course/folder_build.py) and the build
+  // whose compile commands build the folder into an hsr of its own.
+  std::filesystem::path source, build;
   Limits limits;
   int threads = 0;
 };

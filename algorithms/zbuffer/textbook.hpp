@@ -67,8 +67,15 @@ template <typename Format>
 void clearTile(const Tile<Format>& tile) {
   const auto [x0, y0, x1, y1] = tile.area;
   for (int y = y0; y < y1; ++y) {
+    // BEGIN SOLUTION
     std::fill_n(&tile.depth.at(x0, y), x1 - x0, Format::kFar);
     std::fill_n(&tile.frame.ids[tile.pixel(x0, y)], x1 - x0, conventions::kBackgroundId);
+    // SKELETON
+    // // Exercise 1: clear row y of the tile, from x0 to x1: its depths (tile.depth.at(x, y))
+    // // to the far end of the format, its ids (tile.frame.ids[tile.pixel(x, y)]) to the
+    // // background. Which constant of Format is the far end, and why not 0?
+    // (void)x0, (void)x1;
+    // END SOLUTION
   }
 }
 
@@ -78,9 +85,17 @@ void clearTile(const Tile<Format>& tile) {
 template <typename Format>
 void depthTestTriangle(const Tile<Format>& tile, const ScreenTriangle& tri) {
   const auto [x0, y0, x1, y1] = tile.area;
+  // BEGIN SOLUTION
   const int left = std::max(tri.minX, x0), right = std::min(tri.maxX + 1, x1);
   for (int y = std::max(tri.minY, y0); y < std::min(tri.maxY + 1, y1); ++y)
     rasterizeSpan(tri, y, left, right, [&](int x) { tile.test.test(tri, x, y, tile.depth.at(x, y), tile.frame.ids[tile.pixel(x, y)]); });
+  // SKELETON
+  // // Exercise 1: every row of the triangle's pixel box (tri.minY to tri.maxY, tri.minX to
+  // // tri.maxX) that lies in the tile (x0 to x1, y0 to y1, ends excluded): rasterizeSpan
+  // // (renderer/raster/raster.hpp) calls you back for each pixel whose center the
+  // // triangle covers; there, tile.test.test decides the fragment.
+  // (void)tri, (void)x0, (void)y0, (void)x1, (void)y1;
+  // END SOLUTION
 }
 
 // Step 3: what the format stored, decoded to a distance along the view axis.

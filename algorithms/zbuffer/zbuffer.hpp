@@ -164,6 +164,7 @@ struct DepthTest {
     ++counts.tested;
     const auto z = Format::store(encoding.z(tri.depthAt(conventions::pixelCenter(x), conventions::pixelCenter(y))));
     if (witness) [[unlikely]] witnessFragment(tri, x, y, z, stored, id);
+    // BEGIN SOLUTION
     if (!Format::nearer(z, stored)) {
       counts.ties += isTie(tri, z, stored, id);
       return;
@@ -171,6 +172,13 @@ struct DepthTest {
     stored = z;
     id = tri.triangle + 1;
     ++counts.written;
+    // SKELETON
+    // // Exercise 1: keep the fragment (its depth z in `stored`, its triangle's id,
+    // // tri.triangle + 1, in `id`) when Format::nearer says it is nearer than what the pixel
+    // // holds, and count it in counts.written; otherwise count a tie (isTie) in counts.ties.
+    // // Why must a tie keep the triangle drawn first?
+    // (void)z, (void)stored, (void)id;
+    // END SOLUTION
   }
 
   // A fragment of another triangle at exactly the depth the pixel holds.
