@@ -237,3 +237,68 @@ TEST(Grade, ItsOwnBadInputIsOneLine) {
 
 }  // namespace
 }  // namespace hsr
+
+namespace hsr {
+namespace {
+
+// The feedback page, as a student opens it: written by the command line, loaded in
+// Debian's chromium, headless; the score, each failing test's causes and its heat map.
+TEST(FeedbackPage, ShowsTheScoreTheCausesAndWhereInABrowser) {
+  const std::filesystem::path folder = submission("overdrawn", hsrRun("--algo zbuffer --knob depth-test=off"));
+  const std::filesystem::path out = test::outputPath("grading") / "overdrawn-report";
+  std::filesystem::remove_all(out);
+  const test::CommandResult graded = test::runCommand(std::string(HSR_BINARY) + " grade " + folder.string() +
+                                                      " --exercise 1 --test visible/counters --out " + out.string());
+  EXPECT_EQ(graded.exitCode, 1) << graded.output;
+  EXPECT_NE(graded.output.find("FAILED visible/counters"), std::string::npos) << graded.output;
+  const test::CommandResult dom = test::runCommand("chromium --headless --no-sandbox --disable-gpu --dump-dom 'file://" +
+                                                   std::filesystem::absolute(out / "feedback.html").string() + "' 2>/dev/null");
+  ASSERT_EQ(dom.exitCode, 0) << "chromium (scripts/setup.sh installs it)";
+  EXPECT_NE(dom.output.find("Score: 0 of 1; 1 of 1 tests failed."), std::string::npos);
+  EXPECT_NE(dom.output.find("a farther surface won"), std::string::npos);
+  EXPECT_NE(dom.output.find("<img src=\"visible-counters-where.png\""), std::string::npos);
+  const Image heatMap = readImage((out / "visible-counters-where.png").string());
+  EXPECT_EQ(heatMap.width, 400);
+  const auto screenshot = out / "screenshot.png";
+  const test::CommandResult shot = test::runCommand("chromium --headless --no-sandbox --disable-gpu --window-size=900,1100 --screenshot=" +
+                                                    screenshot.string() + " 'file://" +
+                                                    std::filesystem::absolute(out / "feedback.html").string() + "' 2>&1");
+  ASSERT_EQ(shot.exitCode, 0) << shot.output;
+  // The heat map's red (wrong pixels) shows on the page as shot.
+  const Image page = readImage(screenshot.string());
+  std::size_t red = 0;
+  for (std::size_t p = 0; p + 2 < page.pixels.size(); p += std::size_t(page.channels))
+    red += page.pixels[p] > 200 && page.pixels[p + 1] < 60 && page.pixels[p + 2] < 60;
+  EXPECT_GT(red, 500u);
+}
+
+// The command line's own bad input: one line, exit 2, no report written.
+TEST(GradeCommand, BadInputIsOneLineAndExitTwo) {
+  const std::string hsr = HSR_BINARY;
+  const std::filesystem::path out = test::outputPath("grading") / "never-written";
+  std::filesystem::remove_all(out);
+  const struct {
+    std::string arguments, message;
+  } cases[] = {
+      {"grade", "grade: expected a submission's folder (or --self-check)"},
+      {"grade course/shipped", "grade: --exercise is required"},
+      {"grade course/shipped --exercise 2", "--exercise 2: not graded automatically; expected one of 1, 3, 4, 7, 8, 14, 15, 16"},
+      {"grade course/shipped --exercise 1 --seed 4", "--seed: makes the hidden tests; give --hidden too"},
+      {"grade no/such/folder --exercise 1", "no/such/folder: no such folder"},
+      {"grade course/shipped --exercise 1 --test visible/teapot", "--test visible/teapot: no such test; expected one of visible/cube"},
+      {"grade course/shipped --exercise 1 --self-check", "--self-check: grades the catalogue and the variants"},
+      {"grade course/shipped --exercise 1 --bugs depth-cleared-to-near", "--bugs, --variants: choose what --self-check grades"},
+      {"grade --self-check --bugs no-such-bug", "--bugs no-such-bug: no such bug in course/bugs/catalogue.toml"},
+      {"grade course --exercise 1", "course: has no Makefile, and no CMakeLists.txt calling hsr_algorithm(NAME ...)"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const test::CommandResult result = test::runCommand("cd " + test::sourcePath("").string() + " && " + hsr + " " + arguments + " --out " + out.string());
+    EXPECT_EQ(result.exitCode, 2) << arguments << ": " << result.output;
+    EXPECT_NE(result.output.find("hsr: error: " + message), std::string::npos) << arguments << ": " << result.output;
+    EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << arguments << ": " << result.output;
+    EXPECT_FALSE(std::filesystem::exists(out / "results.json")) << arguments;
+  }
+}
+
+}  // namespace
+}  // namespace hsr
