@@ -122,10 +122,11 @@ std::string feedbackOf(const Judgement& judgement, const std::string& algorithm,
   std::string text = line;
   if (judgement.passed()) return text;
   for (const CauseCount& cause : judgement.causes) {
-    text += "- " + std::string(causeName(cause.cause)) + ": " + withCommas(cause.pixels) + " pixels, first at " + cause.first + "\n";
+    text += "- " + std::string(causeName(cause.cause)) + ": " + withCommas(cause.pixels) + " pixels" +
+            (cause.cause == Cause::nothingDrawn ? "" : ", first at " + cause.first) + "\n";
     text += "  " + std::string(causeAdvice(cause.cause)) + "\n";
   }
-  const std::string& first = judgement.causes.front().first;
+  const std::string& first = judgement.causes.front().first;  // "pixel (x, y): ..."
   if (const std::size_t open = first.find('('), close = first.find(')'); open != std::string::npos && close != std::string::npos) {
     std::string pixel = first.substr(open + 1, close - open - 1);
     pixel.erase(std::remove(pixel.begin(), pixel.end(), ' '), pixel.end());
@@ -135,12 +136,10 @@ std::string feedbackOf(const Judgement& judgement, const std::string& algorithm,
   return text;
 }
 
-// A C++ algorithm folder as a program: a Makefile in the work folder whose make build
-// builds it into an hsr of its own and whose make run renders with that hsr. Its
-// implemented.txt, if it has one, says what it claims; else all of the exercise.
-std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, const Exercise& exercise, const std::filesystem::path& work) {
-  const std::filesystem::path folder = std::filesystem::absolute(options.submission);
-  std::ifstream cmake(folder / "CMakeLists.txt");
+// The algorithm a C++ folder replaces: the NAME of its CMakeLists.txt's hsr_algorithm(NAME
+// ...), checked before anything is written.
+std::string algorithmOfFolder(const GradeOptions& options) {
+  std::ifstream cmake(options.submission / "CMakeLists.txt");
   std::stringstream text;
   text << cmake.rdbuf();
   const std::string lists = text.str();
@@ -155,6 +154,15 @@ std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, con
   if (options.source.empty() || !std::filesystem::exists(options.build / "compile_commands.json"))
     throw InputError(options.submission.string() + ": an algorithm folder is built with hsr's own build, and " + options.build.string() +
                      " holds no compile_commands.json; expected the build folder hsr was built in");
+  return algorithm;
+}
+
+// A C++ algorithm folder as a program: a Makefile in the work folder whose make build
+// builds it into an hsr of its own and whose make run renders with that hsr. Its
+// implemented.txt, if it has one, says what it claims; else all of the exercise.
+std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, const std::string& algorithm, const Exercise& exercise,
+                                                const std::filesystem::path& work) {
+  const std::filesystem::path folder = std::filesystem::absolute(options.submission);
   const std::filesystem::path wrapper = work / "algorithm-folder";
   std::filesystem::create_directories(wrapper);
   std::ofstream(wrapper / "Makefile") << "# " << folder.string() << " in place of algorithms/" << algorithm << "/\nbuild:\n\tpython3 "
@@ -274,11 +282,12 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
       throw InputError("--test " + options.onlyTest + ": no such test; expected one of " + names);
     }
   }
+  const bool program = std::filesystem::is_regular_file(options.submission / "Makefile");
+  const std::string algorithm = program ? "" : algorithmOfFolder(options);
   std::filesystem::create_directories(options.work);
   const std::filesystem::path work = std::filesystem::absolute(options.work);
-  const std::filesystem::path submission = std::filesystem::is_regular_file(options.submission / "Makefile")
-                                               ? std::filesystem::absolute(options.submission)
-                                               : algorithmFolderSubmission(options, exercise, work);
+  const std::filesystem::path submission =
+      program ? std::filesystem::absolute(options.submission) : algorithmFolderSubmission(options, algorithm, exercise, work);
 
   GradeReport report;
   report.exercise = exercise.number;
