@@ -68,6 +68,7 @@ struct GradeOptions {
   std::filesystem::path out = "out/grade";
   double buildSeconds = 600, runSeconds = 20;
   int threads = 0;
+  bool list = false;               // --list: the exercise's tests, a name per line
   bool selfCheck = false;          // the grader graded: the catalogue of bugs and the correct variants
   std::vector<std::string> bugs;   // --self-check: these bugs alone
   bool variants = false;           // --self-check --bugs: the correct variants too

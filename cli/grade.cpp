@@ -32,6 +32,14 @@ int grade(const GradeOptions& options) {
     check.threads = options.threads;
     return grading::selfCheck(check);
   }
+  if (options.list) {
+    if (options.exercise == 0) throw InputError("--list: give --exercise too");
+    std::optional<std::uint64_t> seed;
+    if (options.hidden) seed = options.seed.value_or(1);
+    for (const grading::GradingTest& test : grading::testsOf(grading::findExercise(options.exercise), seed))
+      std::printf("%s\n", test.name.c_str());
+    return 0;
+  }
   if (!options.bugs.empty() || options.variants) throw InputError("--bugs, --variants: choose what --self-check grades; give --self-check too");
   if (options.submission.empty()) throw InputError("grade: expected a submission's folder (or --self-check)");
   if (options.exercise == 0) throw InputError("grade: --exercise is required: 1, 3, 4, 7, 8, 14, 15 or 16");
