@@ -14,6 +14,7 @@
 #include "renderer/lines/line_drawing.hpp"
 #include "renderer/lines/line_set.hpp"
 #include "renderer/raster/depth.hpp"
+#include "renderer/scene/triangle_file.hpp"
 #include "renderer/steps/steps.hpp"
 #include "renderer/util/error.hpp"
 #include "studies/common.hpp"
@@ -241,6 +242,7 @@ int render(const RenderOptions& options) {
     else outputs.addColorPng(output, rendered.frame);
     if (!options.depth.empty()) outputs.addDepthExr(options.depth, rendered.frame);
     if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
+    if (!options.triangles.empty()) outputs.addText(options.triangles, triangleFileText(*scene.prepared));
   } catch (const std::bad_alloc&) {
     throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), algorithm.name));
   }

@@ -216,6 +216,10 @@ cp out/web/quiz.png images/figures/web-quiz.png  # quiz me: predict, then reveal
 cp out/web/steps.png images/figures/steps-page.png  # the steps page (README "Watching an algorithm work")
 cp out/web/web-steps.png images/figures/web-steps.png  # the steps in the browser edition (README "In the browser")
 cp out/web/report.png images/figures/report.png     # hsr compare's report.html (README "report.html")
+# hsr grade's feedback page, as its test leaves it (README "Grading"): a submission
+# without a depth test, graded and opened in headless chromium.
+build/tests/grading_tests --gtest_filter=FeedbackPage.* > /dev/null
+cp build/tests/output/grading/overdrawn-report/screenshot.png images/figures/grade-feedback.png
 # The speed-up of every algorithm's visibility pass against threads (README "On more
 # cores"): a machine's own figure, so it changes with the machine that runs this.
 bash bench/scaling.sh > /dev/null  # its progress, and any image differing between counts, on stderr

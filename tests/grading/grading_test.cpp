@@ -302,3 +302,28 @@ TEST(GradeCommand, BadInputIsOneLineAndExitTwo) {
 
 }  // namespace
 }  // namespace hsr
+
+namespace hsr {
+namespace {
+
+// hsr render --triangles writes the scene a program is handed, at the render's size.
+TEST(TriangleFile, HsrRenderWritesItAndHsrReadsItBack) {
+  const std::filesystem::path folder = test::outputPath("grading") / "render-triangles";
+  std::filesystem::create_directories(folder);
+  const std::string hsr = HSR_BINARY;
+  const test::CommandResult written = test::runCommand(hsr + " render " + test::sourcePath("scenes/counters.toml").string() +
+                                                       " --size 96x54 --triangles " + (folder / "counters.tri").string() + " --ids " +
+                                                       (folder / "direct.png").string() + " -o " + (folder / "direct-color.png").string());
+  ASSERT_EQ(written.exitCode, 0) << written.output;
+  const Scene readBack = loadScene(folder / "counters.tri");
+  EXPECT_EQ(readBack.width, 96);
+  EXPECT_EQ(readBack.height, 54);
+  const test::CommandResult again = test::runCommand(hsr + " render " + (folder / "counters.tri").string() + " --ids " +
+                                                     (folder / "again.png").string() + " -o " + (folder / "again-color.png").string());
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  const Image direct = readImage(folder / "direct.png"), fromFile = readImage(folder / "again.png");
+  EXPECT_EQ(direct.pixels, fromFile.pixels);
+}
+
+}  // namespace
+}  // namespace hsr
