@@ -26,6 +26,15 @@ class Random {
   double uniform(double low, double high) { return low + (high - low) * double(next() >> 11) * 0x1.0p-53; }
   int integer(int low, int high) { return low + int(next() % std::uint64_t(high - low + 1)); }  // both ends included
   bool coin() { return next() >> 63; }
+  // A number from 10^low to 10^high, as a mantissa in [1, 10) times a power of ten:
+  // multiplications and a division of exact integers, not std::pow, whose last bit
+  // differs between libraries.
+  double decades(int low, int high) {
+    const int exponent = integer(low, high - 1);
+    double power = 1;
+    for (int k = 0; k < std::abs(exponent); ++k) power *= 10;
+    return uniform(1, 10) * (exponent >= 0 ? power : 1 / power);
+  }
   // A point on the unit sphere, by its latitude's sine and its longitude.
   dvec3 direction() {
     const double z = uniform(-1, 1), angle = uniform(0, 2 * kPi), r = std::sqrt(1 - z * z);
@@ -192,7 +201,7 @@ Scene nearPlane(std::uint64_t seed) {
 Scene farFromOrigin(std::uint64_t seed) {
   Scene scene = visibility(seed);
   Random random(seed ^ 0xF00D);
-  const dvec3 offset = std::pow(10.0, random.uniform(4, 7)) * random.direction();
+  const dvec3 offset = random.decades(4, 7) * random.direction();
   for (SceneObject& object : scene.objects) {
     Mesh mesh = *object.mesh;
     for (dvec3& p : mesh.positions) p += offset;
@@ -231,7 +240,7 @@ Scene slivers(std::uint64_t seed) {
   for (int k = random.integer(8, 16); k > 0; --k) {
     const dvec3 a(random.uniform(-3, 3), random.uniform(-2, 2), random.uniform(-1.5, 1));
     const dvec3 along = random.uniform(2, 5) * random.direction();
-    const dvec3 across = glm::normalize(glm::cross(along, random.direction())) * glm::length(along) * std::pow(10.0, -random.uniform(3, 6));
+    const dvec3 across = glm::normalize(glm::cross(along, random.direction())) * glm::length(along) * random.decades(-6, -3);
     corners.insert(corners.end(), {a, a + along, a + 0.5 * along + across});
   }
   add(scene, triangles(corners));
