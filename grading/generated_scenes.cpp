@@ -14,6 +14,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // splitmix64 (Steele, Lea and Flood 2014): a counter run through a mixing function.
+// Every draw is a statement of its own or an element of a braced list, never two
+// arguments of one call or two operands of one operator, whose order C++ leaves to the
+// compiler: the same seed must make the same scene whatever compiled it.
 class Random {
  public:
   explicit Random(std::uint64_t seed) : state_(seed) {}
@@ -34,6 +37,11 @@ class Random {
     double power = 1;
     for (int k = 0; k < std::abs(exponent); ++k) power *= 10;
     return uniform(1, 10) * (exponent >= 0 ? power : 1 / power);
+  }
+  // A point in the box from `low` to `high`, its coordinates drawn x, y, z.
+  dvec3 point(const dvec3& low, const dvec3& high) {
+    const double x = uniform(low.x, high.x), y = uniform(low.y, high.y), z = uniform(low.z, high.z);
+    return {x, y, z};
   }
   // A point on the unit sphere, by its latitude's sine and its longitude.
   dvec3 direction() {
@@ -86,12 +94,12 @@ Mesh triangles(const std::vector<dvec3>& corners) {
 // Boxes and spheres in a cube of side 4 about the origin.
 void addBlocks(Scene& scene, Random& random) {
   for (int k = random.integer(4, 8); k > 0; --k) {
-    const dvec3 size(random.uniform(0.3, 1.6), random.uniform(0.3, 1.6), random.uniform(0.3, 1.6));
-    const dvec3 at(random.uniform(-1.6, 1.6), random.uniform(-1.2, 1.2), random.uniform(-1.6, 1.6));
+    const dvec3 size = random.point(dvec3(0.3), dvec3(1.6));
+    const dvec3 at = random.point({-1.6, -1.2, -1.6}, {1.6, 1.2, 1.6});
     add(scene, placed(makeBox(size), random.uniform(0, kPi), at));
   }
   for (int k = random.integer(1, 2); k > 0; --k) {
-    const dvec3 at(random.uniform(-1.4, 1.4), random.uniform(-1, 1), random.uniform(-1.4, 1.4));
+    const dvec3 at = random.point({-1.4, -1, -1.4}, {1.4, 1, 1.4});
     add(scene, placed(makeSphere(random.uniform(0.4, 0.9), 12, 8), 0, at));
   }
 }
@@ -101,7 +109,8 @@ Scene visibility(std::uint64_t seed) {
   Scene scene;
   oddSize(scene, random);
   addBlocks(scene, random);
-  const dvec3 eye = random.uniform(6, 9) * random.direction();
+  const double distance = random.uniform(6, 9);
+  const dvec3 eye = distance * random.direction();
   scene.camera = perspectiveAt(eye, {0, 0, 0}, random.uniform(35, 60));
   return scene;
 }
@@ -135,7 +144,8 @@ Scene fillRule(std::uint64_t seed) {
     corners.insert(corners.end(), {a, b, c});
   };
   for (int fan = random.integer(2, 4), layer = 0; fan > 0; --fan, ++layer) {
-    const dvec3 center(half(random.uniform(-50, 50)), half(random.uniform(-20, 20)), -layer);
+    const double x = half(random.uniform(-50, 50)), y = half(random.uniform(-20, 20));
+    const dvec3 center(x, y, -layer);
     const int count = random.integer(5, 9);
     std::vector<double> angles;
     for (int k = 0; k < count; ++k) angles.push_back(random.uniform(0, 2 * kPi));
@@ -152,7 +162,8 @@ Scene fillRule(std::uint64_t seed) {
   // A grid of square cells on pixel centers, each cut along a random diagonal: the
   // diagonals run through centers too.
   const int cell = random.integer(1, 4), columns = random.integer(4, 12), rows = random.integer(3, 8);
-  const dvec3 origin(std::floor(random.uniform(-60, 60 - columns * cell)) + 0.5, std::floor(random.uniform(-30, 30 - rows * cell)) + 0.5, -5);
+  const double left = std::floor(random.uniform(-60, 60 - columns * cell)) + 0.5, bottom = std::floor(random.uniform(-30, 30 - rows * cell)) + 0.5;
+  const dvec3 origin(left, bottom, -5);
   for (int i = 0; i < columns; ++i)
     for (int j = 0; j < rows; ++j) {
       const dvec3 a = origin + dvec3(i * cell, j * cell, 0), b = a + dvec3(cell, 0, 0), c = a + dvec3(cell, cell, 0), d = a + dvec3(0, cell, 0);
@@ -193,7 +204,9 @@ Scene nearPlane(std::uint64_t seed) {
   corners.insert(corners.end(), {a, d, c, a, c, b});
   add(scene, triangles(corners));
   addBlocks(scene, random);
-  scene.camera = perspectiveAt({0, 0, 0}, {random.uniform(-0.5, 0.5), random.uniform(-0.3, 0.1), -1}, random.uniform(50, 80), near);
+  const dvec3 target = random.point({-0.5, -0.3, -1}, {0.5, 0.1, -1});
+  const double fovY = random.uniform(50, 80);
+  scene.camera = perspectiveAt({0, 0, 0}, target, fovY, near);
   return scene;
 }
 
@@ -201,7 +214,8 @@ Scene nearPlane(std::uint64_t seed) {
 Scene farFromOrigin(std::uint64_t seed) {
   Scene scene = visibility(seed);
   Random random(seed ^ 0xF00D);
-  const dvec3 offset = random.decades(4, 7) * random.direction();
+  const double distance = random.decades(4, 7);
+  const dvec3 offset = distance * random.direction();
   for (SceneObject& object : scene.objects) {
     Mesh mesh = *object.mesh;
     for (dvec3& p : mesh.positions) p += offset;
@@ -238,9 +252,11 @@ Scene slivers(std::uint64_t seed) {
   oddSize(scene, random);
   std::vector<dvec3> corners = {{-4, -3, -2}, {4, -3, -2}, {4, 3, -2}, {-4, -3, -2}, {4, 3, -2}, {-4, 3, -2}};
   for (int k = random.integer(8, 16); k > 0; --k) {
-    const dvec3 a(random.uniform(-3, 3), random.uniform(-2, 2), random.uniform(-1.5, 1));
-    const dvec3 along = random.uniform(2, 5) * random.direction();
-    const dvec3 across = glm::normalize(glm::cross(along, random.direction())) * glm::length(along) * random.decades(-6, -3);
+    const dvec3 a = random.point({-3, -2, -1.5}, {3, 2, 1});
+    const double length = random.uniform(2, 5);
+    const dvec3 along = length * random.direction();
+    const dvec3 side = glm::normalize(glm::cross(along, random.direction()));
+    const dvec3 across = side * length * random.decades(-6, -3);
     corners.insert(corners.end(), {a, a + along, a + 0.5 * along + across});
   }
   add(scene, triangles(corners));
@@ -256,7 +272,8 @@ Scene interpenetrating(std::uint64_t seed) {
   std::vector<dvec3> corners;
   for (int k = random.integer(6, 12) * 3; k > 0; --k) corners.push_back({random.uniform(-2, 2), random.uniform(-1.5, 1.5), random.uniform(-2, 2)});
   add(scene, triangles(corners));
-  scene.camera = perspectiveAt(random.uniform(6, 8) * random.direction(), {0, 0, 0}, 50);
+  const double distance = random.uniform(6, 8);
+  scene.camera = perspectiveAt(distance * random.direction(), {0, 0, 0}, 50);
   return scene;
 }
 
@@ -282,6 +299,46 @@ Scene cycles(std::uint64_t seed) {
   return scene;
 }
 
+// Boxes before, across and beyond a far plane 6 to 12 away, on a floor running past it:
+// nothing beyond the far plane may be drawn.
+Scene farPlane(std::uint64_t seed) {
+  Random random(seed);
+  Scene scene;
+  oddSize(scene, random);
+  const double far = random.uniform(6, 12), floorY = -random.uniform(0.8, 1.5);
+  add(scene, triangles({{-30, floorY, 5}, {30, floorY, 5}, {30, floorY, -60}, {-30, floorY, 5}, {30, floorY, -60}, {-30, floorY, -60}}));
+  for (int k = random.integer(5, 9); k > 0; --k) {
+    const dvec3 size = random.point(dvec3(0.5), dvec3(2));
+    const double depth = random.uniform(0.4, 1.6) * far;
+    const double across = random.uniform(-0.5, 0.5) * depth;
+    add(scene, placed(makeBox(size), random.uniform(0, kPi), {across, floorY + size.y / 2, -depth}));
+  }
+  const double fovY = random.uniform(40, 70);
+  scene.camera = perspectiveAt({0, 0, 0}, {0, -0.1, -1}, fovY, 0.1, far);
+  return scene;
+}
+
+// A wall of boxes 4 away with gaps of a few pixels, and small boxes and spheres behind
+// it, some seen only through a gap: what an occlusion culler must keep.
+Scene occlusion(std::uint64_t seed) {
+  Random random(seed);
+  Scene scene;
+  oddSize(scene, random);
+  for (double x = -4; x < 4;) {
+    const double width = random.uniform(0.5, 1.5), height = random.uniform(1.5, 3);
+    add(scene, placed(makeBox({width, height, 0.3}), 0, {x + width / 2, height / 2 - 1.2, -4}));
+    x += width + random.uniform(0.02, 0.1);
+  }
+  for (int k = random.integer(8, 16); k > 0; --k) {
+    const dvec3 at = random.point({-3, -1, -12}, {3, 1.2, -6});
+    const double size = random.uniform(0.15, 0.6);
+    add(scene, placed(random.coin() ? makeBox(dvec3(size)) : makeSphere(size / 2, 10, 6), 0, at));
+  }
+  const double fovY = random.uniform(40, 60);
+  scene.camera = perspectiveAt({0, 0, 0}, {0, 0, -1}, fovY);
+  return scene;
+}
+
 }  // namespace
 
 const std::vector<SceneGenerator>& sceneGenerators() {
@@ -295,6 +352,8 @@ const std::vector<SceneGenerator>& sceneGenerators() {
       {"slivers", "triangles 10^3 to 10^6 times longer than wide", slivers},
       {"interpenetrating", "large triangles through one another", interpenetrating},
       {"cycles", "tilted bars overlapping cyclically", cycles},
+      {"far-plane", "boxes before, across and beyond the far plane, on a floor running past it", farPlane},
+      {"occlusion", "a wall with gaps of a few pixels and objects behind it", occlusion},
   };
   return generators;
 }

@@ -23,7 +23,7 @@ struct SceneGenerator {
 };
 
 // One per hard case: visibility, orthographic, fill-rule, near-plane, far-from-origin,
-// coplanar, slivers, interpenetrating, cycles.
+// coplanar, slivers, interpenetrating, cycles, far-plane, occlusion.
 const std::vector<SceneGenerator>& sceneGenerators();
 
 }  // namespace hsr::grading

@@ -41,6 +41,10 @@ constexpr ShippedTest kShipped[] = {
     {"interpenetrating", "hard/interpenetrating.toml"},
     {"interpenetrating", "hard/box_junctions.toml"},
     {"cycles", "hard/cyclic_overlap.toml"},
+    {"far-plane", "hard/far_planes.toml"},
+    {"occlusion", "hard/occ_near.toml"},
+    {"occlusion", "hard/occ_edge_opening.toml"},
+    {"occlusion", "hard/occ_gap.toml"},
 };
 // The visible sample of each generator's scenes, and how many hidden ones each makes.
 constexpr std::uint64_t kSampleSeed = 2026;
@@ -182,14 +186,14 @@ std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, con
 
 const std::vector<Exercise>& gradedExercises() {
   static const std::vector<Exercise> exercises = {
-      {1, "the z-buffer", "zbuffer", true, {}, "", "--knob path=scalar"},
-      {3, "ray casting", "ray_casting", false},
-      {4, "the painter's algorithm", "painter"},
-      {7, "culling: backface and frustum", "zbuffer", true, {"visibility", "orthographic", "far-from-origin"}, "backface,frustum"},
-      {8, "occlusion culling", "zbuffer", true, {}, "occlusion"},
-      {14, "Warnock's area subdivision", "warnock"},
-      {15, "Watkins' scanline", "watkins"},
-      {16, "Weiler-Atherton", "weiler_atherton"},
+      {1, "the z-buffer", "zbuffer", true, true, {}, "", "--knob path=scalar"},
+      {3, "ray casting", "ray_casting", false, false},
+      {4, "the painter's algorithm", "painter", true, false},
+      {7, "culling: backface and frustum", "zbuffer", true, true, {"visibility", "orthographic", "far-from-origin", "far-plane", "occlusion"}, "backface,frustum"},
+      {8, "occlusion culling", "zbuffer", true, true, {}, "occlusion"},
+      {14, "Warnock's area subdivision", "warnock", true, false},
+      {15, "Watkins' scanline", "watkins", true, false},
+      {16, "Weiler-Atherton", "weiler_atherton", true, false},
   };
   return exercises;
 }
@@ -331,7 +335,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
         const Frame conventions = test.pixelExact() && exercise.fillRule
                                       ? pipeline::render(prepared, pipeline::configurationOf(findAlgorithm("zbuffer"), {}), options.threads, stats).frame
                                       : Frame();
-        const Judgement judgement = judge(prepared, reference, ids, conventions.ids);
+        const Judgement judgement = judge(prepared, reference, ids, conventions.ids, exercise.tieRule);
         result.passed = judgement.passed();
         result.score = result.passed ? result.maxScore : 0;
         const std::string heatMap = file + "-where.png";

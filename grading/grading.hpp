@@ -31,6 +31,10 @@ struct Exercise {
   // Whether it rasterizes, so that the fill rule decides a center on an edge exactly
   // (demanded on the fill-rule scenes); a ray caster's answer there is any tied triangle.
   bool fillRule = true;
+  // Whether, of two triangles exactly as near, the first drawn must keep the pixel (the
+  // z-buffer's rule; a painter, Warnock, Watkins and Weiler-Atherton order coplanar faces
+  // their own way, and any of them is right).
+  bool tieRule = true;
   // The hard cases its tests hand over; all when empty. Backface culling (Exercise 7) is
   // right for closed solids only, so that exercise's scenes are boxes and spheres.
   std::vector<std::string> skills = {};

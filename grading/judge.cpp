@@ -58,6 +58,25 @@ constexpr double kNear = 1.0 / 1024;
 const std::array<dvec2, 8> kAround = {dvec2(kNear, 0),     dvec2(kNear, kNear),   dvec2(0, kNear),   dvec2(-kNear, kNear),
                                       dvec2(-kNear, 0),    dvec2(-kNear, -kNear), dvec2(0, -kNear),  dvec2(kNear, -kNear)};
 
+// Whether the fill rule gives the center to the triangle, on a scene whose vertices
+// land on pixel coordinates exactly (so that these products are exact): every edge
+// function positive there, or zero on a top or a left edge (conventions.hpp, and
+// renderer/raster/raster.cpp, which decides it in fixed point).
+bool fillRuleHolds(const PreparedScene& scene, std::uint32_t triangle, const dvec2& center) {
+  std::vector<dvec2> corners = projectedOutline(scene, scene.camera(), triangle);
+  if (corners.size() != 3) return false;
+  const auto edge = [&](const dvec2& a, const dvec2& b, const dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
+  const double area = edge(corners[0], corners[1], corners[2]);
+  if (area == 0) return false;
+  if (area < 0) std::swap(corners[1], corners[2]);  // clockwise on screen, y down
+  for (int k = 0; k < 3; ++k) {
+    const dvec2 &a = corners[std::size_t(k + 1) % 3], &b = corners[std::size_t(k + 2) % 3];
+    const double value = edge(a, b, center), dx = b.x - a.x, dy = b.y - a.y;
+    if (value < 0 || (value == 0 && !((dy == 0 && dx > 0) || dy < 0))) return false;
+  }
+  return true;
+}
+
 std::string distanceText(double distance) {
   char text[48];
   std::snprintf(text, sizeof text, "%.9g", distance);
@@ -70,7 +89,7 @@ const char* causeName(Cause cause) { return kCauseTexts[std::size_t(cause)].name
 const char* causeAdvice(Cause cause) { return kCauseTexts[std::size_t(cause)].advice; }
 
 Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
-                std::span<const std::uint32_t> conventions) {
+                std::span<const std::uint32_t> conventions, bool tieRule) {
   const CameraTransform& camera = scene.camera();
   const int width = scene.width();
   const std::uint32_t triangles = std::uint32_t(scene.triangleCount());
@@ -116,13 +135,23 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
     } else if (!conventions.empty()) {
       // A fill-rule scene: the rasterizer places every vertex exactly, so every pixel,
       // a center on an edge too, has one right answer: the conventions'.
+      // The triangle shown must hold the center by the fill rule and be among the
+      // nearest; of several, the first drawn, where the exercise's algorithm keeps ties
+      // so (a painter draws coplanar faces in an order of its own).
+      const auto amongTied = [&] {
+        std::vector<std::uint32_t> tied;
+        SurfaceReference::Counters counters;
+        rays.trace(camera, ray, counters, &tied);
+        return std::find(tied.begin(), tied.end(), mine) != tied.end();
+      };
       if (mine == conventions[p]) {
         verdict = reference.ambiguous[p] ? Verdict::tie : Verdict::right;
+      } else if (mine != 0 && (mine == exact || (reference.ambiguous[p] && amongTied())) && fillRuleHolds(scene, mine - 1, center)) {
+        verdict = tieRule ? Verdict::wrong : Verdict::tie;
+        cause = Cause::laterTie;
       } else {
         verdict = Verdict::wrong;
-        const double mineAt = metAt(mine), conventionsAt = metAt(conventions[p]);
-        const bool onAnEdge = nearestProjectedEdge(scene, camera, {mine, conventions[p], exact}, center) < kSnapDistance;
-        cause = !onAnEdge && std::isfinite(mineAt) && mineAt == conventionsAt ? Cause::laterTie : causeOf(onAnEdge);
+        cause = causeOf(nearestProjectedEdge(scene, camera, {mine, conventions[p], exact}, center) < kSnapDistance);
       }
     } else if (reference.ambiguous[p]) {
       std::vector<std::uint32_t> tied;

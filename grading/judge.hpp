@@ -59,10 +59,11 @@ struct Judgement {
 
 // `shown`: the submission's ids (triangle id, 0 background), width x height of the
 // scene. `conventions`: the answer the suite's rasterization conventions give (the
-// z-buffer's ids), demanded exactly at every pixel the reference certifies tied, on
-// scenes whose vertices the rasterizer places exactly (the fill-rule tests); empty on
-// other scenes.
+// z-buffer's ids) on a scene whose vertices the rasterizer places exactly (the fill-rule
+// tests), empty on other scenes: there a pixel may show only a triangle the fill rule
+// gives its center and that is among the nearest, and with `tieRule`, of several equally
+// near the first drawn (the z-buffer's rule; a painter orders coplanar faces its own way).
 Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
-                std::span<const std::uint32_t> conventions);
+                std::span<const std::uint32_t> conventions, bool tieRule = true);
 
 }  // namespace hsr::grading

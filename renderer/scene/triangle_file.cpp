@@ -87,9 +87,14 @@ std::string triangleFileText(const PreparedScene& scene) {
   for (int row = 0; row < 4; ++row)  // glm is column-major: clip[column][row]
     text += exactly(clip[0][row]) + " " + exactly(clip[1][row]) + " " + exactly(clip[2][row]) + " " + exactly(clip[3][row]) + "\n";
   text += "triangles " + std::to_string(scene.triangleCount()) + "\n";
-  for (const Triangle& triangle : scene.triangles())
-    text += exactly(scene.positions()[triangle[0]]) + " " + exactly(scene.positions()[triangle[1]]) + " " +
-            exactly(scene.positions()[triangle[2]]) + "\n";
+  for (std::size_t object = 0; object < scene.instances().size(); ++object) {
+    const Instance& instance = scene.instances()[object];
+    for (std::uint32_t t = instance.firstTriangle; t < instance.firstTriangle + instance.triangleCount; ++t) {
+      const Triangle& triangle = scene.triangles()[t];
+      text += exactly(scene.positions()[triangle[0]]) + " " + exactly(scene.positions()[triangle[1]]) + " " +
+              exactly(scene.positions()[triangle[2]]) + " " + std::to_string(object + 1) + "\n";
+    }
+  }
   return text;
 }
 
@@ -159,19 +164,37 @@ Scene parseTriangleFile(const std::string& text, const std::filesystem::path& fi
 
   const double count = lines.numbers(words, 1, 1, "triangles", 0, double(kMaxTriangles))[0];
   if (count != std::floor(count)) lines.fail("triangles: expected a whole number");
-  auto mesh = std::make_shared<Mesh>();
+  // Each run of lines with one object number is an object (the culling stages cull by
+  // object); the triangles keep the file's order, so their ids stay the line numbers.
+  std::vector<Mesh> meshes;
+  double object = 0;
   for (std::size_t t = 0; t < std::size_t(count); ++t) {
     if (!lines.next(words)) lines.fail("triangles: " + std::to_string(t) + " triangle lines; expected " + std::to_string(std::size_t(count)));
-    const std::vector<double> corners = lines.numbers(words, 0, 9, "triangle " + std::to_string(t + 1), -kMaxCoordinate, kMaxCoordinate);
-    for (int k = 0; k < 3; ++k) mesh->positions.emplace_back(corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]);
-    const auto first = std::uint32_t(3 * t);
-    mesh->triangles.push_back({first, first + 1, first + 2});
+    const std::string what = "triangle " + std::to_string(t + 1);
+    if (words.size() != 9 && words.size() != 10)
+      lines.fail(what + ": " + std::to_string(words.size()) + " numbers; expected 9 (its corners), and its object's number or not");
+    if (words.size() == 10) {
+      const double number = lines.number(words[9], what + "'s object", 1, double(kMaxTriangles));
+      if (number != std::floor(number)) lines.fail(what + "'s object: expected a whole number");
+      if (number != object) meshes.emplace_back();
+      object = number;
+      words.pop_back();
+    } else if (meshes.empty()) {
+      meshes.emplace_back();
+    }
+    const std::vector<double> corners = lines.numbers(words, 0, 9, what, -kMaxCoordinate, kMaxCoordinate);
+    Mesh& mesh = meshes.back();
+    const auto first = std::uint32_t(mesh.positions.size());
+    for (int k = 0; k < 3; ++k) mesh.positions.emplace_back(corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]);
+    mesh.triangles.push_back({first, first + 1, first + 2});
   }
   if (lines.next(words)) lines.fail("a line after the last triangle; expected the end of the file");
-  SceneObject object;
-  object.name = "triangles";
-  object.mesh = std::move(mesh);
-  scene.objects.push_back(std::move(object));
+  for (Mesh& mesh : meshes) {
+    SceneObject part;
+    part.name = "object" + std::to_string(scene.objects.size() + 1);
+    part.mesh = std::make_shared<const Mesh>(std::move(mesh));
+    scene.objects.push_back(std::move(part));
+  }
   return scene;
 }
 

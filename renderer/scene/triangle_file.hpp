@@ -16,7 +16,9 @@
 //   M00 M01 M02 M03                  (x, y, d, w) = M (p, 1), d the distance along the
 //   ...                              view axis, w = d (perspective) or 1 (orthographic)
 //   triangles T
-//   AX AY AZ BX BY BZ CX CY CZ       T lines; the triangle on line k has id k (from 1)
+//   AX AY AZ BX BY BZ CX CY CZ [O]   T lines; the triangle on line k has id k (from 1);
+//                                    O, the object it belongs to (a run of lines with one
+//                                    O is an object, which culling stages cull whole)
 //
 // A pixel (i, j) is sampled at its center; a point's pixel coordinates are
 // ((x / w + 1) W / 2, (1 - y / w) H / 2), row 0 at the top (renderer/util/conventions.hpp).
@@ -34,9 +36,9 @@ namespace hsr {
 // The prepared scene's triangles (every instance, in id order) and camera, at its size.
 std::string triangleFileText(const PreparedScene& scene);
 
-// Reads a triangle file into a scene of one object; the camera from its parameters (the
-// matrix is for other programs, and is not read). Throws InputError("FILE:LINE: what,
-// expected ...") on anything else.
+// Reads a triangle file into a scene, an object per run of one object number; the
+// camera from its parameters (the matrix is for other programs, and is not read).
+// Throws InputError("FILE:LINE: what, expected ...") on anything else.
 Scene parseTriangleFile(const std::string& text, const std::filesystem::path& file);
 
 }  // namespace hsr
