@@ -53,10 +53,12 @@ class Random {
   std::uint64_t state_;
 };
 
-// An odd-sized image (61 to 161 by 41 to 101 pixels): sizes a program may get wrong.
-void oddSize(Scene& scene, Random& random) {
+// A scene of an odd size (61 to 161 by 41 to 101 pixels): sizes a program may get wrong.
+Scene oddSized(Random& random) {
+  Scene scene;
   scene.width = 2 * random.integer(30, 80) + 1;
   scene.height = 2 * random.integer(20, 50) + 1;
+  return scene;
 }
 
 Camera perspectiveAt(const dvec3& eye, const dvec3& target, double fovY, double near = 0.1, double far = 100) {
@@ -106,8 +108,7 @@ void addBlocks(Scene& scene, Random& random) {
 
 Scene visibility(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   addBlocks(scene, random);
   const double distance = random.uniform(6, 9);
   const dvec3 eye = distance * random.direction();
@@ -186,8 +187,7 @@ Scene fillRule(std::uint64_t seed) {
 // A floor and walls that run past the eye, and triangles with a corner behind it.
 Scene nearPlane(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   const double floorY = -random.uniform(0.5, 1.5), wallX = random.uniform(1, 3);
   add(scene, triangles({{-20, floorY, 10}, {20, floorY, 10}, {20, floorY, -40}, {-20, floorY, 10}, {20, floorY, -40}, {-20, floorY, -40}}));
   add(scene, triangles({{-wallX, -5, 8}, {-wallX, -5, -30}, {-wallX, 6, -30}, {-wallX, -5, 8}, {-wallX, 6, -30}, {-wallX, 6, 8}}));
@@ -230,8 +230,7 @@ Scene farFromOrigin(std::uint64_t seed) {
 // reference certifies the ties, and any of the tied triangles is right there.
 Scene coplanar(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   std::vector<dvec3> corners;
   const double planes[3] = {-0.5, 0, 0.25};
   for (int k = random.integer(6, 12); k > 0; --k) {
@@ -248,8 +247,7 @@ Scene coplanar(std::uint64_t seed) {
 // Long, thin triangles (a width of 10^-3 to 10^-6 of their length) over a backdrop.
 Scene slivers(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   std::vector<dvec3> corners = {{-4, -3, -2}, {4, -3, -2}, {4, 3, -2}, {-4, -3, -2}, {4, 3, -2}, {-4, 3, -2}};
   for (int k = random.integer(8, 16); k > 0; --k) {
     const dvec3 a = random.point({-3, -2, -1.5}, {3, 2, 1});
@@ -267,8 +265,7 @@ Scene slivers(std::uint64_t seed) {
 // Large triangles through one another: no order of whole triangles is right.
 Scene interpenetrating(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   std::vector<dvec3> corners;
   for (int k = random.integer(6, 12) * 3; k > 0; --k) corners.push_back({random.uniform(-2, 2), random.uniform(-1.5, 1.5), random.uniform(-2, 2)});
   add(scene, triangles(corners));
@@ -281,8 +278,7 @@ Scene interpenetrating(std::uint64_t seed) {
 // ends: cyclic overlaps, which no order of whole bars can draw.
 Scene cycles(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   std::vector<dvec3> corners;
   const int bars = random.integer(3, 5);
   const double start = random.uniform(0, 2 * kPi), tilt = random.uniform(0.15, 0.4);
@@ -303,8 +299,7 @@ Scene cycles(std::uint64_t seed) {
 // nothing beyond the far plane may be drawn.
 Scene farPlane(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   const double far = random.uniform(6, 12), floorY = -random.uniform(0.8, 1.5);
   add(scene, triangles({{-30, floorY, 5}, {30, floorY, 5}, {30, floorY, -60}, {-30, floorY, 5}, {30, floorY, -60}, {-30, floorY, -60}}));
   for (int k = random.integer(5, 9); k > 0; --k) {
@@ -322,8 +317,7 @@ Scene farPlane(std::uint64_t seed) {
 // it, some seen only through a gap: what an occlusion culler must keep.
 Scene occlusion(std::uint64_t seed) {
   Random random(seed);
-  Scene scene;
-  oddSize(scene, random);
+  Scene scene = oddSized(random);
   for (double x = -4; x < 4;) {
     const double width = random.uniform(0.5, 1.5), height = random.uniform(1.5, 3);
     add(scene, placed(makeBox({width, height, 0.3}), 0, {x + width / 2, height / 2 - 1.2, -4}));

@@ -1,10 +1,10 @@
 #include "grading/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
 #include <fcntl.h>
@@ -75,11 +75,15 @@ RunResult runCommand(const std::vector<std::string>& command, const std::filesys
     if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
     if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   }
-  std::ifstream file(log, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  result.output = text.str();
-  if (result.output.size() > 2000) result.output = "..." + result.output.substr(result.output.size() - 2000);
+  // The log's last 2,000 characters, read from there: a program may have written
+  // hundreds of megabytes.
+  constexpr std::streamoff kTail = 2000;
+  std::ifstream file(log, std::ios::binary | std::ios::ate);
+  const std::streamoff size = file ? std::streamoff(file.tellg()) : 0;
+  file.seekg(std::max<std::streamoff>(0, size - kTail));
+  result.output.assign(std::size_t(std::min(size, kTail)), '\0');
+  file.read(result.output.data(), std::streamsize(result.output.size()));
+  if (size > kTail) result.output = "..." + result.output;
   // Plain text for every report: bytes that are not printable ASCII become '?'.
   for (char& c : result.output)
     if ((static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') || static_cast<unsigned char>(c) >= 0x7F) c = '?';

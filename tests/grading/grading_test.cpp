@@ -184,6 +184,12 @@ TEST(Grade, ASubmissionThatFailsFailsItsTestWithTheReason) {
     EXPECT_FALSE(report.tests[0].passed) << name;
     EXPECT_NE(report.tests[0].output.find(reason), std::string::npos) << name << ": " << report.tests[0].output;
   }
+  // A program that floods its output costs the grader its last 2,000 characters only.
+  const grading::GradeReport flood = graded(submission("floods", "build:\n\ttrue\nrun:\n\tyes\n"), "visible/cube", 0.5);
+  EXPECT_FALSE(flood.tests[0].passed);
+  EXPECT_NE(flood.tests[0].output.find("make run "), std::string::npos) << flood.tests[0].output;
+  EXPECT_LT(flood.tests[0].output.size(), 2200u);
+  EXPECT_NE(flood.tests[0].output.find("y\ny\n"), std::string::npos);
   // A program that hangs is stopped at the limit, with everything it started.
   const auto start = std::chrono::steady_clock::now();
   const grading::GradeReport hung = graded(submission("hangs", "build:\n\ttrue\nrun:\n\tsleep 30 & sleep 30\n"), "visible/cube", 0.5);
