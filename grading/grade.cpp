@@ -4,11 +4,9 @@
 #include <set>
 #include <sstream>
 
-#include "algorithms/registry.hpp"
 #include "grading/grading.hpp"
 #include "grading/judge.hpp"
 #include "grading/run.hpp"
-#include "pipeline/pipeline.hpp"
 #include "renderer/image/image_library.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/scene/triangle_file.hpp"
@@ -141,8 +139,8 @@ std::string feedbackOf(const Judgement& judgement, const std::string& algorithm,
 }
 
 // The algorithm a C++ folder replaces: the NAME of its CMakeLists.txt's hsr_algorithm(NAME
-// ...), checked before anything is written.
-std::string algorithmOfFolder(const GradeOptions& options) {
+// ...), which must be the exercise's; checked before anything is written.
+std::string algorithmOfFolder(const GradeOptions& options, const Exercise& exercise) {
   std::ifstream cmake(options.submission / "CMakeLists.txt");
   std::stringstream text;
   text << cmake.rdbuf();
@@ -155,6 +153,9 @@ std::string algorithmOfFolder(const GradeOptions& options) {
   std::string algorithm;
   words >> algorithm;
   algorithm = algorithm.substr(0, algorithm.find(')'));
+  if (algorithm != exercise.algorithm)
+    throw InputError(options.submission.string() + ": is the folder of " + algorithm + "; exercise " + std::to_string(exercise.number) +
+                     " asks for " + exercise.algorithm);
   if (options.source.empty() || !std::filesystem::exists(options.build / "compile_commands.json"))
     throw InputError(options.submission.string() + ": an algorithm folder is built with hsr's own build, and " + options.build.string() +
                      " holds no compile_commands.json; expected the build folder hsr was built in");
@@ -287,7 +288,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
     }
   }
   const bool program = std::filesystem::is_regular_file(options.submission / "Makefile");
-  const std::string algorithm = program ? "" : algorithmOfFolder(options);
+  const std::string algorithm = program ? "" : algorithmOfFolder(options, exercise);
   std::filesystem::create_directories(options.work);
   const std::filesystem::path work = std::filesystem::absolute(options.work);
   const std::filesystem::path submission =
@@ -331,11 +332,10 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
       } else {
         Stats stats;
         const ReferenceImage reference = traceReference(prepared, options.threads, stats);
-        // A fill-rule scene's every pixel is decided by the conventions: the z-buffer's answer.
-        const Frame conventions = test.pixelExact() && exercise.fillRule
-                                      ? pipeline::render(prepared, pipeline::configurationOf(findAlgorithm("zbuffer"), {}), options.threads, stats).frame
-                                      : Frame();
-        const Judgement judgement = judge(prepared, reference, ids, conventions.ids, exercise.tieRule);
+        // A fill-rule scene's every pixel is decided by the conventions.
+        const std::vector<std::uint32_t> conventions =
+            test.pixelExact() && exercise.fillRule ? conventionsAnswer(prepared) : std::vector<std::uint32_t>();
+        const Judgement judgement = judge(prepared, reference, ids, conventions, exercise.tieRule);
         result.passed = judgement.passed();
         result.score = result.passed ? result.maxScore : 0;
         const std::string heatMap = file + "-where.png";

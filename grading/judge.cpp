@@ -77,6 +77,27 @@ bool fillRuleHolds(const PreparedScene& scene, std::uint32_t triangle, const dve
   return true;
 }
 
+// The view distance of a triangle at a center, from its corners' distances weighted by
+// the center's barycentric coordinates on the screen (depth is affine there under an
+// orthographic camera, which a pixel-exact scene has); a triangle of one distance has
+// exactly it.
+double distanceOnScreen(const PreparedScene& scene, std::uint32_t triangle, const dvec2& center) {
+  const CameraTransform& camera = scene.camera();
+  dvec2 pixel[3];
+  double distance[3];
+  for (int k = 0; k < 3; ++k) {
+    const ClipVertex v = camera.clipFromWorld(scene.positions()[scene.triangles()[triangle][std::size_t(k)]]);
+    pixel[k] = camera.pixelFromClip(v);
+    distance[k] = v.d;
+  }
+  if (distance[0] == distance[1] && distance[1] == distance[2]) return distance[0];
+  const auto edge = [](const dvec2& a, const dvec2& b, const dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
+  const double area = edge(pixel[0], pixel[1], pixel[2]);
+  return (edge(pixel[1], pixel[2], center) * distance[0] + edge(pixel[2], pixel[0], center) * distance[1] +
+          edge(pixel[0], pixel[1], center) * distance[2]) /
+         area;
+}
+
 std::string distanceText(double distance) {
   char text[48];
   std::snprintf(text, sizeof text, "%.9g", distance);
@@ -84,6 +105,35 @@ std::string distanceText(double distance) {
 }
 
 }  // namespace
+
+std::vector<std::uint32_t> conventionsAnswer(const PreparedScene& scene) {
+  const int width = scene.width(), height = scene.height();
+  const double near = scene.camera().camera().near, far = scene.camera().camera().far;
+  std::vector<std::uint32_t> ids(std::size_t(width) * std::size_t(height), 0);
+  std::vector<double> nearest(ids.size(), std::numeric_limits<double>::infinity());
+  // In submission order: a triangle keeps a center it holds by the fill rule where it is
+  // strictly nearer than what the center holds, so the first drawn keeps a tie.
+  for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) {
+    const std::vector<dvec2> outline = projectedOutline(scene, scene.camera(), t);
+    if (outline.size() != 3) continue;  // behind the near plane, or cut by it: no pixel-exact scene has one
+    double left = width, right = 0, top = height, bottom = 0;
+    for (const dvec2& corner : outline) {
+      left = std::min(left, corner.x), right = std::max(right, corner.x);
+      top = std::min(top, corner.y), bottom = std::max(bottom, corner.y);
+    }
+    for (int y = std::max(0, int(std::floor(top))); y < std::min(height, int(std::ceil(bottom)) + 1); ++y)
+      for (int x = std::max(0, int(std::floor(left))); x < std::min(width, int(std::ceil(right)) + 1); ++x) {
+        const dvec2 center(x + 0.5, y + 0.5);
+        if (!fillRuleHolds(scene, t, center)) continue;
+        const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
+        const double distance = distanceOnScreen(scene, t, center);
+        if (distance < near || distance > far || !(distance < nearest[p])) continue;
+        nearest[p] = distance;
+        ids[p] = t + 1;
+      }
+  }
+  return ids;
+}
 
 const char* causeName(Cause cause) { return kCauseTexts[std::size_t(cause)].name; }
 const char* causeAdvice(Cause cause) { return kCauseTexts[std::size_t(cause)].advice; }

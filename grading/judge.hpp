@@ -63,6 +63,13 @@ struct Judgement {
 // tests), empty on other scenes: there a pixel may show only a triangle the fill rule
 // gives its center and that is among the nearest, and with `tieRule`, of several equally
 // near the first drawn (the z-buffer's rule; a painter orders coplanar faces its own way).
+// The conventions' answer on a scene whose vertices the rasterizer places exactly (an
+// orthographic camera with dyadic pixel coordinates, as the fill-rule generator makes):
+// at every pixel center, of the triangles the top-left rule gives it, the nearest, and of
+// equally near ones the first in the file. Worked out here, apart from every algorithm,
+// so that a student edition's own z-buffer is never its judge.
+std::vector<std::uint32_t> conventionsAnswer(const PreparedScene& scene);
+
 Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
                 std::span<const std::uint32_t> conventions, bool tieRule = true);
 

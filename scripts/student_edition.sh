@@ -8,7 +8,8 @@
 #     // END SOLUTION
 # holds its skeleton instead. The edition builds and runs, and fails the exercise's
 # tests (its ctest label, and hsr grade) until the student writes the code; the exact
-# reference, the other algorithms and the grader are as shipped.
+# reference, the other algorithms and the grader are as shipped; the answer key and the
+# bug catalogue are left out. It is made from the last commit: commit a change first.
 #   bash scripts/student_edition.sh EXERCISE OUT
 # Then: cd OUT && bash scripts/build.sh && ./build/hsr grade algorithms/FOLDER --exercise EXERCISE
 set -euo pipefail
@@ -25,6 +26,9 @@ if [ -e "$out" ]; then
 fi
 mkdir -p "$out"
 git -C "$checkout" archive HEAD | tar -x -C "$out"
+# Not for students: the answer key, and the bug catalogue (its mutations quote the
+# solution's lines). The grader needs neither.
+rm -r "$out/docs/instructors" "$out/course/bugs"
 python3 - "$out/algorithms/$folder" <<'PYTHON'
 import pathlib, re, sys
 regions = 0

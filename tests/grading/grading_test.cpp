@@ -296,6 +296,7 @@ TEST(GradeCommand, BadInputIsOneLineAndExitTwo) {
       {"grade course/shipped --exercise 1 --bugs depth-cleared-to-near", "--bugs, --variants: choose what --self-check grades"},
       {"grade --self-check --bugs no-such-bug", "--bugs no-such-bug: no such bug in course/bugs/catalogue.toml"},
       {"grade course --exercise 1", "course: has no Makefile, and no CMakeLists.txt calling hsr_algorithm(NAME ...)"},
+      {"grade algorithms/zbuffer --exercise 3", "algorithms/zbuffer: is the folder of zbuffer; exercise 3 asks for ray_casting"},
   };
   for (const auto& [arguments, message] : cases) {
     const test::CommandResult result = test::runCommand("cd " + test::sourcePath("").string() + " && " + hsr + " " + arguments + " --out " + out.string());
@@ -329,6 +330,25 @@ TEST(TriangleFile, HsrRenderWritesItAndHsrReadsItBack) {
   ASSERT_EQ(again.exitCode, 0) << again.output;
   const Image direct = readImage(folder / "direct.png"), fromFile = readImage(folder / "again.png");
   EXPECT_EQ(direct.pixels, fromFile.pixels);
+}
+
+}  // namespace
+}  // namespace hsr
+
+namespace hsr {
+namespace {
+
+// The conventions' answer the grader works out on its own (so that a student edition's
+// z-buffer never judges itself) is the shipped z-buffer's, pixel for pixel.
+TEST(Judge, TheConventionsAnswerIsTheZBuffersOnPixelExactScenes) {
+  const grading::SceneGenerator& fillRule = grading::sceneGenerators()[2];
+  for (const std::uint64_t seed : {1, 2, 3, 4, 5, 2026}) {
+    const Scene scene = fillRule.make(seed);
+    const auto prepared = preparedAt(scene, scene.width, scene.height);
+    const Frame zbuffer = test::renderZBuffer(*prepared);
+    const std::vector<std::uint32_t> answer = grading::conventionsAnswer(*prepared);
+    EXPECT_TRUE(std::equal(answer.begin(), answer.end(), zbuffer.ids.begin(), zbuffer.ids.end())) << "seed " << seed;
+  }
 }
 
 }  // namespace

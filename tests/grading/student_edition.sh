@@ -8,6 +8,9 @@ hsr=$1 checkout=$2 work=$3
 rm -rf "$work"
 bash "$checkout/scripts/student_edition.sh" 1 "$work/edition"
 if grep -q 'BEGIN SOLUTION' "$work/edition/algorithms/zbuffer/"*; then echo "a solution region is left" >&2; exit 1; fi
+for secret in docs/instructors course/bugs; do
+  if [ -e "$work/edition/$secret" ]; then echo "the edition holds $secret" >&2; exit 1; fi
+done
 status=0
 "$hsr" grade "$work/edition/algorithms/zbuffer" --exercise 1 --test visible/cube --out "$work/report" > "$work/output.txt" 2>&1 || status=$?
 cat "$work/output.txt"
