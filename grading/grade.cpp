@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include "grading/grading.hpp"
@@ -128,12 +127,9 @@ std::string feedbackOf(const Judgement& judgement, const std::string& algorithm,
             (cause.cause == Cause::nothingDrawn ? "" : ", first at " + cause.first) + "\n";
     text += "  " + std::string(causeAdvice(cause.cause)) + "\n";
   }
-  const std::string& first = judgement.causes.front().first;  // "pixel (x, y): ..."
-  if (const std::size_t open = first.find('('), close = first.find(')'); open != std::string::npos && close != std::string::npos) {
-    std::string pixel = first.substr(open + 1, close - open - 1);
-    pixel.erase(std::remove(pixel.begin(), pixel.end(), ' '), pixel.end());
-    text += "How the shipped algorithm decides that pixel: hsr why " + sceneFile + " --pixel " + pixel + " " + algorithm + "\n";
-  }
+  if (const CauseCount& first = judgement.causes.front(); first.x >= 0)
+    text += "How the shipped algorithm decides that pixel: hsr why " + sceneFile + " --pixel " + std::to_string(first.x) + "," +
+            std::to_string(first.y) + " " + algorithm + "\n";
   text += "Where: " + heatMap + " (wrong pixels red, differences within the tolerances yellow, certified ties blue)\n";
   return text;
 }
@@ -162,24 +158,28 @@ std::string algorithmOfFolder(const GradeOptions& options, const Exercise& exerc
   return algorithm;
 }
 
-// A C++ algorithm folder as a program: a Makefile in the work folder whose make build
-// builds it into an hsr of its own and whose make run renders with that hsr. Its
-// implemented.txt, if it has one, says what it claims; else all of the exercise.
+// hsr render's options for the exercise's shipped algorithm: the algorithm, and the
+// culling stages it runs first.
+std::string shippedOptions(const Exercise& exercise) {
+  return std::string("--algo ") + exercise.algorithm + (*exercise.cull ? std::string(" --cull ") + exercise.cull : "");
+}
+
+// A C++ algorithm folder as a program: a submission in the work folder whose make build
+// builds it into an hsr of its own, rendering with the options that run the student's
+// code. Its implemented.txt, if it has one, says what it claims; else all of the exercise.
 std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, const std::string& algorithm, const Exercise& exercise,
                                                 const std::filesystem::path& work) {
   const std::filesystem::path folder = std::filesystem::absolute(options.submission);
+  std::vector<std::string> claims = skillsOf(exercise);
+  if (std::ifstream own(folder / "implemented.txt"); own) {
+    claims.clear();
+    for (std::string line; std::getline(own, line);) claims.push_back(line);
+  }
   const std::filesystem::path wrapper = work / "algorithm-folder";
-  std::filesystem::create_directories(wrapper);
-  std::ofstream(wrapper / "Makefile") << "# " << folder.string() << " in place of algorithms/" << algorithm << "/\nbuild:\n\tpython3 "
-                                      << (options.source / "course/folder_build.py").string() << " " << folder.string() << " --algorithm "
-                                      << algorithm << " --build " << options.build.string() << " --out .\n\nrun:\n\t./hsr render $(file) --algo "
-                                      << algorithm << " " << exercise.folderOptions << (*exercise.cull ? std::string(" --cull ") + exercise.cull : "")
-                                      << " --threads 1 --ids $(out) -o $(out).color.png\n\n.PHONY: build run\n";
-  std::ofstream claims(wrapper / "implemented.txt");
-  if (std::ifstream own(folder / "implemented.txt"); own)
-    claims << own.rdbuf();
-  else
-    for (const std::string& skill : skillsOf(exercise)) claims << skill << "\n";
+  writeHsrSubmission(wrapper, folder.string() + " in place of algorithms/" + algorithm + "/",
+                     "python3 " + (options.source / "course/folder_build.py").string() + " " + folder.string() + " --algorithm " + algorithm +
+                         " --build " + options.build.string() + " --out .",
+                     shippedOptions(exercise) + " " + exercise.folderOptions, claims);
   return wrapper;
 }
 
@@ -259,6 +259,15 @@ std::vector<GradingTest> testsOf(const Exercise& exercise, std::optional<std::ui
 
 std::vector<std::string> skillsOf(const Exercise& exercise) { return exercise.skills.empty() ? skills() : exercise.skills; }
 
+void writeHsrSubmission(const std::filesystem::path& folder, const std::string& comment, const std::string& build, const std::string& render,
+                        const std::vector<std::string>& claims) {
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Makefile") << "# " << comment << "\nbuild:\n\t" << build << "\n\nrun:\n\t./hsr render $(file) " << render
+                                     << " --threads 1 --ids $(out) -o $(out).color.png\n\n.PHONY: build run\n";
+  std::ofstream implemented(folder / "implemented.txt");
+  for (const std::string& claim : claims) implemented << claim << "\n";
+}
+
 double GradeReport::score() const {
   double sum = 0;
   for (const TestResult& test : tests) sum += test.score;
@@ -313,6 +322,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
     if (!report.built) {
       result.output = "the submission did not build: make build " + build.outcome() + "\n" + build.output;
     } else if (std::find(report.claimed.begin(), report.claimed.end(), test.skill) == report.claimed.end()) {
+      result.claimed = false;
       result.output = "not run: implemented.txt does not claim " + test.skill + "\n";
     } else {
       const Scene scene = test.scene();
@@ -339,8 +349,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
         result.passed = judgement.passed();
         result.score = result.passed ? result.maxScore : 0;
         const std::string heatMap = file + "-where.png";
-        const std::string shipped = std::string("--algo ") + exercise.algorithm + (*exercise.cull ? std::string(" --cull ") + exercise.cull : "");
-        result.output = feedbackOf(judgement, shipped, sceneFile.string(), heatMap);
+        result.output = feedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
         if (!result.passed) {
           result.heatMap = heatMap;
           heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});

@@ -73,6 +73,7 @@ struct Limits {
 struct TestResult {
   std::string name, skill;
   bool hidden = false;
+  bool claimed = true;  // false: implemented.txt does not claim its hard case, and it was not run
   bool passed = false;
   double score = 0, maxScore = 1;
   std::string output;   // the feedback, a few lines
@@ -129,6 +130,13 @@ struct SelfCheckOptions {
   int threads = 0;
 };
 int selfCheck(const SelfCheckOptions& options);
+
+// A submission that runs an hsr it builds: a Makefile in `folder` whose make build runs
+// `build` (which leaves ./hsr there) and whose make run renders the scene with ./hsr and
+// `render` (hsr render's options), and an implemented.txt of `claims`, a line each. The
+// self-check's bugs and the C++ algorithm folders are graded through one.
+void writeHsrSubmission(const std::filesystem::path& folder, const std::string& comment, const std::string& build, const std::string& render,
+                        const std::vector<std::string>& claims);
 
 // The reports courses already read: Gradescope's results.json, JUnit XML, and a page.
 std::string gradescopeJson(const GradeReport& report);

@@ -259,6 +259,8 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
       heat[1] = heat[2] = 0;
       CauseCount& count = found[std::size_t(cause)];
       if (count.pixels++ == 0) {
+        count.x = x;
+        count.y = y;
         const double mineAt = metAt(mine <= triangles ? mine : 0), exactAt = metAt(exact);
         count.first = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): shows " +
                       (mine == 0 ? std::string("background") : "triangle " + std::to_string(mine)) +
@@ -275,7 +277,7 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
       std::any_of(reference.frame.ids.begin(), reference.frame.ids.end(), [](std::uint32_t id) { return id != 0; });
   if (!anythingShown && referenceShowsSomething) {
     found = {};
-    found[std::size_t(Cause::nothingDrawn)] = {Cause::nothingDrawn, result.wrong, "every pixel is background"};
+    found[std::size_t(Cause::nothingDrawn)] = {Cause::nothingDrawn, result.wrong, "every pixel is background", -1, -1};
   }
   for (const CauseCount& count : found)
     if (count.pixels > 0) result.causes.push_back(count);

@@ -46,6 +46,7 @@ struct CauseCount {
   Cause cause;
   std::int64_t pixels = 0;
   std::string first;  // "pixel (x, y): shows triangle 12 at distance 3.2; the nearest is triangle 9 at 3.1"
+  int x = -1, y = -1;  // that first pixel; -1 for nothing drawn, which has none
 };
 
 struct Judgement {

@@ -67,14 +67,12 @@ void readCatalogue(const std::filesystem::path& file, std::vector<Bug>& bugs, st
 // A submission whose make build builds the bug into ./hsr, and whose make run renders with it.
 std::filesystem::path bugSubmission(const Bug& bug, const SelfCheckOptions& options) {
   const std::filesystem::path folder = std::filesystem::absolute(options.work / "bugs" / bug.name);
-  std::filesystem::create_directories(folder);
   std::string render;
-  for (const std::string& word : bug.render) render += " " + word;
-  std::ofstream(folder / "Makefile") << "# " << bug.story << "\nbuild:\n\tpython3 " << (options.source / "course/bugs/mutant.py").string()
-                                     << " build " << bug.name << " --build " << options.build.string() << " --out .\n\nrun:\n\t./hsr render $(file)"
-                                     << render << " --threads 1 --ids $(out) -o $(out).color.png\n\n.PHONY: build run\n";
-  std::ofstream claims(folder / "implemented.txt");
-  for (const std::string& skill : skillsOf(findExercise(bug.exercise))) claims << skill << "\n";
+  for (const std::string& word : bug.render) render += (render.empty() ? "" : " ") + word;
+  writeHsrSubmission(folder, bug.story,
+                     "python3 " + (options.source / "course/bugs/mutant.py").string() + " build " + bug.name + " --build " +
+                         options.build.string() + " --out .",
+                     render, skillsOf(findExercise(bug.exercise)));
   return folder;
 }
 
@@ -108,7 +106,8 @@ int selfCheck(const SelfCheckOptions& options) {
   // The variants are graded in a copy: their builds leave the checkout as it was.
   const std::filesystem::path variantCopies = options.work / "variants";
   std::filesystem::create_directories(variantCopies);
-  std::filesystem::copy(options.source / "course/variants", variantCopies,
+  if (!variants.empty())
+    std::filesystem::copy(options.source / "course/variants", variantCopies,
                         std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
 
   int caught = 0, passed = 0;
@@ -143,7 +142,7 @@ int selfCheck(const SelfCheckOptions& options) {
     int claimedTests = 0;
     std::string firstFailure;
     for (const TestResult& test : report.tests) {
-      if (test.output.starts_with("not run: implemented.txt")) continue;
+      if (!test.claimed) continue;
       ++claimedTests;
       if (!test.passed && firstFailure.empty()) firstFailure = test.name + ": " + test.output;
     }
