@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds hsr and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (clang,
-# the "sanitize" preset, in build-sanitize/) and runs the unit and hard-case tests under
-# them. Any report fails the test it happens in: undefined behaviour aborts
-# (-fno-sanitize-recover), as do memory errors and leaks. The same run traps
+# Builds the unit and hard-case tests (not the hsr program, which none of them runs) with
+# AddressSanitizer and UndefinedBehaviorSanitizer (clang, the "sanitize" preset, in
+# build-sanitize/) and runs them under the sanitizers. Any report fails the test it
+# happens in: undefined behaviour aborts (-fno-sanitize-recover), as do memory errors and
+# leaks. The same run traps
 # floating-point exceptions (tests/floating_point_traps.hpp) with the standard library's
 # assertions on, as the debug preset does; -ffp-exception-behavior=maytrap keeps clang
 # from computing a division the code chose to skip (by default it assumes nothing
