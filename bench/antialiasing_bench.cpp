@@ -3,7 +3,7 @@
 // same subsamples (rendered k times larger, then each pixel the mean of its k x k), whole
 // renders (visibility and shading), on counters, trees and dragons at 320 x 180, one
 // thread. Each row's counters hold its coverage error against the exact shares (the
-// reference traced at 32 x 32 samples per pixel, renderer/raster/coverage.hpp): the mean
+// reference at 32 x 32 samples per pixel, traceExactShares in renderer/reference/reference.hpp): the mean
 // over all pixels, and over the pixels where more than one thing shows.
 //
 // Run: build/bench/antialiasing_bench --benchmark_repetitions=3
@@ -49,8 +49,7 @@ const hsr::PixelShares& exactShares(const char* name) {
   auto found = cache.find(name);
   if (found == cache.end()) {
     hsr::Stats stats;
-    const hsr::ReferenceImage reference = hsr::traceReference(*sized(name, kExactSamples), 0, stats);
-    found = cache.emplace(name, hsr::sharesOfSamples(reference.frame.ids, kWidth, kHeight, kExactSamples)).first;
+    found = cache.emplace(name, hsr::traceExactShares(*sized(name, 1), kExactSamples, 0, stats)).first;
   }
   return found->second;
 }

@@ -353,7 +353,7 @@ Rendered render(const PreparedScene& scene, const Configuration& configuration, 
   Visibility visibility;
   Context context{scene, scene.camera(), configuration, threads, stats, previous, steps, std::nullopt, visibility};
   runPasses(context, passes().size());
-  return {std::move(visibility.frame), std::move(context.drawing), std::move(visibility.polygons)};
+  return {std::move(visibility.frame), std::move(context.drawing), std::move(visibility.polygons), std::move(visibility.coverage)};
 }
 
 VisibleSet renderVisibility(const PreparedScene& scene, const Configuration& configuration, int threads, Stats& stats,

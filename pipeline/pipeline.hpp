@@ -8,6 +8,7 @@
 // phases, read back by passTimes).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,12 +67,14 @@ struct PlannedPass {
 std::vector<PlannedPass> plan(const PreparedScene& scene, const Configuration& configuration);
 
 // The result of a render: the image (surfaces shaded, or a line drawing's visible lines
-// rasterized), for a line algorithm the drawing itself, and for an algorithm that
-// draws polygons (AlgorithmEntry::drawsPolygons) the visible ones.
+// rasterized), for a line algorithm the drawing itself, for an algorithm that draws
+// polygons (AlgorithmEntry::drawsPolygons) the visible ones, and for one that shares
+// pixels among surfaces (the A-buffer) each pixel's shares.
 struct Rendered {
   Frame frame;
   LineSet drawing;
   std::vector<VisiblePolygon> polygons = {};
+  std::optional<PixelCoverage> coverage = {};
 };
 
 // Renders the scene at its size. threads: 0 = all cores; the image is the same bits for

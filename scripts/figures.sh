@@ -109,6 +109,10 @@ oiiotool "$(frame "culling stage occlusion")" "$(frame "occluders' depth")" --re
 ./build/hsr sweep scenes/hard/coplanar.toml --algo zbuffer \
   --knob depth-format=unorm16,unorm24,float32,reversed-float32 --repeat 5 --out "$study" > /dev/null
 cp "$study/sweep.png" images/figures/sweep-coplanar-depth.png
+# The A-buffer swept by what it buys: coverage error against time, per mask and depth rule.
+./build/hsr sweep scenes/counters.toml --algo abuffer --knob mask=2x2,4x4,8x8 --knob depth=center,subsample \
+  --size 480x270 --repeat 3 --out "$study" > /dev/null
+cp "$study/sweep.png" images/figures/sweep-abuffer-masks.png
 # Ray casting: the march's accuracy against time beside bvh, on trees and on the thin
 # sheet; naive's and bvh's time against the triangle count.
 mkdir -p images/figures/ray_casting

@@ -84,7 +84,8 @@ class Gallery {
              ",\"picture\":" + jsonString(name + ".png") + ",\"errorMap\":" + jsonString(name + "-error.png") +
              ",\"errorLegend\":" + jsonString(errorLegend) + ",\"lines\":" + (row.lines ? "true" : "false") +
              ",\"visibilityMs\":[" + jsonNumber(row.visibility.median * 1e3) + "," + jsonNumber(row.visibility.min * 1e3) + "," +
-             jsonNumber(row.visibility.max * 1e3) + "],\"error\":" + jsonNumber(row.errorValue()) +
+             jsonNumber(row.visibility.max * 1e3) + "],\"error\":" + jsonNumber(row.lines ? row.lineError.error : row.error.pixelError) +
+             ",\"coverageError\":" + (row.coverage ? jsonNumber(row.coverage->mean) : "null") +
              ",\"wrongPixels\":" + std::to_string(row.error.wrongPixels) + ",\"ambiguousPixels\":" + std::to_string(row.error.ambiguousPixels) +
              ",\"options\":" + jsonString(commandOptions(row)) + ",\"readme\":" + jsonString(readmeLink(row.algorithm, out_)) +
              ",\"answersWhy\":" + (findAlgorithm(row.algorithm).answersWhy ? "true" : "false") + "}";
@@ -103,13 +104,13 @@ class Gallery {
   OutputFiles files_;
 };
 
-std::string formatCount(std::int64_t value) {
-  std::string digits = std::to_string(value), text;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i && (digits.size() - i) % 3 == 0) text += ',';
-    text += digits[i];
-  }
-  return text;
+// A one-sample configuration's coverage error, under its map of wrong pixels: what even
+// a right pixel center costs at edges.
+std::string coverageNote(const ResultRow& row) {
+  if (!row.coverage) return "";
+  char note[64];
+  std::snprintf(note, sizeof note, "; coverage error %.2f%%", row.coverage->mean * 100);
+  return note;
 }
 
 }  // namespace
@@ -151,27 +152,32 @@ int compare(const CompareOptions& options) {
     const PreparedScene& prepared = *scene.prepared;
     const std::string sceneName = suiteRelative(scene.name);
     gallery.beginScene(sceneName, prepared);
-    const auto reference = measure(options.repeat, [&](Stats& stats) { return renderReference(prepared, options.threads, stats); });
-    const ReferenceImage& truth = reference.result;
+    auto reference = measure(options.repeat, [&](Stats& stats) { return renderReference(prepared, options.threads, stats); });
 
     SheetSection section;
     section.heading = scene.name.substr(scene.name.find_last_of('/') + 1) + ":  " + std::to_string(prepared.width()) + "x" +
                       std::to_string(prepared.height()) + ", " + formatCount(std::int64_t(prepared.triangleCount())) +
                       " triangles";
     std::printf("%s\n  reference: %s ambiguous pixels, %s exact fall-backs\n", section.heading.c_str(),
-                formatCount(truth.ambiguousPixels).c_str(), formatCount(truth.exactFallbacks).c_str());
-
+                formatCount(reference.result.ambiguousPixels).c_str(), formatCount(reference.result.exactFallbacks).c_str());
     std::vector<ResultRow> sceneRows;
     ResultRow referenceRow = measuredRow(sceneName, prepared, referenceAlgorithm, "exact", reference, options.threads);
-    referenceRow.error = surfaceError(truth.frame, truth);
-    std::vector<std::uint8_t> ambiguity = errorHeatMap(truth.frame, truth);
-    gallery.add(referenceRow, truth.frame.color, ambiguity, "ambiguous pixels blue");
+    Truth truth{std::move(reference.result), std::nullopt};
+    if (std::any_of(configurations.begin(), configurations.end(),
+                    [](const pipeline::Configuration& c) { return c.algorithm->kind == AlgorithmKind::surface; }))
+      addExactShares(truth, prepared, options.threads);
+    referenceRow.error = surfaceError(truth.image.frame, truth.image);
+    // One sample per pixel, even the exact one, gets edges' shares wrong: the lesson of the column.
+    if (truth.shares)
+      referenceRow.coverage = coverageError(sharesOfSamples(truth.image.frame.ids, prepared.width(), prepared.height(), 1), *truth.shares);
+    std::vector<std::uint8_t> ambiguity = errorHeatMap(truth.image.frame, truth.image);
+    gallery.add(referenceRow, truth.image.frame.color, ambiguity, "ambiguous pixels blue");
     sceneRows.push_back(referenceRow);
     char line[128];
     std::snprintf(line, sizeof line, "visibility %.1f ms, total %.1f", referenceRow.visibility.median * 1e3, referenceRow.time.median * 1e3);
-    section.images.push_back({prepared.width(), prepared.height(), truth.frame.color, {"reference (exact)", line}});
+    section.images.push_back({prepared.width(), prepared.height(), truth.image.frame.color, {"reference (exact)", line}});
     section.heatMaps.push_back({prepared.width(), prepared.height(), std::move(ambiguity),
-                                {formatCount(truth.ambiguousPixels) + " ambiguous px (blue)"}});
+                                {formatCount(truth.image.ambiguousPixels) + " ambiguous px (blue)" + coverageNote(referenceRow)}});
 
     std::vector<PixelBuffer<std::uint8_t>> exactDrawingsShown;  // the line references' tiles so far
     for (const pipeline::Configuration& configuration : configurations) {
@@ -181,7 +187,7 @@ int compare(const CompareOptions& options) {
                     refusal.c_str());
         continue;
       }
-      const auto [row, frame, lineErrors, exactLines] =
+      const auto [row, frame, lineErrors, exactLines, coverageErrors] =
           measureConfiguration(sceneName, prepared, truth, configuration, options.repeat, options.threads);
       // A line algorithm is judged by an exact drawing, not by the reference image: that
       // drawing gets a tile of its own before the first algorithm judged by it.
@@ -195,7 +201,7 @@ int compare(const CompareOptions& options) {
         }
       }
       sceneRows.push_back(row);
-      std::snprintf(line, sizeof line, "visibility %.1f ms, %s error %.4f%%%s", row.visibility.median * 1e3, row.lines ? "line" : "pixel",
+      std::snprintf(line, sizeof line, "visibility %.1f ms, %s %.4f%%%s", row.visibility.median * 1e3, row.errorName(),
                     row.errorValue() * 100, frame.partial.empty() ? "" : " (partial)");
       if (!frame.partial.empty())
         std::printf("  %s %s: the image is partial: %s\n", algorithm.name.c_str(), row.knobs.c_str(), frame.partial.c_str());
@@ -206,11 +212,15 @@ int compare(const CompareOptions& options) {
                       row.lineError.wronglyHidden);
         section.heatMaps.push_back({prepared.width(), prepared.height(), lineErrors, {line}});
         gallery.add(row, frame.color, lineErrors, "drawn though hidden red, hidden though visible blue");
+      } else if (row.antialiased && row.coverage) {
+        gallery.add(row, frame.color, coverageErrors, "the more of a pixel its shares get wrong, the redder; ties blue");
+        section.heatMaps.push_back({prepared.width(), prepared.height(), coverageErrors,
+                                    {formatCount(row.coverage->mixedPixels) + " mixed px; wrong shares red, ties blue"}});
       } else {
-        std::vector<std::uint8_t> errorMap = errorHeatMap(frame, truth);
+        std::vector<std::uint8_t> errorMap = errorHeatMap(frame, truth.image);
         gallery.add(row, frame.color, errorMap, "wrong pixels red, ambiguous blue, over the reference dimmed");
         section.heatMaps.push_back({prepared.width(), prepared.height(), std::move(errorMap),
-                                    {formatCount(row.error.wrongPixels) + " wrong px (red)"}});
+                                    {formatCount(row.error.wrongPixels) + " wrong px (red)" + coverageNote(row)}});
       }
     }
     std::printf("%s\n", resultsTable(sceneRows, {}, options.wide).c_str());

@@ -43,9 +43,10 @@ const svgMake = (tag, attributes = {}) => { const made = document.createElementN
 const ms = (value) => (value < 10 ? value.toFixed(2) : value < 100 ? value.toFixed(1) : value.toFixed(0));
 const percent = (fraction) => `${(100 * fraction).toPrecision(3)}%`;
 const label = (entry) => entry.knobs === "exact" ? "the exact reference" : `${entry.algorithm}${entry.knobs === "defaults" ? "" : " " + entry.knobs}`;
-const errorText = (entry) => entry.knobs === "exact" ? `${entry.ambiguousPixels.toLocaleString("en")} ambiguous pixels (certified ties)`
+const coverageText = (entry) => entry.coverageError === null ? "" : ` · coverage error ${percent(entry.coverageError)}`;
+const errorText = (entry) => (entry.knobs === "exact" ? `${entry.ambiguousPixels.toLocaleString("en")} ambiguous pixels (certified ties)`
   : entry.lines ? `line error ${percent(entry.error)}` : entry.wrongPixels === 0 ? "no wrong pixel"
-  : `pixel error ${percent(entry.error)}: ${entry.wrongPixels.toLocaleString("en")} wrong pixels`;
+  : `pixel error ${percent(entry.error)}: ${entry.wrongPixels.toLocaleString("en")} wrong pixels`) + coverageText(entry);
 
 // Ticks from 0 to `top` a round step apart (1, 2 or 5 times a power of ten), five or more.
 function niceTicks(top) {

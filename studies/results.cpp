@@ -41,6 +41,9 @@ std::vector<std::pair<std::string, std::string>> measuredFields(const ResultRow&
       {"ambiguous_pixels", surface(std::to_string(row.error.ambiguousPixels))},
       {"depth_error_mean", surface(number(row.error.depthErrorMean))},
       {"depth_error_max", surface(number(row.error.depthErrorMax))},
+      {"coverage_error", row.coverage ? number(row.coverage->mean) : std::string()},
+      {"coverage_error_mixed", row.coverage ? number(row.coverage->meanOverMixed) : std::string()},
+      {"mixed_pixels", row.coverage ? std::to_string(row.coverage->mixedPixels) : std::string()},
       {"line_error", line(row.lineError.error)},
       {"visible_length_px", line(row.lineError.visibleLength)},
       {"wrongly_drawn_px", line(row.lineError.wronglyDrawn)},
@@ -101,7 +104,16 @@ void splitTimes(ResultRow& row, const std::vector<Stats>& runs, const std::vecto
   for (const auto& [pass, times] : passes) row.passes.emplace_back(pass, summarize(times));
 }
 
-MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
+void addExactShares(Truth& truth, const PreparedScene& prepared, int threads) {
+  if (prepared.scene().effects.transparency) return;  // shares of colour, not of coverage: not judged
+  Stats stats;
+  truth.shares = traceExactShares(prepared, kCoverageSamples, threads, stats);
+  std::printf("  exact shares (%d x %d samples per pixel, %s of %s pixels traced in full): %.0f ms\n", kCoverageSamples,
+              kCoverageSamples, formatCount(stats.counter("coverage reference pixels traced in full")).c_str(),
+              formatCount(std::int64_t(prepared.width()) * prepared.height()).c_str(), stats.seconds("coverage reference") * 1e3);
+}
+
+MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const Truth& truth,
                                            const pipeline::Configuration& configuration, int repeats, int threads) {
   const AlgorithmEntry& algorithm = *configuration.algorithm;
   auto measured = measure(repeats, [&](Stats& stats) { return pipeline::render(prepared, configuration, threads, stats); });
@@ -111,10 +123,18 @@ MeasuredConfiguration measureConfiguration(const std::string& scene, const Prepa
     LineJudgement judgement = algorithm.judgeLines(prepared, configuration.knobs, measured.result.drawing, threads, referenceStats);
     row.lines = true;
     row.lineError = judgement.error;
-    return {std::move(row), std::move(measured.result.frame), std::move(judgement.errorMap), std::move(judgement.exact)};
+    return {std::move(row), std::move(measured.result.frame), std::move(judgement.errorMap), std::move(judgement.exact), {}};
   }
-  row.error = surfaceError(measured.result.frame, truth);
-  return {std::move(row), std::move(measured.result.frame), {}, {}};
+  row.error = surfaceError(measured.result.frame, truth.image);
+  std::vector<std::uint8_t> coverageErrorMap;
+  if (truth.shares) {
+    const pipeline::Rendered& rendered = measured.result;
+    row.antialiased = rendered.coverage.has_value();
+    const PixelShares shares = row.antialiased ? sharesOf(*rendered.coverage) : sharesOfSamples(rendered.frame.ids, row.width, row.height, 1);
+    row.coverage = coverageError(shares, *truth.shares);
+    if (row.antialiased) coverageErrorMap = coverageHeatMap(shares, *truth.shares, truth.image);
+  }
+  return {std::move(row), std::move(measured.result.frame), {}, {}, std::move(coverageErrorMap)};
 }
 
 std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs) {
@@ -170,6 +190,10 @@ const ColumnMeaning* columnMeaning(const std::string& column) {
       {"ambiguous_pixels", {"pixels the reference certifies as ties (two surfaces at exactly one distance): no answer is wrong there"}},
       {"depth_error_mean", {"the mean difference from the reference's depth, in scene units"}},
       {"depth_error_max", {"the largest difference from the reference's depth, in scene units"}},
+      {"coverage_error", {"the mean over every pixel of how much of it shows something other than the exact shares say (0 to 1): "
+                          "of its shares for an antialiasing algorithm, of its one sample per pixel for the others (opaque scenes)", true}},
+      {"coverage_error_mixed", {"the coverage error over the mixed pixels alone: those the exact shares show more than one thing in"}},
+      {"mixed_pixels", {"pixels the exact shares (the reference at 32 x 32 samples) show more than one thing in"}},
       {"line_error", {"a line algorithm's error: the fraction of the visible length drawn wrong", true}},
       {"visible_length_px", {"the exact drawing's visible length, in pixels"}},
       {"wrongly_drawn_px", {"pixels of line drawn though hidden"}},
@@ -221,6 +245,7 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
   heading.push_back("visibility ms: median [min-max]");
   heading.push_back("error");
   heading.push_back("wrong px");
+  heading.push_back("coverage error");
   if (wide)
     for (const char* name : {"+ shading, effects ms", "= total ms", "depth error mean / max", "peak MB", "counters", "median ms per pass"})
       heading.push_back(name);
@@ -239,6 +264,12 @@ std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<s
       std::snprintf(text, sizeof text, "%.4f%%", row.error.pixelError * 100);
       line.push_back(text);
       line.push_back(std::to_string(row.error.wrongPixels));
+    }
+    if (row.coverage) {
+      std::snprintf(text, sizeof text, "%.4f%%", row.coverage->mean * 100);
+      line.push_back(text);
+    } else {
+      line.push_back("-");
     }
     if (wide) {
       line.push_back(formattedRange(row.effects, 1e3));
@@ -287,6 +318,15 @@ void warnIfBusy(const std::vector<ResultRow>& rows, int repeats) {
     timings.emplace_back(row.label() + " (total)", row.time);
   }
   warnIfBusy(timings, "--repeat " + std::to_string(std::max(9, 3 * repeats)));
+}
+
+std::string formatCount(std::int64_t value) {
+  std::string digits = std::to_string(value), text;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i && (digits.size() - i) % 3 == 0) text += ',';
+    text += digits[i];
+  }
+  return text;
 }
 
 std::string formatted(double value, const char* format) {

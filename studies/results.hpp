@@ -3,11 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "pipeline/pipeline.hpp"
+#include "renderer/raster/coverage.hpp"
+#include "renderer/reference/reference.hpp"
 #include "renderer/reference/metrics.hpp"
 #include "renderer/util/markup.hpp"
 #include "studies/common.hpp"
@@ -32,8 +35,16 @@ struct ResultRow {
   SurfaceError error;    // surface algorithms
   bool lines = false;    // a line algorithm: lineError holds its error, `error` is unused
   LineError lineError;
-  // The error hsr sweep plots and ranks by: pixel error, or line error for a line algorithm.
-  double errorValue() const { return lines ? lineError.error : error.pixelError; }
+  // A surface algorithm's coverage error (renderer/raster/coverage.hpp) against the exact
+  // shares, on an opaque scene: of the shares it gives each pixel where it antialiases,
+  // else of its one sample per pixel (each pixel wholly what its center shows).
+  std::optional<CoverageError> coverage;
+  bool antialiased = false;  // it shares pixels among surfaces: coverage error is what it buys
+  // The error hsr sweep plots and ranks by and the contact sheet leads with: line error for
+  // a line algorithm, coverage error for an antialiasing one, pixel error for the others.
+  double errorValue() const { return lines ? lineError.error : antialiased && coverage ? coverage->mean : error.pixelError; }
+  // That error's name: "line error", "coverage error" or "pixel error".
+  const char* errorName() const { return lines ? "line error" : antialiased && coverage ? "coverage error" : "pixel error"; }
   std::vector<std::pair<std::string, std::int64_t>> counters;  // the algorithm's key counters
   // Each pass of the pipeline that ran (pipeline::passTimes), over the timed runs.
   std::vector<std::pair<std::string, Timing>> passes;
@@ -70,17 +81,31 @@ ResultRow measuredRow(const std::string& scene, const PreparedScene& prepared, c
   return row;
 }
 
+// The exact shares' samples per pixel side (traceExactShares): 32 x 32, four times finer
+// than the A-buffer's finest mask, whose own subsamples it then does not share.
+inline constexpr int kCoverageSamples = 32;
+// The truth a scene's configurations are judged by at one size: the reference image, and
+// on an opaque scene with a surface algorithm to judge, the exact shares.
+struct Truth {
+  ReferenceImage image;
+  std::optional<PixelShares> shares;
+};
+// Traces the exact shares into `truth` when the scene is opaque, and says what they cost.
+void addExactShares(Truth& truth, const PreparedScene& prepared, int threads);
+
 // Measures one configuration on the prepared scene (at its current size) and its error
-// against the reference (for a line algorithm, the line reference of the edges it drew);
-// also returns the last run's frame (a line algorithm's drawing, rasterized) and, for a
-// line algorithm, a picture of where the drawing is wrong.
+// against the reference (for a line algorithm, the line reference of the edges it drew;
+// a surface algorithm's coverage error too where the truth has the exact shares); also
+// returns the last run's frame (a line algorithm's drawing, rasterized) and, for a line
+// algorithm or an antialiasing one, a picture of where it is wrong.
 struct MeasuredConfiguration {
   ResultRow row;
   Frame frame;
   std::vector<std::uint8_t> lineErrorMap;  // RGBA8
   LineSet exactLines;                      // a line algorithm's: the exact drawing it was judged by
+  std::vector<std::uint8_t> coverageErrorMap;  // RGBA8, an antialiasing algorithm's (coverageHeatMap)
 };
-MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const ReferenceImage& truth,
+MeasuredConfiguration measureConfiguration(const std::string& scene, const PreparedScene& prepared, const Truth& truth,
                                            const pipeline::Configuration& configuration, int repeats, int threads);
 
 // Columns: scene, algorithm, knobs, then one per swept knob (hsr sweep), then the
@@ -89,7 +114,7 @@ std::string resultsCsv(const std::vector<ResultRow>& rows, const std::vector<std
 // An array of objects with the same fields; counters as an object.
 std::string resultsJson(const std::vector<ResultRow>& rows);
 // The terminal table: one line per row. By default the columns a reader compares first
-// (algorithm, knobs, the swept knobs, visibility time, error, wrong pixels), narrow
+// (algorithm, knobs, the swept knobs, visibility time, error, wrong pixels, coverage error), narrow
 // enough for a terminal; `wide` adds the rest (effects and total time, depth error,
 // memory, counters, time per pass), which the CSV and JSON always hold.
 std::string resultsTable(const std::vector<ResultRow>& rows, const std::vector<std::string>& sweptKnobs, bool wide);
@@ -112,6 +137,8 @@ using CsvRow = std::vector<std::pair<std::string, std::string>>;
 std::string csvOf(const std::vector<CsvRow>& rows);
 // A number in a printf format ("%.4g" unless told).
 std::string formatted(double value, const char* format = "%.4g");
+// A count with its thousands separated: "1,234,567".
+std::string formatCount(std::int64_t value);
 // "8.73 [8.70-9.02]": a timing's median and range, each multiplied by `scale` (1e3: seconds to ms).
 std::string formattedRange(const Timing& time, double scale = 1, const char* format = "%.2f");
 

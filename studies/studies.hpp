@@ -19,7 +19,7 @@ struct CompareOptions {
   int threads = 0;
   std::string size;
   std::string out = "out/compare";
-  bool wide = false;  // print every column (default: the five a reader compares first)
+  bool wide = false;  // print every column (default: the six a reader compares first)
 };
 int compare(const CompareOptions& options);
 
@@ -33,7 +33,7 @@ struct SweepOptions {
   int threads = 0;
   std::string size;
   std::string out = "out/sweep";
-  bool wide = false;  // print every column (default: the five a reader compares first)
+  bool wide = false;  // print every column (default: the six a reader compares first)
 };
 int sweep(const SweepOptions& options);
 

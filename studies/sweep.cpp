@@ -152,7 +152,7 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   }
   makeFolder(options.out, "--out");
 
-  std::map<std::pair<int, int>, ReferenceImage> references;  // one per resolution
+  std::map<std::pair<int, int>, Truth> references;  // one per resolution
   std::vector<ResultRow> rows;
   Progress progress(plan.size());
   const InterruptibleRun interruptible;
@@ -163,7 +163,8 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
     // A line algorithm is judged by the line reference of the edges it draws instead.
     if (!references.contains(size) && algorithm.kind != AlgorithmKind::line) {
       Stats ignored;
-      references.emplace(size, renderReference(*scene.prepared, options.threads, ignored));
+      Truth& truth = references.emplace(size, Truth{renderReference(*scene.prepared, options.threads, ignored), std::nullopt}).first->second;
+      addExactShares(truth, *scene.prepared, options.threads);
     }
     ResultRow row = measureConfiguration(scene.name, *scene.prepared, references[size], configuration, options.repeat,
                                          options.threads).row;
@@ -181,7 +182,8 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
   markParetoFront(rows);
   warnIfBusy(rows, options.repeat);
   const bool lines = algorithm.kind == AlgorithmKind::line;
-  const std::string errorName = lines ? "line error" : "pixel error";
+  // What the rows are ranked by: their errorValue, the same kind for every row of one algorithm.
+  const std::string errorName = rows.empty() ? "pixel error" : rows.front().errorName();
   std::printf("%s on %s (* = on the Pareto front of visibility time and %s; times within each other's range tie)\n%s",
               algorithm.name.c_str(), options.scene.c_str(),
               errorName.c_str(), resultsTable(rows, sweptKnobs, options.wide).c_str());
@@ -231,7 +233,9 @@ int knobSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, cons
       dataBlock("points", points) + dataBlock("front", front) + timeAxis('x', times, false) + "set title " +
       quotedLabel(algorithm.name + " on " + sceneFile + ": " + errorName + " against visibility time") +
       "\nset xlabel 'visibility time per frame, median and range of " + std::to_string(options.repeat) + " runs (ms)'\nset ylabel '" +
-      (lines ? "line error (% of the visible length, log scale)" : "pixel error (% of non-ambiguous pixels, log scale)") +
+      (lines                          ? "line error (% of the visible length, log scale)"
+       : errorName == "coverage error" ? "coverage error (% of the image area shown wrong, log scale)"
+                                       : "pixel error (% of non-ambiguous pixels, log scale)") +
       "'\nset logscale y\nset format y '%g'\nset grid\n"
       "set offsets graph 0.1, graph 0.35, graph 0.3, graph 0.3\nset key top right\n"
       "plot $front using 1:2 with linespoints lw 2 pt 6 ps 2 lc rgb '#d95f02' title 'Pareto front', \\\n"
@@ -327,7 +331,8 @@ int scaleSweep(const SweepOptions& options, const AlgorithmEntry& algorithm, con
     pipeline::checkRenders(configuration, scene.name + " (" + options.scale + " " + value + ")", *prepared);
     progress.update(rows.size(), options.scale + " " + value);
     Stats ignored;  // a line algorithm is judged by the line reference of its own edges instead
-    const ReferenceImage truth = algorithm.kind == AlgorithmKind::line ? ReferenceImage() : renderReference(*prepared, options.threads, ignored);
+    // Time against size: the coverage error, which needs the exact shares, is left out.
+    const Truth truth{algorithm.kind == AlgorithmKind::line ? ReferenceImage() : renderReference(*prepared, options.threads, ignored), std::nullopt};
     ResultRow row = measureConfiguration(scene.name, *prepared, truth, configuration, options.repeat, options.threads).row;
     row.swept = {{options.scale, value}};
     sizes.push_back(options.scale == "pixels" ? double(step) * step : double(prepared->triangleCount()));

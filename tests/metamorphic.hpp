@@ -6,7 +6,8 @@
 // reference marks ambiguous. Each configuration is compared with its own output on the
 // scene as generated; the exact ones with the exact reference too. Scaling by a power of
 // two is exact: the same bits. The random-scene tests (tests/property) and the hard
-// cases (tests/numerics) share it.
+// cases (tests/numerics) share it. The A-buffer is compared through its shares of each
+// pixel (renderer/raster/coverage.hpp): the same bits scaled, and few pixels changed moved.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -25,6 +26,7 @@
 #include "algorithms/registry.hpp"
 #include "renderer/lines/feature_edges.hpp"
 #include "renderer/lines/line_set.hpp"
+#include "renderer/raster/coverage.hpp"
 #include "renderer/reference/line_reference.hpp"
 #include "renderer/reference/metrics.hpp"
 #include "renderer/reference/reference.hpp"
@@ -267,13 +269,27 @@ inline DrawnLengths drawnLengths(const LineSet& lines, const PreparedScene& scen
 }
 
 // What a scene as generated shows, to compare its variations with.
+// The A-buffer's shares at its default mask (renderer/raster/coverage.hpp), each id mapped
+// back to the original triangle; nothing when it refuses the scene.
+inline std::optional<PixelShares> aBufferShares(const PreparedScene& scene, std::uint32_t idsPerOriginal) {
+  const pipeline::Configuration configuration = pipeline::configurationOf(findAlgorithm("abuffer"), {});
+  if (!pipeline::refusal(scene, configuration).empty()) return std::nullopt;
+  Stats stats;
+  PixelShares shares = sharesOf(*pipeline::render(scene, configuration, 1, stats).coverage);
+  for (auto& [id, share] : shares.shares)
+    if (id != 0) id = (id - 1) / idsPerOriginal + 1;
+  return shares;
+}
+
 struct Baseline {
+  std::optional<PixelShares> antialiased;    // the A-buffer's shares
   std::vector<std::optional<Frame>> frames;  // per everyConfiguration()
   std::vector<std::pair<const char*, KnobSettings>> drawingAlgorithms;
   std::vector<std::optional<LineSet>> drawings;  // per drawingAlgorithms
 };
 inline Baseline baselineOf(const PreparedScene& scene, bool soups) {
   Baseline baseline;
+  baseline.antialiased = aBufferShares(scene, 1);
   for (const Configuration& configuration : everyConfiguration())
     baseline.frames.push_back(render(scene, configuration.algorithm, configuration.knobs));
   baseline.drawingAlgorithms = everyDrawing(soups);
@@ -284,6 +300,7 @@ inline Baseline baselineOf(const PreparedScene& scene, bool soups) {
 struct MetamorphicTally {
   long renders = 0, identical = 0, excused = 0, compared = 0, labelledPartial = 0;
   long drawings = 0, lineEdges = 0, edgeOnEdges = 0, edgesTheReferenceMoved = 0, cullingRuns = 0;
+  long sharedPixels = 0, sharesChanged = 0;  // the A-buffer's pixels compared, and those whose shares changed
   double largestLineChange = 0;
   std::string summary() const {
     char text[512];
@@ -291,9 +308,10 @@ struct MetamorphicTally {
                   "%ld moved, scaled or subdivided renders checked; %ld scaled ones bit-identical; %ld of %ld pixels changed, "
                   "each within snapping of an edge or a tie; %ld labelled partial; %ld line drawings, %ld edges each within "
                   "1e-4 px (the largest change %.2g px), %ld on faces seen edge-on and %ld the exact reference decides otherwise "
-                  "once moved left out; %ld culling runs, none dropping a visible triangle",
+                  "once moved left out; %ld culling runs, none dropping a visible triangle; the A-buffer's shares changed "
+                  "at %ld of %ld pixels",
                   renders, identical, excused, compared, labelledPartial, drawings, lineEdges, largestLineChange, edgeOnEdges,
-                  edgesTheReferenceMoved, cullingRuns);
+                  edgesTheReferenceMoved, cullingRuns, sharesChanged, sharedPixels);
     return text;
   }
 };
@@ -338,6 +356,20 @@ inline void expectSameAfter(const Variation& variation, const PreparedScene& ori
       const WrongPixels wrong = classifyDifferences(original, ids, truth.frame.ids, truth.ambiguous, depthTieOf(original, configuration),
                                                     nullptr, &prepared, variation.idsPerOriginal);
       EXPECT_EQ(wrong.unexplained, 0) << name << ": " << wrong.firstUnexplained << " (exactly)";
+    }
+  }
+  // The A-buffer, through its shares: the same bits scaled, and elsewhere changed only
+  // where rounding moves an edge or a depth across a subsample (the caller bounds how often).
+  if (baseline.antialiased) {
+    const std::optional<PixelShares> shares = aBufferShares(prepared, variation.idsPerOriginal);
+    ASSERT_TRUE(shares) << "abuffer " << what << ": refused moved, not as generated";
+    for (std::size_t pixel = 0; pixel + 1 < shares->first.size(); ++pixel) {
+      const bool changed = coverageDistance(*shares, *baseline.antialiased, pixel) > 0;
+      if (variation.exact) {
+        EXPECT_FALSE(changed) << "abuffer " << what << " at pixel " << pixel;
+      }
+      tally.sharesChanged += changed;
+      ++tally.sharedPixels;
     }
   }
   if (variation.idsPerOriginal != 1) return;  // subdivision adds edges and triangles: the rest compares like with like

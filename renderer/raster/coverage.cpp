@@ -57,11 +57,15 @@ CoverageError coverageError(const PixelShares& measured, const PixelShares& exac
   const std::size_t pixels = exact.first.size() - 1;
   double mixedSum = 0;
   for (std::size_t p = 0; p < pixels; ++p) {
+    if (!exact.tied.empty() && exact.tied[p]) {
+      ++error.tiedPixels;
+      continue;
+    }
     const double distance = coverageDistance(measured, exact, p);
     error.mean += distance;
     if (exact.first[p + 1] - exact.first[p] > 1) mixedSum += distance, ++error.mixedPixels;
   }
-  error.mean /= double(std::max<std::size_t>(pixels, 1));
+  error.mean /= double(std::max<std::int64_t>(std::int64_t(pixels) - error.tiedPixels, 1));
   error.meanOverMixed = error.mixedPixels ? mixedSum / double(error.mixedPixels) : 0;
   return error;
 }

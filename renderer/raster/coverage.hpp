@@ -32,6 +32,10 @@ bool showsOneSurfaceWhole(const PixelCoverage& coverage, std::size_t pixel);
 struct PixelShares {
   std::vector<std::uint32_t> first;  // per pixel, into shares; one more entry than pixels
   std::vector<std::pair<std::uint32_t, double>> shares;
+  // Exact shares only (traceExactShares): per pixel, 1 where a sample met two or more
+  // triangles at exactly its nearest distance, so that its share could go to any of
+  // them; empty when none did.
+  std::vector<std::uint8_t> tied;
 };
 
 // An antialiasing algorithm's shares, the background's added where it takes some.
@@ -44,10 +48,13 @@ PixelShares sharesOfSamples(std::span<const std::uint32_t> fineIds, int width, i
 // they show nothing in common).
 double coverageDistance(const PixelShares& measured, const PixelShares& exact, std::size_t pixel);
 
+// Pixels the exact shares mark tied are left out, as pixel error leaves out the
+// reference's ambiguous pixels: no share there is wrong.
 struct CoverageError {
-  double mean = 0;              // over every pixel
-  double meanOverMixed = 0;     // over the pixels the exact shares show more than one thing in
+  double mean = 0;              // over every pixel but the tied
+  double meanOverMixed = 0;     // over the pixels the exact shares show more than one thing in (but the tied)
   std::int64_t mixedPixels = 0;
+  std::int64_t tiedPixels = 0;
 };
 CoverageError coverageError(const PixelShares& measured, const PixelShares& exact);
 

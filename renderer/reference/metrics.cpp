@@ -33,16 +33,48 @@ SurfaceError surfaceError(const Frame& frame, const ReferenceImage& reference) {
   return error;
 }
 
-std::vector<std::uint8_t> errorHeatMap(const Frame& frame, const ReferenceImage& reference) {
-  const Frame& truth = reference.frame;
-  HSR_CHECK(frame.width == truth.width && frame.height == truth.height);
-  std::vector<std::uint8_t> image(4 * frame.pixelCount());
-  for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
+namespace {
+
+// The reference's image dimmed to grey, the ground both heat maps draw on.
+std::vector<std::uint8_t> dimmedReference(const Frame& truth) {
+  std::vector<std::uint8_t> image(4 * truth.pixelCount());
+  for (std::size_t pixel = 0; pixel < truth.pixelCount(); ++pixel) {
     const std::uint8_t* rgb = &truth.color[4 * pixel];
     const auto grey = static_cast<std::uint8_t>(40 + (rgb[0] * 30 + rgb[1] * 59 + rgb[2] * 11) / 100 / 3);
     std::uint8_t* out = &image[4 * pixel];
     out[0] = out[1] = out[2] = grey;
     out[3] = 255;
+  }
+  return image;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> coverageHeatMap(const PixelShares& measured, const PixelShares& exact, const ReferenceImage& reference) {
+  std::vector<std::uint8_t> image = dimmedReference(reference.frame);
+  HSR_CHECK(exact.first.size() == reference.frame.pixelCount() + 1 && measured.first.size() == exact.first.size());
+  for (std::size_t pixel = 0; pixel < reference.frame.pixelCount(); ++pixel) {
+    std::uint8_t* out = &image[4 * pixel];
+    if (!exact.tied.empty() && exact.tied[pixel]) {
+      out[0] = 40, out[1] = 90, out[2] = 255;
+      continue;
+    }
+    const double distance = coverageDistance(measured, exact, pixel);
+    if (distance == 0) continue;
+    const double red = 0.25 + 0.75 * distance;
+    out[0] = static_cast<std::uint8_t>(std::lround(out[0] * (1 - red) + 255 * red));
+    out[1] = static_cast<std::uint8_t>(std::lround(out[1] * (1 - red) + 30 * red));
+    out[2] = static_cast<std::uint8_t>(std::lround(out[2] * (1 - red) + 30 * red));
+  }
+  return image;
+}
+
+std::vector<std::uint8_t> errorHeatMap(const Frame& frame, const ReferenceImage& reference) {
+  const Frame& truth = reference.frame;
+  HSR_CHECK(frame.width == truth.width && frame.height == truth.height);
+  std::vector<std::uint8_t> image = dimmedReference(truth);
+  for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
+    std::uint8_t* out = &image[4 * pixel];
     if (reference.ambiguous[pixel]) {
       out[0] = 40, out[1] = 90, out[2] = 255;
     } else if (frame.ids[pixel] != truth.ids[pixel]) {

@@ -8,6 +8,7 @@
 
 #include "renderer/image/frame.hpp"
 #include "renderer/lines/line_set.hpp"
+#include "renderer/raster/coverage.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/shading/shading.hpp"
 
@@ -28,6 +29,11 @@ SurfaceError surfaceError(const Frame& frame, const ReferenceImage& reference);
 // An RGBA8 picture of where a frame is wrong: the reference's image dimmed to grey,
 // wrong pixels red, ambiguous pixels blue.
 std::vector<std::uint8_t> errorHeatMap(const Frame& frame, const ReferenceImage& reference);
+// The same for an antialiasing algorithm's shares against the exact ones: each pixel the
+// redder the more of it shows something other than the exact shares say
+// (coverageDistance), any difference at least a quarter red; pixels where the exact
+// shares meet a tie blue.
+std::vector<std::uint8_t> coverageHeatMap(const PixelShares& measured, const PixelShares& exact, const ReferenceImage& reference);
 
 // Shadows: at every covered pixel of a frame and every light that faces the surface
 // there, a shadow technique's decision against the exact one at the same surface point

@@ -25,6 +25,7 @@
 
 #include "renderer/geometry/camera.hpp"
 #include "renderer/image/frame.hpp"
+#include "renderer/raster/coverage.hpp"
 #include "renderer/scene/prepare.hpp"
 #include "renderer/shading/shading.hpp"
 #include "renderer/util/stats.hpp"
@@ -124,6 +125,18 @@ ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& st
 // The same into `image`, reusing its buffers when it has the scene's size (a benchmark's
 // frames, as the z-buffer's reuse theirs); its color is left as it was.
 void traceReference(const PreparedScene& scene, int threads, Stats& stats, ReferenceTraversal traversal, ReferenceImage& image);
+// Each pixel's exact shares (renderer/raster/coverage.hpp), what coverage error is
+// measured against: what the reference sees at samples x samples points of the pixel (the
+// pixel centers of an image `samples` times finer), each point a share; the same shares as
+// tracing every point, with far fewer rays. A pixel is traced in full unless it is proved
+// to show one surface whole: a survey at 4 x 4 points per pixel finds one triangle at its
+// points and its neighbours' nearest ones (so that triangle covers it), and no other
+// triangle that may touch the pixel has a corner in front of that triangle's plane (or,
+// for a pixel showing nothing, none between the near and far planes may touch it). Opaque
+// surfaces: the shares are of coverage. Stats: "coverage reference rays", "coverage
+// reference pixels traced in full"; phase "coverage reference".
+PixelShares traceExactShares(const PreparedScene& scene, int samples, int threads, Stats& stats);
+
 // traceReference, then the shading every algorithm's frame gets (renderer/shading/shading), with
 // exact shadow rays where an algorithm's frame has shadow maps, then fog and outline.
 ReferenceImage renderReference(const PreparedScene& scene, int threads, Stats& stats);

@@ -70,7 +70,7 @@ const std::vector<std::string> kMeasuredColumns = {
     "width", "height", "triangles", "threads", "repeats", "visibility_median_ms", "visibility_min_ms", "visibility_max_ms",
     "effects_median_ms", "effects_min_ms", "effects_max_ms", "time_median_ms", "time_min_ms", "time_max_ms",
     "pixel_error", "wrong_pixels", "compared_pixels", "ambiguous_pixels", "depth_error_mean", "depth_error_max",
-    "line_error", "visible_length_px", "wrongly_drawn_px", "wrongly_hidden_px", "peak_memory_bytes"};
+    "coverage_error", "coverage_error_mixed", "mixed_pixels", "line_error", "visible_length_px", "wrongly_drawn_px", "wrongly_hidden_px", "peak_memory_bytes"};
 
 void expectConsistentMeasurements(const Row& row) {
   for (const std::string timing : {"visibility", "effects", "time"}) {
@@ -84,6 +84,7 @@ void expectConsistentMeasurements(const Row& row) {
   EXPECT_GT(number(row, "peak_memory_bytes"), 0);
   if (!row.at("line_error").empty()) {  // a line algorithm: line error only
     EXPECT_EQ(row.at("pixel_error"), "");
+    EXPECT_EQ(row.at("coverage_error"), "");
     const double wrong = number(row, "wrongly_drawn_px") + number(row, "wrongly_hidden_px");
     EXPECT_NEAR(number(row, "line_error"), wrong / number(row, "visible_length_px"), 1e-9);
     return;
@@ -93,6 +94,14 @@ void expectConsistentMeasurements(const Row& row) {
   EXPECT_NEAR(number(row, "pixel_error"), wrong / compared, 1e-9);
   EXPECT_EQ(compared + number(row, "ambiguous_pixels"), number(row, "width") * number(row, "height"));
   EXPECT_LE(number(row, "depth_error_mean"), number(row, "depth_error_max"));
+  // Coverage error (on opaque scenes): a mean of distances between 0 and 1, over every
+  // pixel and over the mixed ones, so the first is at least the second times their share
+  // of the pixels (a whole pixel shown wrong adds to the first alone).
+  if (row.at("coverage_error").empty()) return;
+  const double coverage = number(row, "coverage_error"), mixed = number(row, "mixed_pixels");
+  EXPECT_GE(coverage, 0);
+  EXPECT_LE(number(row, "coverage_error_mixed"), 1);
+  EXPECT_GE(coverage + 1e-8, number(row, "coverage_error_mixed") * mixed / (number(row, "width") * number(row, "height")));
 }
 
 std::filesystem::path freshFolder(const std::string& name) {
@@ -171,6 +180,10 @@ TEST(Compare, WritesTheDocumentedCsvJsonAndContactSheet) {
   for (const std::size_t exact : {8u, 9u}) EXPECT_LT(number(rows[exact], "line_error"), 1e-12);  // one cube: only rounding
   for (const std::size_t exact : {2u, 12u}) EXPECT_EQ(number(rows[exact], "pixel_error"), 0);  // bvh is exact
   EXPECT_GT(number(rows[11], "ambiguous_pixels"), 0);  // the coplanar tie
+  // The A-buffer's shares come closer to the exact ones than any one sample a pixel,
+  // the exact reference's own among them.
+  for (const std::size_t oneSample : {0u, 1u, 2u, 3u, 4u, 5u, 6u})
+    EXPECT_LT(number(rows[7], "coverage_error"), 0.5 * number(rows[oneSample], "coverage_error")) << rows[oneSample].at("algorithm");
 
   const test::JsonValue json = test::parseJson(readText(folder / "results.json"));
   ASSERT_EQ(json.array().size(), rows.size());
@@ -851,6 +864,25 @@ TEST(Sweep, DepthPrecisionBuysAccuracyOnTheCoplanarCase) {
   EXPECT_GT(readImage(folder / "sweep.png").width, 0);
   EXPECT_NE(readText(folder / "sweep.svg").find("<svg"), std::string::npos);
   EXPECT_NE(readText(folder / "sweep.gp").find("plot $front"), std::string::npos);
+}
+
+// The A-buffer is swept by what it buys: coverage error, which falls as its mask grows,
+// ranks its rows and is the plot's axis.
+TEST(Sweep, TheABuffersMaskBuysCoverage) {
+  const auto folder = freshFolder("sweep-abuffer");
+  const test::CommandResult result = test::runCommand(std::string(HSR_BINARY) + " sweep " + kScenes +
+                                                      "counters.toml --algo abuffer --knob mask=2x2,4x4,8x8 --size 160x90 "
+                                                      "--repeat 1 --out " + folder.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("Pareto front of visibility time and coverage error"), std::string::npos) << result.output;
+  std::vector<std::string> header;
+  const std::vector<Row> rows = readCsv(folder / "sweep.csv", header);
+  ASSERT_EQ(rows.size(), 3u);
+  for (const Row& row : rows) expectConsistentMeasurements(row);
+  EXPECT_LT(number(rows[1], "coverage_error_mixed"), 0.7 * number(rows[0], "coverage_error_mixed"));
+  EXPECT_LT(number(rows[2], "coverage_error_mixed"), 0.7 * number(rows[1], "coverage_error_mixed"));
+  EXPECT_EQ(rows[2].at("pareto"), "1") << "the most accurate is on the front, however slow";
+  EXPECT_NE(readText(folder / "sweep.gp").find("set ylabel 'coverage error"), std::string::npos);
 }
 
 TEST(Sweep, ResolutionIsAKnobOfEveryAlgorithm) {

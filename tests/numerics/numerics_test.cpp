@@ -142,6 +142,9 @@ TEST(Numerics, EveryAlgorithmOnEveryHardCaseIsTheSameMovedScaledOrSubdivided) {
       test::expectSameAfter(variation, loaded.prepared, truth, baseline, path.filename().string(), tally);
   }
   EXPECT_LE(tally.excused, tally.compared / 200) << "more pixels changed than rounding at edges and ties explains";
+  // The A-buffer's 16 subsamples a pixel each sit where the hard cases put edges and
+  // coplanar faces by design: a pixel changes when any of them does (measured: 0.5%).
+  EXPECT_LE(tally.sharesChanged, tally.sharedPixels / 100) << "more of the A-buffer's pixels changed than rounding explains";
   std::printf("%s\n", tally.summary().c_str());
 }
 

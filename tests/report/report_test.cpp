@@ -132,7 +132,8 @@ TEST(Report, LeadsWithTheColumnsAReaderComparesFirstAndExplainsEveryColumn) {
     if (html.find("<th title=\"" + meaning->meaning) != std::string::npos) shown.push_back(column);
     else EXPECT_NE(html.find("<th class=\"more\" title=\"" + meaning->meaning), std::string::npos) << column;
   }
-  const std::vector<std::string> key = {"scene", "algorithm", "knobs", "visibility_median_ms", "pixel_error", "wrong_pixels", "line_error"};
+  const std::vector<std::string> key = {"scene",        "algorithm",    "knobs",          "visibility_median_ms",
+                                       "pixel_error",  "wrong_pixels", "coverage_error", "line_error"};
   EXPECT_EQ(shown, key);
 }
 
