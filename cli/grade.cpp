@@ -42,7 +42,7 @@ int grade(const GradeOptions& options) {
   }
   if (!options.bugs.empty() || options.variants) throw InputError("--bugs, --variants: choose what --self-check grades; give --self-check too");
   if (options.submission.empty()) throw InputError("grade: expected a submission's folder (or --self-check)");
-  if (options.exercise == 0) throw InputError("grade: --exercise is required: 1, 3, 4, 7, 8, 14, 15 or 16");
+  if (options.exercise == 0) throw InputError("grade: --exercise is required: one of " + grading::gradedExerciseNumbers());
   if (options.seed && !options.hidden) throw InputError("--seed: makes the hidden tests; give --hidden too");
   grading::GradeOptions grading;
   grading.submission = options.submission;

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "grading/grading.hpp"
 #include "pipeline/pipeline.hpp"
 #include "renderer/steps/steps.hpp"
 #include "renderer/util/error.hpp"
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
   hsr::cli::GradeOptions grade;
   CLI::App* gradeCommand = app.add_subcommand("grade", "judge a submission's answers to an exercise against the exact reference");
   gradeCommand->add_option("submission", grade.submission, "the submission's folder: a Makefile (make build, make run file=SCENE out=IDS.png) and implemented.txt");
-  gradeCommand->add_option("--exercise", grade.exercise, "the coursework exercise: 1, 3, 4, 7, 8, 14, 15 or 16");
+  gradeCommand->add_option("--exercise", grade.exercise, "the coursework exercise: one of " + hsr::grading::gradedExerciseNumbers());
   gradeCommand->add_flag("--list", grade.list, "print the exercise's tests, a name per line (for a command grader: one --test each)");
   gradeCommand->add_flag("--self-check", grade.selfCheck, "grade the catalogue of classic bugs (each must fail) and the correct variants (each must pass)");
   gradeCommand->add_option("--bugs", grade.bugs, "--self-check: these bugs of course/bugs/catalogue.toml alone (and no variant)")->delimiter(',');

@@ -199,13 +199,16 @@ const std::vector<Exercise>& gradedExercises() {
   return exercises;
 }
 
+std::string gradedExerciseNumbers() {
+  std::string numbers;
+  for (const Exercise& exercise : gradedExercises()) numbers += (numbers.empty() ? "" : ", ") + std::to_string(exercise.number);
+  return numbers;
+}
+
 const Exercise& findExercise(int number) {
-  std::string graded;
-  for (const Exercise& exercise : gradedExercises()) {
+  for (const Exercise& exercise : gradedExercises())
     if (exercise.number == number) return exercise;
-    graded += (graded.empty() ? "" : ", ") + std::to_string(exercise.number);
-  }
-  throw InputError("--exercise " + std::to_string(number) + ": not graded automatically; expected one of " + graded +
+  throw InputError("--exercise " + std::to_string(number) + ": not graded automatically; expected one of " + gradedExerciseNumbers() +
                    " (the visible-surface exercises)");
 }
 

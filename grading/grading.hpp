@@ -44,6 +44,8 @@ struct Exercise {
   const char* folderOptions = "";
 };
 const std::vector<Exercise>& gradedExercises();
+// Their numbers as a person lists them: "1, 3, 4, 7, 8, 14, 15, 16".
+std::string gradedExerciseNumbers();
 // The exercise numbered so; InputError naming the graded ones otherwise.
 const Exercise& findExercise(int number);
 
