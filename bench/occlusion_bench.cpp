@@ -6,6 +6,9 @@
 //                        city's triangles, so items/s is the triangle throughput;
 //                        counters: occluders drawn, skipped and outside the map, texels
 //                        written and texels covered at the end
+//   occluders/floor/WxH  the machine's floor for such a map: its keys cleared (every
+//                        texel to +infinity, as each map starts), the least either rule's
+//                        pass could take; measured in the same run as the passes
 //   occludees/TEST       each of the 8,334 boxes tested against the 256 x 128 map of the
 //                        conservative rule: flat (every texel until one proves it
 //                        visible) or with the hierarchical-Z pyramid; items: tests
@@ -21,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "algorithms/culling/culling.hpp"
 #include "algorithms/culling/occlusion/occlusion.hpp"
@@ -71,6 +75,16 @@ void occluders(benchmark::State& state, Rule rule, int width, int height) {
   state.counters["drawn"] = double(stats.counter("occlusion: occluders rasterized"));
   state.counters["skipped"] = double(stats.counter("occlusion: occluders skipped"));
   state.counters["outside"] = double(stats.counter("occlusion: occluders outside the map"));
+}
+
+void clearedMap(benchmark::State& state, int width, int height) {
+  DepthMap map(width, height);
+  for (auto _ : state) {
+    std::fill(map.keys.begin(), map.keys.end(), std::numeric_limits<float>::infinity());
+    benchmark::DoNotOptimize(map.keys.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(state.iterations() * std::int64_t(map.keys.size() * sizeof(float)));
 }
 
 void occludees(benchmark::State& state, bool withPyramid) {
@@ -177,6 +191,9 @@ const bool registered = [] {
       benchmark::RegisterBenchmark(("occluders/" + std::string(name) + "/" + std::to_string(width) + "x" + std::to_string(height)).c_str(),
                                    occluders, rule, width, height)
           ->Unit(benchmark::kMillisecond);
+  for (const auto& [width, height] : {std::pair(256, 128), std::pair(1920, 1080)})
+    benchmark::RegisterBenchmark(("occluders/floor/" + std::to_string(width) + "x" + std::to_string(height)).c_str(), clearedMap, width, height)
+        ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("occludees/flat", occludees, false)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("occludees/pyramid", occludees, true)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("zbuffer-depth", zbufferDepth)->Unit(benchmark::kMillisecond);
