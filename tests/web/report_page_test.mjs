@@ -73,7 +73,7 @@ try {
   // The table: the key columns, the others on asking.
   const visible = () => page.$$eval("table.sortable th", (cells) => cells.filter((cell) => cell.offsetParent !== null).map((cell) => cell.textContent));
   const key = await visible();
-  check(JSON.stringify(key) === JSON.stringify(["scene", "algorithm", "knobs", "visibility_median_ms", "pixel_error", "wrong_pixels", "line_error"]),
+  check(JSON.stringify(key) === JSON.stringify(["scene", "algorithm", "knobs", "visibility_median_ms", "pixel_error", "wrong_pixels", "coverage_error", "line_error"]),
         `the table leads with the key columns (${key.join(", ")})`);
   await page.click("label.columns input");
   check((await visible()).length > key.length + 10, "and shows every column on asking");
