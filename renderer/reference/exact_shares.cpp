@@ -119,25 +119,25 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
   std::vector<std::int64_t> rowRays(rows, 0);
 
   // 1. The survey: what each pixel's 4 x 4 points and its neighbours' nearest ones (6 x 6
-  //    points, out to 3/8 of a pixel past its sides) show. Where they all show one
-  //    triangle, at none of them a tie, the triangle covers the whole pixel (their hull
-  //    holds the pixel, and the part of a triangle between the near and far planes is
-  //    convex); where they all show nothing, nothing covers any of those points.
+  //    points, out to 3/8 of a pixel past its sides, beyond the image's sides too) show.
+  //    Where they all show one triangle, at none of them a tie, the triangle covers the
+  //    whole pixel (their hull holds the pixel, and the part of a triangle between the
+  //    near and far planes is convex); where they all show nothing, nothing covers any of
+  //    those points. Survey column c is point column c - 1: one more on each side.
   std::vector<std::uint32_t> shown(pixels, kMixed);
   parallelFor(rows, threads, [&](std::size_t row, int) {
     const int y = int(row);
-    const int firstRow = std::max(0, y * kSurvey - 1), endRow = std::min(height * kSurvey, (y + 1) * kSurvey + 1);
-    const std::size_t surveyWidth = std::size_t(width) * kSurvey;
+    const int firstRow = y * kSurvey - 1, endRow = (y + 1) * kSurvey + 1;
+    const std::size_t surveyWidth = std::size_t(width) * kSurvey + 2;
     std::vector<std::uint32_t> surveyed(std::size_t(endRow - firstRow) * surveyWidth);
     std::vector<ReferenceHit> hits(surveyWidth);
     for (int r = firstRow; r < endRow; ++r) {
-      reference.traceRun(survey, r, 0, int(surveyWidth), hits.data(), counters[row]);
+      reference.traceRun(survey, r, -1, int(surveyWidth), hits.data(), counters[row]);
       for (std::size_t c = 0; c < surveyWidth; ++c) surveyed[std::size_t(r - firstRow) * surveyWidth + c] = hits[c].ambiguous ? kMixed : hits[c].id;
     }
     rowRays[row] += std::int64_t(endRow - firstRow) * std::int64_t(surveyWidth);
     for (int x = 0; x < width; ++x) {
-      const std::size_t firstColumn = std::size_t(std::max(0, x * kSurvey - 1));
-      const std::size_t endColumn = std::min(surveyWidth, std::size_t((x + 1) * kSurvey + 1));
+      const std::size_t firstColumn = std::size_t(x) * kSurvey, endColumn = firstColumn + kSurvey + 2;
       const std::uint32_t first = surveyed[firstColumn];
       bool uniform = true;
       for (int r = 0; uniform && r < endRow - firstRow; ++r)

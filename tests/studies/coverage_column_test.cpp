@@ -41,6 +41,24 @@ TEST(CoverageColumn, TheExactSharesSplitTheHalfCoveredColumnEvenlyAndTraceOnlyIt
     }
 }
 
+// The survey looks past the image's sides too: an edge 1/16 of a pixel inside the left
+// side, between the side and the survey's first points inside, still makes the pixels it
+// crosses mixed (2 of each row's 32 points miss the triangle).
+TEST(CoverageColumn, AnEdgeHuggingTheImagesSideIsSeen) {
+  const double edge = 1.0 / 16 - kWidth / 2.0;
+  const Scene scene = test::sceneOf(test::pixelCamera(kHeight), kWidth, kHeight,
+                                    {test::triangleMesh({{edge, 1000, 0}, {edge, -1000, 0}, {1000, 0, 0}})});
+  const PreparedScene prepared(scene);
+  Stats stats;
+  const PixelShares shares = traceExactShares(prepared, kCoverageSamples, 1, stats);
+  for (int y = 0; y < kHeight; ++y) {
+    const std::size_t pixel = std::size_t(y) * kWidth;
+    const std::vector<std::pair<std::uint32_t, double>> found(shares.shares.begin() + shares.first[pixel],
+                                                              shares.shares.begin() + shares.first[pixel + 1]);
+    EXPECT_EQ(found, (std::vector<std::pair<std::uint32_t, double>>{{0, 2.0 / 32}, {1, 30.0 / 32}})) << "row " << y;
+  }
+}
+
 TEST(CoverageColumn, OneSampleIsHalfWrongOnAHalfCoveredPixelAndTheABufferIsRight) {
   const Scene scene = halfCoveredColumn();
   const PreparedScene prepared(scene);
