@@ -3,9 +3,9 @@
 # AddressSanitizer and UndefinedBehaviorSanitizer for SECONDS seconds (default 20),
 # starting from the seed corpus and every crash found before (tests/fuzz/regressions/).
 # New inputs the fuzzer finds go to build-sanitize/fuzz/TARGET/, not to the checked-in
-# corpus; a crash, a hang (one input over 10 s) or a leak stops the run, keeps the input
-# in out/fuzz/TARGET/ and fails this script. Each target's last line of statistics
-# (executions, coverage) is printed.
+# corpus; a crash, a hang (one input over 10 s) or a leak stops that target's run and keeps
+# the input in out/fuzz/TARGET/, the others run to their end, and the script fails. Each
+# target's last line of statistics (executions, coverage) is printed.
 #   scripts/fuzz.sh            20 s per target (CI: scripts/test.sh)
 #   scripts/fuzz.sh 600        the long run before a release: 10 minutes per target
 #   scripts/fuzz.sh 60 render  one target
@@ -44,7 +44,7 @@ for i in "${!targets[@]}"; do
   target=${targets[$i]}
   log=build-sanitize/fuzz/$target.log
   if ! wait "${pids[$i]}"; then
-    tail -n 60 "$log"
+    tail -n 60 "$log" || true
     echo "fuzz: $target FAILED; the input is in out/fuzz/$target/ (add it to tests/fuzz/regressions/$target/ once fixed)" >&2
     failed=1
     continue

@@ -190,7 +190,7 @@ const ColumnMeaning* columnMeaning(const std::string& column) {
       {"ambiguous_pixels", {"pixels the reference certifies as ties (two surfaces at exactly one distance): no answer is wrong there"}},
       {"depth_error_mean", {"the mean difference from the reference's depth, in scene units"}},
       {"depth_error_max", {"the largest difference from the reference's depth, in scene units"}},
-      {"coverage_error", {"the mean over every pixel of how much of it shows something other than the exact shares say (0 to 1): "
+      {"coverage_error", {"the mean over every pixel (but those where the exact shares meet a tie) of how much of it shows something other than the exact shares say (0 to 1): "
                           "of its shares for an antialiasing algorithm, of its one sample per pixel for the others (opaque scenes)", true}},
       {"coverage_error_mixed", {"the coverage error over the mixed pixels alone: those the exact shares show more than one thing in"}},
       {"mixed_pixels", {"pixels the exact shares (the reference at 32 x 32 samples) show more than one thing in"}},

@@ -268,7 +268,6 @@ inline DrawnLengths drawnLengths(const LineSet& lines, const PreparedScene& scen
   return lengths;
 }
 
-// What a scene as generated shows, to compare its variations with.
 // The A-buffer's shares at its default mask (renderer/raster/coverage.hpp), each id mapped
 // back to the original triangle; nothing when it refuses the scene.
 inline std::optional<PixelShares> aBufferShares(const PreparedScene& scene, std::uint32_t idsPerOriginal) {
@@ -281,6 +280,7 @@ inline std::optional<PixelShares> aBufferShares(const PreparedScene& scene, std:
   return shares;
 }
 
+// What a scene as generated shows, to compare its variations with.
 struct Baseline {
   std::optional<PixelShares> antialiased;    // the A-buffer's shares
   std::vector<std::optional<Frame>> frames;  // per everyConfiguration()

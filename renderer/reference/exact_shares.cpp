@@ -11,7 +11,9 @@ namespace {
 
 constexpr int kSurvey = 4;                  // the survey's points per pixel side
 constexpr std::uint32_t kMixed = ~0u;       // a pixel that may show more than one thing
-constexpr double kPixelMargin = 1.0 / 256;  // how far past its sides a pixel counts as touched
+// How far past its sides a pixel counts as touched: rounding only (the clip coordinates'
+// few ulps); its nearest samples are 1/64 pixel inside its sides.
+constexpr double kPixelMargin = 1.0 / 256;
 
 // A triangle in view space (eye at the origin, looking down -z), and the part of it
 // between the near and far planes, the only part a ray can meet: its corners in view
@@ -115,11 +117,10 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
   const CameraTransform survey(scene.scene().camera, width * kSurvey, height * kSurvey);
   const CameraTransform fine(scene.scene().camera, width * samples, height * samples);
   const auto rows = static_cast<std::size_t>(height);
-  std::vector<SurfaceReference::Counters> counters(rows);
   std::vector<std::int64_t> rowRays(rows, 0);
 
   // 1. The survey: what each pixel's 4 x 4 points and its neighbours' nearest ones (6 x 6
-  //    points, out to 3/8 of a pixel past its sides, beyond the image's sides too) show.
+  //    points, out to 1/8 of a pixel past its sides, beyond the image's sides too) show.
   //    Where they all show one triangle, at none of them a tie, the triangle covers the
   //    whole pixel (their hull holds the pixel, and the part of a triangle between the
   //    near and far planes is convex); where they all show nothing, nothing covers any of
@@ -129,10 +130,11 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
     const int y = int(row);
     const int firstRow = y * kSurvey - 1, endRow = (y + 1) * kSurvey + 1;
     const std::size_t surveyWidth = std::size_t(width) * kSurvey + 2;
+    SurfaceReference::Counters work;  // the traversal's counts, which the exact shares do not report
     std::vector<std::uint32_t> surveyed(std::size_t(endRow - firstRow) * surveyWidth);
     std::vector<ReferenceHit> hits(surveyWidth);
     for (int r = firstRow; r < endRow; ++r) {
-      reference.traceRun(survey, r, -1, int(surveyWidth), hits.data(), counters[row]);
+      reference.traceRun(survey, r, -1, int(surveyWidth), hits.data(), work);
       for (std::size_t c = 0; c < surveyWidth; ++c) surveyed[std::size_t(r - firstRow) * surveyWidth + c] = hits[c].ambiguous ? kMixed : hits[c].id;
     }
     rowRays[row] += std::int64_t(endRow - firstRow) * std::int64_t(surveyWidth);
@@ -149,12 +151,14 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
   // 2. The proof: a pixel stays whole only if no other triangle's piece that the pixel's
   //    rays can meet lies nearer than the one it shows (every corner of the piece behind
   //    that one's plane), or, for a pixel showing nothing, if no rays of it can meet a
-  //    triangle between the near and far planes. What a survey point falls between (a sliver, a strip narrower than a
-  //    quarter pixel) is caught here.
+  //    triangle between the near and far planes. What falls between the survey's points
+  //    (a sliver, a strip narrower than a quarter pixel) is caught here.
   std::vector<ViewTriangle> view(scene.triangleCount());
   parallelForEach(view.size(), 4096, threads, [&](std::size_t t) { view[t] = viewTriangle(scene, camera, std::uint32_t(t)); });
-  std::vector<std::uint32_t> tracedInFull(pixels, 0);
-  for (std::size_t p = 0; p < pixels; ++p) tracedInFull[p] = shown[p] == kMixed;
+  // A flag per pixel that threads set (claimFlag) and read while others set them, both atomically.
+  std::vector<std::uint32_t> tracedInFull(pixels);
+  std::transform(shown.begin(), shown.end(), tracedInFull.begin(), [](std::uint32_t id) { return id == kMixed; });
+  const auto claimed = [&](std::size_t pixel) { return __atomic_load_n(&tracedInFull[pixel], __ATOMIC_RELAXED) != 0; };
   const bool perspective = scene.scene().camera.projection == Projection::perspective;
   parallelForEach(view.size(), 1024, threads, [&](std::size_t t) {
     const ViewTriangle& other = view[t];
@@ -172,7 +176,7 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
       for (int x = x0; x <= x1; ++x) {
         const std::size_t pixel = std::size_t(y) * std::size_t(width) + std::size_t(x);
         const std::uint32_t id = shown[pixel];
-        if (id == kMixed || id == t + 1 || tracedInFull[pixel]) continue;
+        if (id == kMixed || id == t + 1 || claimed(pixel)) continue;
         dvec3 piece[8];
         const int corners = seenThroughPixel(other, width, height, x, y, piece);
         if (corners > 0 && (id == 0 || mayBeInFront(piece, corners, view[id - 1], perspective))) claimFlag(tracedInFull[pixel]);
@@ -188,6 +192,7 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
   std::vector<std::uint8_t> tied(pixels, 0);
   parallelFor(rows, threads, [&](std::size_t row, int) {
     std::vector<ReferenceHit> hits(static_cast<std::size_t>(samples));
+    SurfaceReference::Counters work;  // the traversal's counts, which the exact shares do not report
     std::vector<std::uint32_t> ids(std::size_t(samples) * std::size_t(samples));
     for (int x = 0; x < width; ++x) {
       const std::size_t pixel = row * std::size_t(width) + std::size_t(x);
@@ -196,7 +201,7 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
       } else {
         ++rowFull[row];
         for (int sy = 0; sy < samples; ++sy) {
-          reference.traceRun(fine, int(row) * samples + sy, x * samples, samples, hits.data(), counters[row]);
+          reference.traceRun(fine, int(row) * samples + sy, x * samples, samples, hits.data(), work);
           for (int sx = 0; sx < samples; ++sx) {
             ids[std::size_t(sy) * std::size_t(samples) + std::size_t(sx)] = hits[std::size_t(sx)].id;
             tied[pixel] |= hits[std::size_t(sx)].ambiguous;
