@@ -5,9 +5,9 @@
 # and the standard library's assertions on (scripts/sanitize.sh); then each fuzz target
 # for 10 seconds under both sanitizers (scripts/fuzz.sh); then the other targets: the
 # browser edition built into WebAssembly and tested in headless chromium, the same bits as
-# native on the hard cases and 10 random scenes (scripts/web_test.sh), and an arm64 build
-# under qemu-user against this machine's on every render at 48 pixels wide
-# (scripts/cross.sh arm64 --quick). The benchmarks and the check that every header
+# native on the hard cases and 10 random scenes (scripts/web_test.sh), and beside its page
+# tests an arm64 build under qemu-user against this machine's on every render at 48 pixels
+# wide (scripts/cross.sh arm64 --quick). The benchmarks and the check that every header
 # compiles on its own are not built (scripts/build.sh builds them). The debug preset
 # (scripts/debug.sh: GCC at -Og, the same traps) is not run here: the sanitizer build
 # traps the same exceptions, and a third build of everything took CI past 25 minutes.
@@ -32,7 +32,24 @@ bash scripts/sanitize.sh -DHSR_WERROR=ON
 lap "sanitizer build and tests"
 bash scripts/fuzz.sh 10
 lap "fuzzing"
+# The browser edition and arm64 side by side: the WebAssembly build first, then the arm64
+# build and its run under qemu-user while the pages are clicked through in headless
+# Chromium (mostly one core each); arm64's output is printed once both are done. Every
+# package either needs is installed first, one apt-get at a time.
+bash scripts/setup.sh tests web arm64
+bash scripts/web.sh
+mkdir -p out
+cross_log=out/cross-arm64-quick.log
+bash scripts/cross.sh arm64 --quick >"$cross_log" 2>&1 &
+cross=$!
+trap 'kill "$cross" 2>/dev/null || true' EXIT  # a failing page test leaves no emulation running
 bash scripts/web_test.sh
 lap "browser edition"
-bash scripts/cross.sh arm64 --quick
-lap "arm64"
+if ! wait "$cross"; then
+  cat "$cross_log"
+  echo "test.sh: the arm64 check FAILED" >&2
+  exit 1
+fi
+trap - EXIT
+cat "$cross_log"
+lap "arm64 (beside the browser edition)"
