@@ -48,6 +48,13 @@ std::vector<std::uint8_t> dimmedReference(const Frame& truth) {
   return image;
 }
 
+// The heat maps' colours: what is wrong red, a tie blue, laid over the grey by `weight`
+// (1: the colour itself).
+constexpr std::uint8_t kWrongRed[3] = {255, 30, 30}, kTieBlue[3] = {40, 90, 255};
+void paint(std::uint8_t* out, const std::uint8_t (&colour)[3], double weight = 1) {
+  for (int c = 0; c < 3; ++c) out[c] = static_cast<std::uint8_t>(std::lround(out[c] * (1 - weight) + colour[c] * weight));
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> coverageHeatMap(const PixelShares& measured, const PixelShares& exact, const ReferenceImage& reference) {
@@ -56,15 +63,11 @@ std::vector<std::uint8_t> coverageHeatMap(const PixelShares& measured, const Pix
   for (std::size_t pixel = 0; pixel < reference.frame.pixelCount(); ++pixel) {
     std::uint8_t* out = &image[4 * pixel];
     if (!exact.tied.empty() && exact.tied[pixel]) {
-      out[0] = 40, out[1] = 90, out[2] = 255;
+      paint(out, kTieBlue);
       continue;
     }
     const double distance = coverageDistance(measured, exact, pixel);
-    if (distance == 0) continue;
-    const double red = 0.25 + 0.75 * distance;
-    out[0] = static_cast<std::uint8_t>(std::lround(out[0] * (1 - red) + 255 * red));
-    out[1] = static_cast<std::uint8_t>(std::lround(out[1] * (1 - red) + 30 * red));
-    out[2] = static_cast<std::uint8_t>(std::lround(out[2] * (1 - red) + 30 * red));
+    if (distance > 0) paint(out, kWrongRed, 0.25 + 0.75 * distance);
   }
   return image;
 }
@@ -75,11 +78,8 @@ std::vector<std::uint8_t> errorHeatMap(const Frame& frame, const ReferenceImage&
   std::vector<std::uint8_t> image = dimmedReference(truth);
   for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
     std::uint8_t* out = &image[4 * pixel];
-    if (reference.ambiguous[pixel]) {
-      out[0] = 40, out[1] = 90, out[2] = 255;
-    } else if (frame.ids[pixel] != truth.ids[pixel]) {
-      out[0] = 255, out[1] = 30, out[2] = 30;
-    }
+    if (reference.ambiguous[pixel]) paint(out, kTieBlue);
+    else if (frame.ids[pixel] != truth.ids[pixel]) paint(out, kWrongRed);
   }
   return image;
 }
