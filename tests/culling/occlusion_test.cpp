@@ -163,9 +163,11 @@ TEST(Occlusion, TheCenterRuleWritesTheNearestOccludersKeyAtEveryTexelCenter) {
 
 // Each rule's fast path (fast_path.hpp) writes a row as its textbook loop does, bit for
 // bit: random faces' keys (negative, as -1 / d under perspective, and positive, as d
-// under orthographic, of magnitudes from 1e-4 to 1e4), random runs of a row (shorter
-// than eight texels among them), over texels holding random keys, empty ones among
-// them. write(row, first, last, keys, count, fast) writes the run one way or the other.
+// under orthographic, of magnitudes from 1e-4 to 1e4; in one trial of five, keys that
+// cross zero along the row, a run the conservative fast path leaves to the textbook
+// loop), random runs of a row (shorter than eight texels among them), over texels
+// holding random keys, empty ones among them. write(row, first, last, keys, count, fast)
+// writes the run one way or the other.
 template <typename Key, typename Write>
 void expectRowsBitForBit(unsigned seed, Write&& write) {
   std::mt19937 random(seed);
@@ -176,7 +178,9 @@ void expectRowsBitForBit(unsigned seed, Write&& write) {
     const int count = 1 + trial % 3;
     for (Key& key : keys) {
       using Real = decltype(key.atZero);
-      key = {Real(sign * magnitude * (1 + unit(random))), Real(magnitude * (unit(random) - 0.5) * 1e-3)};
+      const bool crossesZero = trial % 5 == 4;
+      key = crossesZero ? Key{Real(magnitude * (unit(random) - 0.5)), Real(magnitude * (unit(random) - 0.5) * 0.1)}
+                        : Key{Real(sign * magnitude * (1 + unit(random))), Real(magnitude * (unit(random) - 0.5) * 1e-3)};
     }
     std::vector<float> held(64);
     for (float& texel : held) texel = unit(random) < 0.2 ? std::numeric_limits<float>::infinity() : float(sign * magnitude * (1 + 2 * unit(random)));
@@ -190,10 +194,18 @@ void expectRowsBitForBit(unsigned seed, Write&& write) {
 
 TEST(Occlusion, ConservativeRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
-  expectRowsBitForBit<RowKey>(27, [](float* row, int first, int last, const RowKey* keys, int count, bool fast) {
-    // The fast path leaves up to seven texels for the textbook loop to finish.
-    conservativeRow(row, fast ? conservativeRowEightAtATime(row, first, last, keys, count) : first, last, keys, count);
+  int runsWrittenFast = 0;
+  expectRowsBitForBit<RowKey>(27, [&](float* row, int first, int last, const RowKey* keys, int count, bool fast) {
+    // The fast path writes the whole run, or nothing where it cannot be sure of its
+    // rounding (a sign change), and the textbook loop writes it.
+    const bool writtenFast = fast && conservativeRowEightAtATime(row, first, last, keys, count);
+    runsWrittenFast += writtenFast;
+    if (!writtenFast) conservativeRow(row, first, last, keys, count);
   });
+  // Every run of keys of one sign (four trials of five) was the fast path's; not every
+  // run that crosses zero.
+  EXPECT_GE(runsWrittenFast, 1600);
+  EXPECT_LT(runsWrittenFast, 2000);
 }
 
 TEST(Occlusion, CenterRowsEightAtATimeAreTheTextbookLoopsBitForBit) {

@@ -420,7 +420,7 @@ void OccluderRasterizer::polygon(const dvec2* corners, int count, const KeyPlane
       RowKey keys[6];
       for (int k = 0; k < planeCount; ++k)
         keys[k] = {planes[k].k0 + planes[k].kx * (planes[k].kx > 0) + planes[k].ky * (y + (planes[k].ky > 0)), planes[k].kx};
-      conservativeRow(row, cpuHasAvx2() ? conservativeRowEightAtATime(row, first, last, keys, planeCount) : first, last, keys, planeCount);
+      if (!(cpuHasAvx2() && conservativeRowEightAtATime(row, first, last, keys, planeCount))) conservativeRow(row, first, last, keys, planeCount);
     }
     texelsWritten += last - first + 1;
   }

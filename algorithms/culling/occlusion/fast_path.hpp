@@ -7,8 +7,12 @@
 // occlusion_test.cpp checks random rows):
 //   conservative  each face plane's key at the texel's worst corner, atZero + slope x
 //                 (RowKey), in double, four texels to a vector; their maximum; rounded
-//                 to float upward and one float further (roundedUp), eight texels to a
-//                 vector; the smaller of that and what the texel holds.
+//                 up to float and one float further, as roundedUp rounds, but by the
+//                 key's bits, eight texels to a vector (exact where every key of the run
+//                 keeps one sign and a magnitude in float's normal range: the rows of a
+//                 perspective map, all negative, and of an orthographic one, positive;
+//                 another run is left to the textbook loop); the smaller of that and
+//                 what the texel holds.
 //   center        each face plane's key at the texel's center, atZero + slope x
 //                 (CenterRowKey), in float, eight texels to a vector; their maximum; the
 //                 smaller of that and what the texel holds.
@@ -18,11 +22,11 @@
 
 namespace hsr::culling::occlusion {
 
-// Writes texels first .. of `row` eight at a time as conservativeRow writes them, given
-// each face's key along the row; returns the first texel it did not write (at most
-// seven before last + 1), for that loop to finish. Only on a CPU with AVX2
-// (renderer/util/simd.hpp).
-int conservativeRowEightAtATime(float* row, int first, int last, const RowKey* keys, int count);
+// Writes texels first .. last of `row` as conservativeRow writes them, eight at a time,
+// the last few of the run under a mask, and returns true; or, where the run's keys may
+// change sign or leave float's normal range, writes nothing and returns false. Only on a
+// CPU with AVX2 (renderer/util/simd.hpp).
+bool conservativeRowEightAtATime(float* row, int first, int last, const RowKey* keys, int count);
 
 // Writes texels first .. last of `row` as centerRow writes them, eight at a time, the
 // last few of the run under a mask. Only on a CPU with AVX2.
