@@ -120,11 +120,6 @@ HSR_AVX2 inline Float8 narrowed(Double4 low, Double4 high) {
   const Float4 lowHalf = narrowed(low), highHalf = narrowed(high);
   return Float8{lowHalf[0], lowHalf[1], lowHalf[2], lowHalf[3], highHalf[0], highHalf[1], highHalf[2], highHalf[3]};
 }
-// Half (0: lanes 0-3, 1: lanes 4-7) of eight floats, widened to doubles.
-HSR_AVX2 inline Double4 widenedHalf(Float8 eight, int half) {
-  const int first = 4 * half;
-  return Double4{eight[first], eight[first + 1], eight[first + 2], eight[first + 3]};
-}
 
 // The lanes of `row + x` that `lanes` selects (all bits set in a selected lane), loaded;
 // the others 0 and never read (the row may end there). And the same lanes stored.
