@@ -188,7 +188,7 @@ std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, con
 const std::vector<Exercise>& gradedExercises() {
   static const std::vector<Exercise> exercises = {
       {1, "the z-buffer", "zbuffer", true, true, {}, "", "--knob path=scalar"},
-      {3, "ray casting", "ray_casting", false, false},
+      {3, "ray casting", "ray_casting", false, false, {}, "", "--knob path=scalar"},
       {4, "the painter's algorithm", "painter", true, false},
       {7, "culling: backface and frustum", "zbuffer", true, true, {"visibility", "orthographic", "far-from-origin", "far-plane", "occlusion"}, "backface,frustum"},
       {8, "occlusion culling", "zbuffer", true, true, {}, "occlusion"},

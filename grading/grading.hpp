@@ -40,7 +40,8 @@ struct Exercise {
   std::vector<std::string> skills = {};
   const char* cull = "";  // the culling stages the shipped answer runs first (hsr render --cull)
   // What a C++ algorithm folder is rendered with: the options that run the code the
-  // student edition asks for (the z-buffer's textbook loop, not its SIMD fast path).
+  // student edition asks for (the z-buffer's textbook loop, not its SIMD fast path; the
+  // ray caster's one-ray traversal, not its packets or wide BVH).
   const char* folderOptions = "";
 };
 const std::vector<Exercise>& gradedExercises();

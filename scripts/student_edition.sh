@@ -1,57 +1,81 @@
 #!/usr/bin/env bash
 # Writes the student edition of an exercise: a copy of the suite (the last commit) in
-# which every region of the exercise's algorithm folder marked
+# which every region of the algorithms marked
 #     // BEGIN SOLUTION
 #     ...the solution...
 #     // SKELETON
-#     // ...the skeleton, commented out...
+#     // // Exercise N: ...what to write, commented out...
 #     // END SOLUTION
-# holds its skeleton instead. The edition builds and runs, and fails the exercise's
-# tests (its ctest label, and hsr grade) until the student writes the code; the exact
-# reference, the other algorithms and the grader are as shipped; the answer key and the
-# bug catalogue are left out. It is made from the last commit: commit a change first.
+# whose skeleton names the exercise holds its skeleton instead; the other exercises'
+# regions keep their solutions (the markers and skeletons dropped). The edition builds
+# and runs, and fails the exercise's tests (its ctest label, and hsr grade) until the
+# student writes the code; the exact reference, the other algorithms and the grader are
+# as shipped; the answer key and the bug catalogue are left out. It is made from the
+# last commit: commit a change first.
 #   bash scripts/student_edition.sh EXERCISE OUT
 # Then: cd OUT && bash scripts/build.sh && ./build/hsr grade algorithms/FOLDER --exercise EXERCISE
 set -euo pipefail
 checkout=$(cd "$(dirname "$0")/.." && pwd)
 exercise=${1:?usage: student_edition.sh EXERCISE OUT}
 out=${2:?usage: student_edition.sh EXERCISE OUT}
-case "$exercise" in
-  1) folder=zbuffer ;;
-  *) echo "student_edition.sh: error: exercise $exercise has no regions marked BEGIN SOLUTION yet; expected 1" >&2; exit 2 ;;
-esac
+if ! [[ "$exercise" =~ ^[0-9]+$ ]]; then
+  echo "student_edition.sh: error: exercise '$exercise': expected a number" >&2
+  exit 2
+fi
 if [ -e "$out" ]; then
   echo "student_edition.sh: error: $out exists; expected a new folder" >&2
   exit 2
 fi
-mkdir -p "$out"
-git -C "$checkout" archive HEAD | tar -x -C "$out"
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+git -C "$checkout" archive HEAD | tar -x -C "$scratch"
 # Not for students: the answer key, and the bug catalogue (its mutations quote the
 # solution's lines). The grader needs neither.
-rm -r "$out/docs/instructors" "$out/course/bugs"
-python3 - "$out/algorithms/$folder" <<'PYTHON'
+rm -r "$scratch/docs/instructors" "$scratch/course/bugs"
+python3 - "$scratch" "$exercise" <<'PYTHON'
 import pathlib, re, sys
-regions = 0
-for path in sorted(pathlib.Path(sys.argv[1]).glob('*.[ch]pp')):
-    lines, out, state = path.read_text().split('\n'), [], 'code'
+root, exercise = pathlib.Path(sys.argv[1]), sys.argv[2]
+named = re.compile(r'\s*// // Exercise (\d+):')
+folders, numbers = set(), set()
+for path in sorted((root / 'algorithms').rglob('*.[ch]pp')):
+    lines, out, state, skeleton = path.read_text().split('\n'), [], 'code', []
     for number, line in enumerate(lines, 1):
         marker = line.strip()
-        if marker == '// BEGIN SOLUTION':
-            state = 'solution'
+        if marker == '// BEGIN SOLUTION' and state == 'code':
+            state, solution, skeleton = 'solution', [], []
         elif marker == '// SKELETON' and state == 'solution':
             state = 'skeleton'
         elif marker == '// END SOLUTION' and state == 'skeleton':
-            state, regions = 'code', regions + 1
+            exercises = {m.group(1) for m in map(named.match, skeleton) if m}
+            if len(exercises) != 1:
+                sys.exit(f'{path}:{number}: a skeleton names no exercise or several; expected one "// // Exercise N:" line')
+            numbers |= exercises
+            if exercise in exercises:
+                out += [re.sub(r'^(\s*)// ?', r'\1', kept, count=1) for kept in skeleton]
+                folders.add(path.parent.relative_to(root).as_posix())
+            else:
+                out += solution
+            state = 'code'
+        elif state == 'solution':
+            solution.append(line)
         elif state == 'skeleton':
             if not re.match(r'\s*// ?', line):
                 sys.exit(f'{path}:{number}: a skeleton line that is not commented out')
-            out.append(re.sub(r'^(\s*)// ?', r'\1', line, count=1))
-        elif state == 'code':
+            skeleton.append(line)
+        else:
             out.append(line)
     if state != 'code':
         sys.exit(f'{path}: a BEGIN SOLUTION region without its SKELETON and END SOLUTION')
     path.write_text('\n'.join(out))
-print(f'{regions} regions replaced by their skeletons in {sys.argv[1]}')
+if not folders:
+    expected = ', '.join(sorted(numbers, key=int))
+    sys.exit(f'student_edition.sh: error: exercise {exercise} has no regions marked BEGIN SOLUTION; expected one of {expected}')
+(root / '.student-edition-folder').write_text(' '.join(sorted(folders)))
 PYTHON
-echo "the student edition of exercise $exercise is in $out: build it with bash scripts/build.sh there, then"
-echo "  ./build/hsr grade algorithms/$folder --exercise $exercise"
+folder=$(cat "$scratch/.student-edition-folder")
+rm "$scratch/.student-edition-folder"
+mkdir -p "$(dirname "$out")"
+mv "$scratch" "$out"
+trap - EXIT
+echo "the student edition of exercise $exercise is in $out ($folder with skeletons): build it with bash scripts/build.sh there, then"
+echo "  ./build/hsr grade $folder --exercise $exercise"

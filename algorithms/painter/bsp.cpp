@@ -265,6 +265,7 @@ PaintOrder BspTree::backToFront(const PreparedScene& scene, const ScreenGeometry
       continue;
     }
     ++visited;
+    // BEGIN SOLUTION
     // The eye's side is the near side. On the plane itself the node's fragments are
     // seen edge-on, and either order of the subtrees is right.
     const bool eyePositive = node.plane == kNoPlane || eyeSide(scene, geometry.camera, node.plane, predicates) >= 0;
@@ -273,6 +274,17 @@ PaintOrder BspTree::backToFront(const PreparedScene& scene, const ScreenGeometry
     if (nearSide >= 0) stack.push_back({nearSide, false});
     stack.push_back({visit.node, true});
     if (farSide >= 0) stack.push_back({farSide, false});
+    // SKELETON
+    // // Exercise 4: paint the node's far side, then the node, then its near side. Which
+    // // side of the node's plane the eye is on: eyeSide(scene, geometry.camera,
+    // // node.plane, predicates), >= 0 for the positive side (node.positive is that
+    // // subtree, node.negative the other, -1 for none; a leaf has node.plane ==
+    // // kNoPlane). The stack pops last in first out, so push the three in reverse: the
+    // // near subtree, the node itself ({visit.node, true}: its fragments are painted
+    // // when it comes off again), then the far subtree ({subtree, false}). What if the
+    // // eye lies on the plane?
+    // (void)scene, (void)geometry;
+    // END SOLUTION
   }
   stats.add("bsp nodes visited", visited);
   stats.add("predicate evaluations", predicates.evaluations);

@@ -79,6 +79,7 @@ class BvhTracer {
   Hit traverse(const PixelRay& pixel, Counters& counters, std::vector<PixelEvent>* history) const {
     Hit nearest{conventions::kBackgroundId, pixel.tFar};
     if (bvh_.empty()) return nearest;
+    // BEGIN SOLUTION
     const RayBoxTest boxes(pixel.ray.origin, pixel.ray.direction, pixel.inverseDirection);
     const WatertightRay<double> ray(pixel.ray, pixel.inverseDirection);
     const std::vector<BvhNode>& nodes = bvh_.nodes();
@@ -125,6 +126,24 @@ class BvhTracer {
           if (current.entry > reach()) witnessDropped(current.node, current.entry, nearest, pixel, *history);
       } while (current.entry > reach());
     }
+    // SKELETON
+    // // Exercise 3: the nearest hit along the pixel's ray, front to back through the BVH
+    // // (bvh_.nodes(), the root at 0). RayBoxTest boxes(pixel.ray.origin,
+    // // pixel.ray.direction, pixel.inverseDirection) gives where the ray enters a node's
+    // // box before a reach (boxes.entry(node, reach), kMiss if not), and both children's
+    // // (boxes.childEntries(&nodes[node.index], reach)); the reach is reachOf(nearest),
+    // // the nearest hit so far. A leaf (node.leaf()) holds triangles_[node.index] to
+    // // triangles_[node.index + node.count - 1]: offer each to the ray,
+    // // offer(WatertightRay<double>(pixel.ray, pixel.inverseDirection), triangle, pixel,
+    // // nearest, nullptr). Go on with the nearer child, keep the farther on a stack, and
+    // // pop only nodes that start before the reach; count counters.nodesVisited and
+    // // counters.triangleTests. Why may a popped node be dropped? (With a history, hsr
+    // // why's events: witnessLeaf, witnessChildren, witnessDropped, witnessMissedScene,
+    // // as the comments above them say; optional.)
+    // (void)counters, (void)history;
+    // (void)witnessLeaf, (void)witnessChildren, (void)witnessDropped, (void)witnessMissedScene;
+    // return nearest;
+    // END SOLUTION
   }
 
   const Bvh& bvh_;

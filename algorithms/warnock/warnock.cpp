@@ -53,6 +53,7 @@ bool coversCenter(const ScreenTriangle& tri, int x, int y) {
 // four inside every edge, and every center is (a triangle is convex). Anything else
 // meets the window, or may: a smaller window will tell.
 Relation relationTo(const ScreenTriangle& tri, const Window& window) {
+  // BEGIN SOLUTION
   if (tri.maxX < window.x0 || tri.minX >= window.x1 || tri.maxY < window.y0 || tri.minY >= window.y1) return Relation::disjoint;
   const int xs[2] = {window.x0, window.x1 - 1}, ys[2] = {window.y0, window.y1 - 1};
   bool surrounds = true;
@@ -66,6 +67,17 @@ Relation relationTo(const ScreenTriangle& tri, const Window& window) {
   if (surrounds) return Relation::surrounding;
   const bool insideWindow = tri.minX >= window.x0 && tri.maxX < window.x1 && tri.minY >= window.y0 && tri.maxY < window.y1;
   return insideWindow ? Relation::contained : Relation::intersecting;
+  // SKELETON
+  // // Exercise 14: classify the triangle against the window (pixels window.x0 to x1 - 1,
+  // // window.y0 to y1 - 1). Its pixel box (tri.minX to tri.maxX, tri.minY to tri.maxY)
+  // // apart from the window's: disjoint. Then edgeAtCenter(tri, k, x, y) >= 0 says the
+  // // center of pixel (x, y) is inside edge k: at the window's four corner centers, all
+  // // outside one edge means disjoint, all inside every edge means surrounding. Otherwise
+  // // contained (the pixel box lies in the window) or intersecting. Why do the corners
+  // // suffice?
+  // (void)tri, (void)window;
+  // return Relation::disjoint;
+  // END SOLUTION
 }
 
 // The range of a triangle's plane over a window's pixel centers, nearest to farthest

@@ -115,6 +115,7 @@ class RowResolver {
     if (present_.empty()) return decided(Outcome::empty, std::nullopt);
     if (present_.size() == 1) return decided(Outcome::onePolygon, present_[0]);
 
+    // BEGIN SOLUTION
     // The depth of each present polygon at the span's first and last pixel centers, and
     // the nearest at each end (a tie to the earlier polygon).
     ends_.clear();
@@ -150,6 +151,18 @@ class RowResolver {
     if (why_) [[unlikely]] witnessSpan(y, a, b, Outcome::split, std::nullopt, split);
     resolveSpan(y, a, split, counts, marks);  // the parts have the same polygons present
     resolveSpan(y, split, b, counts, marks);
+    // SKELETON
+    // // Exercise 15: two or more polygons (present_) over the span [a, b) of row y.
+    // // Their depths at its two end centers (order_.key(triangles_[i], x, y), smaller is
+    // // nearer; DepthOrder::roundingBound is how far a computed key may be off): where one
+    // // polygon is nearest at both ends by more than the rounding, it fills the span
+    // // (decided(Outcome::decidedAtEnds, polygon)); a span of one pixel is decided by the
+    // // nearest there (Outcome::onePixel); otherwise count Outcome::split in counts.spans,
+    // // split the span (whereDepthsCross, or the middle) and resolve both parts. Why do
+    // // the two ends suffice?
+    // (void)y, (void)a, (void)b, (void)counts, (void)marks;
+    // return decided(Outcome::empty, std::nullopt);
+    // END SOLUTION
   }
 
   // The first pixel of the part where `right` is the nearer: along the span the

@@ -172,6 +172,7 @@ Split splitByOutline(Piece piece, const ScreenTriangle& clip) {
       return {std::nullopt, {std::move(piece)}};
   }
   // Otherwise it is cut edge by edge, the part outside each edge set aside.
+  // BEGIN SOLUTION
   Split split;
   Outline remaining = std::move(piece.outline);
   for (int k = 0; k < 3; ++k) {
@@ -191,6 +192,17 @@ Split splitByOutline(Piece piece, const ScreenTriangle& clip) {
   }
   split.inside.emplace(piece.polygon, std::move(remaining), std::move(piece.nearerThan));
   return split;
+  // SKELETON
+  // // Exercise 16: the piece meets the clip polygon's outline. Cut it by the outline's
+  // // edges in turn (insideEdge(clip, k); sideOf gives each corner's side, sides[k]
+  // // holds them for the piece's own corners): the part outside edge k is one outside
+  // // piece (clipped(outline, sides, edge, -1)), the part inside goes on to the next
+  // // edge (clipped(..., +1)); what is inside all three is the inside piece. Each piece
+  // // keeps its polygon and nearerThan. How many outside pieces can there be, and when
+  // // are there fewer?
+  // (void)clipped, (void)clip, (void)sides;
+  // return {};
+  // END SOLUTION
 }
 
 // How a piece lies against a clip polygon it is inside of.
