@@ -1,21 +1,35 @@
 #!/usr/bin/env bash
-# The student edition of Exercise 1 (scripts/student_edition.sh): its z-buffer folder,
-# skeletons in place of the solution, builds into an hsr of its own and fails the
-# exercise's tests, saying that nothing is drawn; the shipped folder passes the same test.
+# The student editions (scripts/student_edition.sh): for every exercise with regions
+# marked BEGIN SOLUTION, the edition's algorithm folder, skeletons in place of the
+# solution, builds into an hsr of its own and fails the exercise's test, saying that
+# nothing is drawn; the shipped folder passes the same test. An exercise without such
+# regions gets one line naming those with them, and no folder.
 #   student_edition.sh HSR CHECKOUT WORK
 set -euo pipefail
 hsr=$1 checkout=$2 work=$3
+editions="1 3 4 14 15 16"
 rm -rf "$work"
-bash "$checkout/scripts/student_edition.sh" 1 "$work/edition"
-if grep -q 'BEGIN SOLUTION' "$work/edition/algorithms/zbuffer/"*; then echo "a solution region is left" >&2; exit 1; fi
-for secret in docs/instructors course/bugs; do
-  if [ -e "$work/edition/$secret" ]; then echo "the edition holds $secret" >&2; exit 1; fi
-done
+mkdir -p "$work"
 status=0
-"$hsr" grade "$work/edition/algorithms/zbuffer" --exercise 1 --test visible/cube --out "$work/report" > "$work/output.txt" 2>&1 || status=$?
-cat "$work/output.txt"
-[ "$status" -eq 1 ] || { echo "expected the edition to fail its test (exit 1), got $status" >&2; exit 1; }
-grep -q 'FAILED visible/cube' "$work/output.txt"
-grep -q -- '- nothing drawn' "$work/report/results.json"
-"$hsr" grade "$checkout/algorithms/zbuffer" --exercise 1 --test visible/cube --out "$work/shipped" > /dev/null
-echo "the edition fails until the student writes the code; the shipped folder passes"
+bash "$checkout/scripts/student_edition.sh" 2 "$work/none" 2> "$work/none.txt" || status=$?
+[ "$status" -ne 0 ] && [ ! -e "$work/none" ] || { echo "exercise 2 has no edition: expected an error and no folder" >&2; exit 1; }
+grep -qx "student_edition.sh: error: exercise 2 has no regions marked BEGIN SOLUTION; expected one of ${editions// /, }" "$work/none.txt" ||
+  { cat "$work/none.txt"; echo "expected the exercises with editions to be exactly $editions" >&2; exit 1; }
+for exercise in $editions; do
+  edition="$work/edition-$exercise"
+  bash "$checkout/scripts/student_edition.sh" "$exercise" "$edition" > "$work/made-$exercise.txt"
+  folder=$(sed -n 's/^  \.\/build\/hsr grade \(.*\) --exercise .*/\1/p' "$work/made-$exercise.txt")
+  if grep -rq 'BEGIN SOLUTION' "$edition/algorithms"; then echo "exercise $exercise: a solution region is left" >&2; exit 1; fi
+  grep -rq "Exercise $exercise:" "$edition/$folder" || { echo "exercise $exercise: no skeleton in $folder" >&2; exit 1; }
+  for secret in docs/instructors course/bugs; do
+    if [ -e "$edition/$secret" ]; then echo "exercise $exercise: the edition holds $secret" >&2; exit 1; fi
+  done
+  status=0
+  "$hsr" grade "$edition/$folder" --exercise "$exercise" --test visible/cube --out "$work/report-$exercise" > "$work/output-$exercise.txt" 2>&1 || status=$?
+  cat "$work/output-$exercise.txt"
+  [ "$status" -eq 1 ] || { echo "exercise $exercise: expected the edition to fail its test (exit 1), got $status" >&2; exit 1; }
+  grep -q 'FAILED visible/cube' "$work/output-$exercise.txt"
+  grep -q -- '- nothing drawn' "$work/report-$exercise/results.json"
+  "$hsr" grade "$checkout/$folder" --exercise "$exercise" --test visible/cube --out "$work/shipped-$exercise" > /dev/null
+  echo "exercise $exercise: the edition of $folder fails until the student writes the code; the shipped folder passes"
+done
