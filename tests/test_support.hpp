@@ -292,6 +292,16 @@ inline Frame sampledOneByOne(const PreparedScene& scene) {
   return frame;
 }
 
+// The shares of every one of samples x samples points of each pixel traced by the
+// reference (an image `samples` times finer, width x height the scene's size): what
+// traceExactShares must give, without its survey and proof.
+inline PixelShares everyPointTraced(const Scene& scene, int width, int height, int samples, int threads) {
+  PreparedScene fine(scene);
+  fine.setSize(width * samples, height * samples);
+  Stats stats;
+  return sharesOfSamples(traceReference(fine, threads, stats).frame.ids, width, height, samples);
+}
+
 // Whether two frames hold the same depth, bit for bit (NaN and -0 included).
 inline bool sameDepthBits(const Frame& a, const Frame& b) {
   return a.depth.size() == b.depth.size() && std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;

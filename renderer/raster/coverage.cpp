@@ -25,19 +25,28 @@ PixelShares sharesOf(const PixelCoverage& coverage) {
   return shares;
 }
 
+void appendSharesOfSamples(std::span<std::uint32_t> sampleIds, std::vector<std::pair<std::uint32_t, double>>& shares) {
+  std::sort(sampleIds.begin(), sampleIds.end());
+  const double perSample = 1.0 / double(sampleIds.size());
+  for (std::size_t i = 0; i < sampleIds.size();) {
+    std::size_t same = i;
+    while (same < sampleIds.size() && sampleIds[same] == sampleIds[i]) ++same;
+    shares.emplace_back(sampleIds[i], double(same - i) * perSample);
+    i = same;
+  }
+}
+
 PixelShares sharesOfSamples(std::span<const std::uint32_t> fineIds, int width, int height, int k) {
   PixelShares result;
   result.first.reserve(std::size_t(width) * std::size_t(height) + 1);
   result.first.push_back(0);
-  const double perSample = 1.0 / double(k * k);
-  std::map<std::uint32_t, int> counts;
+  std::vector<std::uint32_t> samples(std::size_t(k) * std::size_t(k));
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      counts.clear();
       for (int sy = 0; sy < k; ++sy)
         for (int sx = 0; sx < k; ++sx)
-          ++counts[fineIds[std::size_t(y * k + sy) * std::size_t(width * k) + std::size_t(x * k + sx)]];
-      for (const auto& [id, count] : counts) result.shares.emplace_back(id, count * perSample);
+          samples[std::size_t(sy * k + sx)] = fineIds[std::size_t(y * k + sy) * std::size_t(width * k) + std::size_t(x * k + sx)];
+      appendSharesOfSamples(samples, result.shares);
       result.first.push_back(static_cast<std::uint32_t>(result.shares.size()));
     }
   return result;

@@ -42,6 +42,9 @@ struct PixelShares {
 PixelShares sharesOf(const PixelCoverage& coverage);
 // The shares the samples of a k-times finer id image give (width x height the coarse size).
 PixelShares sharesOfSamples(std::span<const std::uint32_t> fineIds, int width, int height, int k);
+// One pixel's shares from its samples' ids (sorted in place), appended to `shares` in the
+// order of the ids: each id's share is the fraction of the samples that show it.
+void appendSharesOfSamples(std::span<std::uint32_t> sampleIds, std::vector<std::pair<std::uint32_t, double>>& shares);
 
 // The coverage error of a pixel: half the sum over everything either shows of the
 // difference of their shares (the total variation distance: 0 when they agree, 1 when

@@ -184,8 +184,8 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
   });
 
   // 3. Each pixel's shares: a whole pixel's one surface, anywhere else its samples x
-  //    samples points traced, each a sample's share, in the order of the ids (as
-  //    sharesOfSamples gives them), and the pixel marked tied where a point met a tie.
+  //    samples points traced, each a sample's share (appendSharesOfSamples, as
+  //    sharesOfSamples counts them), and the pixel marked tied where a point met a tie.
   std::vector<std::vector<std::pair<std::uint32_t, double>>> rowShares(rows);
   std::vector<std::vector<std::uint32_t>> rowEnds(rows);
   std::vector<std::int64_t> rowFull(rows, 0);
@@ -208,14 +208,7 @@ PixelShares traceExactShares(const PreparedScene& scene, int samples, int thread
           }
         }
         rowRays[row] += std::int64_t(samples) * samples;
-        std::sort(ids.begin(), ids.end());
-        const double perSample = 1.0 / double(ids.size());
-        for (std::size_t i = 0; i < ids.size();) {
-          std::size_t same = i;
-          while (same < ids.size() && ids[same] == ids[i]) ++same;
-          rowShares[row].emplace_back(ids[i], double(same - i) * perSample);
-          i = same;
-        }
+        appendSharesOfSamples(ids, rowShares[row]);
       }
       rowEnds[row].push_back(std::uint32_t(rowShares[row].size()));
     }

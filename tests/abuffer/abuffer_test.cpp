@@ -51,9 +51,7 @@ PixelShares exactShares(const test::LoadedScene& loaded) {
 
 // The same with no survey: every sample of every pixel traced, as a 32 times finer image.
 PixelShares everySampleTraced(const test::LoadedScene& loaded) {
-  Stats stats;
-  const ReferenceImage reference = traceReference(*finer(loaded, kExactSamples), 2, stats);
-  return sharesOfSamples(reference.frame.ids, loaded.prepared.width(), loaded.prepared.height(), kExactSamples);
+  return test::everyPointTraced(loaded.scene, loaded.prepared.width(), loaded.prepared.height(), kExactSamples, 2);
 }
 
 // The survey and its proof leave whole only pixels the full trace finds whole: the same

@@ -274,10 +274,7 @@ TEST(RandomScenes, TheABuffersSharesComeCloserToTheExactOnesAsItsMaskGrows) {
     Stats stats;
     const PixelShares exact = traceExactShares(judged.prepared, 32, 1, stats);
     if (scenes % 10 == 0) {  // the proof checked against tracing every point, on every tenth of these
-      PreparedScene finer(judged.random.scene);
-      finer.setSize(judged.prepared.width() * 32, judged.prepared.height() * 32);
-      const ReferenceImage everyPoint = traceReference(finer, 1, stats);
-      const PixelShares full = sharesOfSamples(everyPoint.frame.ids, judged.prepared.width(), judged.prepared.height(), 32);
+      const PixelShares full = test::everyPointTraced(judged.random.scene, judged.prepared.width(), judged.prepared.height(), 32, 1);
       EXPECT_EQ(exact.shares, full.shares) << judged.where(seed);
       EXPECT_EQ(exact.first, full.first) << judged.where(seed);
     }
