@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "renderer/reference/agreement.hpp"
 #include "renderer/util/stats.hpp"
@@ -58,43 +59,67 @@ constexpr double kNear = 1.0 / 1024;
 const std::array<dvec2, 8> kAround = {dvec2(kNear, 0),     dvec2(kNear, kNear),   dvec2(0, kNear),   dvec2(-kNear, kNear),
                                       dvec2(-kNear, 0),    dvec2(-kNear, -kNear), dvec2(0, -kNear),  dvec2(kNear, -kNear)};
 
+// An edge function on the screen: twice the signed area of the triangle a, b, p.
+double edgeFunction(const dvec2& a, const dvec2& b, const dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
+
+// A triangle's outline in pixel coordinates (projectedOutline), its corners clockwise
+// on screen (y down); none where it is not a triangle there (cut by the near plane into
+// four corners, behind it, or seen edge-on).
+std::optional<std::array<dvec2, 3>> clockwiseOutline(const PreparedScene& scene, std::uint32_t triangle) {
+  const std::vector<dvec2> outline = projectedOutline(scene, scene.camera(), triangle);
+  if (outline.size() != 3) return std::nullopt;
+  std::array<dvec2, 3> corners = {outline[0], outline[1], outline[2]};
+  const double area = edgeFunction(corners[0], corners[1], corners[2]);
+  if (area == 0) return std::nullopt;
+  if (area < 0) std::swap(corners[1], corners[2]);
+  return corners;
+}
+
 // Whether the fill rule gives the center to the triangle, on a scene whose vertices
 // land on pixel coordinates exactly (so that these products are exact): every edge
 // function positive there, or zero on a top or a left edge (conventions.hpp, and
 // renderer/raster/raster.cpp, which decides it in fixed point).
-bool fillRuleHolds(const PreparedScene& scene, std::uint32_t triangle, const dvec2& center) {
-  std::vector<dvec2> corners = projectedOutline(scene, scene.camera(), triangle);
-  if (corners.size() != 3) return false;
-  const auto edge = [&](const dvec2& a, const dvec2& b, const dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
-  const double area = edge(corners[0], corners[1], corners[2]);
-  if (area == 0) return false;
-  if (area < 0) std::swap(corners[1], corners[2]);  // clockwise on screen, y down
+bool fillRuleHolds(const std::array<dvec2, 3>& clockwise, const dvec2& center) {
   for (int k = 0; k < 3; ++k) {
-    const dvec2 &a = corners[std::size_t(k + 1) % 3], &b = corners[std::size_t(k + 2) % 3];
-    const double value = edge(a, b, center), dx = b.x - a.x, dy = b.y - a.y;
+    const dvec2 &a = clockwise[std::size_t(k + 1) % 3], &b = clockwise[std::size_t(k + 2) % 3];
+    const double value = edgeFunction(a, b, center), dx = b.x - a.x, dy = b.y - a.y;
     if (value < 0 || (value == 0 && !((dy == 0 && dx > 0) || dy < 0))) return false;
   }
   return true;
+}
+
+// The same for a triangle projected for this center alone.
+bool fillRuleGives(const PreparedScene& scene, std::uint32_t triangle, const dvec2& center) {
+  const std::optional<std::array<dvec2, 3>> outline = clockwiseOutline(scene, triangle);
+  return outline && fillRuleHolds(*outline, center);
+}
+
+// A triangle's corners on the screen, each with its view distance.
+struct CornerDistances {
+  std::array<dvec2, 3> pixel;
+  std::array<double, 3> distance;
+};
+CornerDistances cornerDistances(const PreparedScene& scene, std::uint32_t triangle) {
+  const CameraTransform& camera = scene.camera();
+  CornerDistances corners;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const ClipVertex v = camera.clipFromWorld(scene.positions()[scene.triangles()[triangle][k]]);
+    corners.pixel[k] = camera.pixelFromClip(v);
+    corners.distance[k] = v.d;
+  }
+  return corners;
 }
 
 // The view distance of a triangle at a center, from its corners' distances weighted by
 // the center's barycentric coordinates on the screen (depth is affine there under an
 // orthographic camera, which a pixel-exact scene has); a triangle of one distance has
 // exactly it.
-double distanceOnScreen(const PreparedScene& scene, std::uint32_t triangle, const dvec2& center) {
-  const CameraTransform& camera = scene.camera();
-  dvec2 pixel[3];
-  double distance[3];
-  for (int k = 0; k < 3; ++k) {
-    const ClipVertex v = camera.clipFromWorld(scene.positions()[scene.triangles()[triangle][std::size_t(k)]]);
-    pixel[k] = camera.pixelFromClip(v);
-    distance[k] = v.d;
-  }
+double distanceAt(const CornerDistances& corners, const dvec2& center) {
+  const auto& [pixel, distance] = corners;
   if (distance[0] == distance[1] && distance[1] == distance[2]) return distance[0];
-  const auto edge = [](const dvec2& a, const dvec2& b, const dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
-  const double area = edge(pixel[0], pixel[1], pixel[2]);
-  return (edge(pixel[1], pixel[2], center) * distance[0] + edge(pixel[2], pixel[0], center) * distance[1] +
-          edge(pixel[0], pixel[1], center) * distance[2]) /
+  const double area = edgeFunction(pixel[0], pixel[1], pixel[2]);
+  return (edgeFunction(pixel[1], pixel[2], center) * distance[0] + edgeFunction(pixel[2], pixel[0], center) * distance[1] +
+          edgeFunction(pixel[0], pixel[1], center) * distance[2]) /
          area;
 }
 
@@ -114,19 +139,21 @@ std::vector<std::uint32_t> conventionsAnswer(const PreparedScene& scene) {
   // In submission order: a triangle keeps a center it holds by the fill rule where it is
   // strictly nearer than what the center holds, so the first drawn keeps a tie.
   for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) {
-    const std::vector<dvec2> outline = projectedOutline(scene, scene.camera(), t);
-    if (outline.size() != 3) continue;  // behind the near plane, or cut by it: no pixel-exact scene has one
+    // Behind the near plane, cut by it (no pixel-exact scene has one) or edge-on: no center.
+    const std::optional<std::array<dvec2, 3>> outline = clockwiseOutline(scene, t);
+    if (!outline) continue;
+    const CornerDistances corners = cornerDistances(scene, t);
     double left = width, right = 0, top = height, bottom = 0;
-    for (const dvec2& corner : outline) {
+    for (const dvec2& corner : *outline) {
       left = std::min(left, corner.x), right = std::max(right, corner.x);
       top = std::min(top, corner.y), bottom = std::max(bottom, corner.y);
     }
     for (int y = std::max(0, int(std::floor(top))); y < std::min(height, int(std::ceil(bottom)) + 1); ++y)
       for (int x = std::max(0, int(std::floor(left))); x < std::min(width, int(std::ceil(right)) + 1); ++x) {
         const dvec2 center(x + 0.5, y + 0.5);
-        if (!fillRuleHolds(scene, t, center)) continue;
+        if (!fillRuleHolds(*outline, center)) continue;
         const std::size_t p = std::size_t(y) * std::size_t(width) + std::size_t(x);
-        const double distance = distanceOnScreen(scene, t, center);
+        const double distance = distanceAt(corners, center);
         if (distance < near || distance > far || !(distance < nearest[p])) continue;
         nearest[p] = distance;
         ids[p] = t + 1;
@@ -196,7 +223,7 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
       };
       if (mine == conventions[p]) {
         verdict = reference.ambiguous[p] ? Verdict::tie : Verdict::right;
-      } else if (mine != 0 && (mine == exact || (reference.ambiguous[p] && amongTied())) && fillRuleHolds(scene, mine - 1, center)) {
+      } else if (mine != 0 && (mine == exact || (reference.ambiguous[p] && amongTied())) && fillRuleGives(scene, mine - 1, center)) {
         verdict = tieRule ? Verdict::wrong : Verdict::tie;
         cause = Cause::laterTie;
       } else {

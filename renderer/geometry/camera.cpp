@@ -6,6 +6,15 @@
 
 namespace hsr {
 
+CameraProblem cameraProblem(const Camera& camera) {
+  if (!(camera.far > camera.near)) return {"far", "must be greater than near"};
+  const dvec3 forward = camera.target - camera.eye;
+  if (glm::length(forward) == 0) return {"target", "must differ from eye"};
+  if (glm::length(glm::cross(forward, camera.up)) <= 1e-9 * glm::length(forward) * glm::length(camera.up))
+    return {"up", "must not be parallel to the view direction (target - eye)"};
+  return {};
+}
+
 CameraTransform::CameraTransform(const Camera& camera, int width, int height)
     : camera_(camera), width_(width), height_(height) {
   forward_ = glm::normalize(camera.target - camera.eye);

@@ -23,6 +23,16 @@ struct Camera {
   double far = 1000;
 };
 
+// What is wrong with a camera that no view can be made of, as the scene and triangle
+// files report it: the setting at fault and what it must be ("far", "must be greater
+// than near"); an empty key when nothing is.
+struct CameraProblem {
+  const char* key = nullptr;
+  const char* must = nullptr;
+  explicit operator bool() const { return key != nullptr; }
+};
+CameraProblem cameraProblem(const Camera& camera);
+
 // A vertex in clip space, kept with its distance along the view axis:
 // x, y as a projection matrix would give them, w the homogeneous divisor
 // (= d under perspective, 1 under orthographic), d = -z_view. All four are linear

@@ -73,11 +73,7 @@ void readCamera(TableReader& camera, Scene& scene) {
   else
     c.orthoHeight = camera.number("height", std::nullopt, 1e-9, kMaxCoordinate);
   camera.finish(keys);
-  if (!(c.far > c.near)) camera.fail(nullptr, "far", "must be greater than near");
-  const dvec3 forward = c.target - c.eye;
-  if (glm::length(forward) == 0) camera.fail(nullptr, "target", "must differ from eye");
-  if (glm::length(glm::cross(forward, c.up)) <= 1e-9 * glm::length(forward) * glm::length(c.up))
-    camera.fail(nullptr, "up", "must not be parallel to the view direction (target - eye)");
+  if (const CameraProblem problem = cameraProblem(c)) camera.fail(nullptr, problem.key, problem.must);
 }
 
 void readLight(TableReader& light, Scene& scene) {

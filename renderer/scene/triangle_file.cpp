@@ -156,11 +156,7 @@ Scene parseTriangleFile(const std::string& text, const std::filesystem::path& fi
   const bool perspective = camera.projection == Projection::perspective;
   for (const char* key : {"size", "projection", "eye", "target", "near", "far", perspective ? "fov_y" : "height"})
     if (!seen[key]) lines.fail(std::string("triangles: the header has no '") + key + "' line");
-  if (!(camera.far > camera.near)) lines.fail("far must be greater than near");
-  const dvec3 forward = camera.target - camera.eye;
-  if (glm::length(forward) == 0) lines.fail("target must differ from eye");
-  if (glm::length(glm::cross(forward, camera.up)) <= 1e-9 * glm::length(forward) * glm::length(camera.up))
-    lines.fail("up must not be parallel to the view direction (target - eye)");
+  if (const CameraProblem problem = cameraProblem(camera)) lines.fail(std::string(problem.key) + " " + problem.must);
 
   const double count = lines.numbers(words, 1, 1, "triangles", 0, double(kMaxTriangles))[0];
   if (count != std::floor(count)) lines.fail("triangles: expected a whole number");
