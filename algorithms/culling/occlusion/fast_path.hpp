@@ -2,8 +2,9 @@
 // rule, beside the textbook loops (depth_map.hpp: conservativeRow, centerRow) that write
 // them one at a time.
 //
-// Each computes what its textbook loop computes, with the same operations in the same
-// order on each texel, so the map comes out bit for bit the same (tests/culling/
+// Each computes what its textbook loop computes: the keys with the same operations in
+// the same order on each texel, and the conservative rule's rounding by another route
+// to the same float, so the map comes out bit for bit the same (tests/culling/
 // occlusion_test.cpp checks random rows):
 //   conservative  each face plane's key at the texel's worst corner, atZero + slope x
 //                 (RowKey), in double, four texels to a vector; their maximum; rounded
