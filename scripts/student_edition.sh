@@ -26,7 +26,10 @@ if [ -e "$out" ]; then
   echo "student_edition.sh: error: $out exists; expected a new folder" >&2
   exit 2
 fi
-scratch=$(mktemp -d)
+# Made beside OUT and renamed to it when whole: an error leaves no OUT behind.
+mkdir -p "$(dirname "$out")"
+scratch=$(mktemp -d "$(dirname "$out")/.student-edition.XXXXXX")
+chmod 755 "$scratch"
 trap 'rm -rf "$scratch"' EXIT
 git -C "$checkout" archive HEAD | tar -x -C "$scratch"
 # Not for students: the answer key, and the bug catalogue (its mutations quote the
@@ -67,14 +70,17 @@ for path in sorted((root / 'algorithms').rglob('*.[ch]pp')):
     if state != 'code':
         sys.exit(f'{path}: a BEGIN SOLUTION region without its SKELETON and END SOLUTION')
     path.write_text('\n'.join(out))
+def fail(message):
+    print(f'student_edition.sh: error: {message}', file=sys.stderr)
+    sys.exit(2)
 if not folders:
-    expected = ', '.join(sorted(numbers, key=int))
-    sys.exit(f'student_edition.sh: error: exercise {exercise} has no regions marked BEGIN SOLUTION; expected one of {expected}')
+    fail(f'exercise {exercise} has no regions marked BEGIN SOLUTION; expected one of {", ".join(sorted(numbers, key=int))}')
+if len(folders) > 1:
+    fail(f'exercise {exercise} has regions in {" and ".join(sorted(folders))}; expected one algorithm folder')
 (root / '.student-edition-folder').write_text(' '.join(sorted(folders)))
 PYTHON
 folder=$(cat "$scratch/.student-edition-folder")
 rm "$scratch/.student-edition-folder"
-mkdir -p "$(dirname "$out")"
 mv "$scratch" "$out"
 trap - EXIT
 echo "the student edition of exercise $exercise is in $out ($folder with skeletons): build it with bash scripts/build.sh there, then"

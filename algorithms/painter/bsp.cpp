@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "renderer/util/error.hpp"
 
@@ -266,23 +267,16 @@ PaintOrder BspTree::backToFront(const PreparedScene& scene, const ScreenGeometry
     }
     ++visited;
     // BEGIN SOLUTION
-    // The eye's side is the near side. On the plane itself the node's fragments are
-    // seen edge-on, and either order of the subtrees is right.
-    const bool eyePositive = node.plane == kNoPlane || eyeSide(scene, geometry.camera, node.plane, predicates) >= 0;
-    const std::int32_t nearSide = eyePositive ? node.positive : node.negative;
-    const std::int32_t farSide = eyePositive ? node.negative : node.positive;
-    if (nearSide >= 0) stack.push_back({nearSide, false});
+    const Sides sides = sidesSeenFrom(scene, geometry.camera, node, predicates);
+    if (sides.near >= 0) stack.push_back({sides.near, false});
     stack.push_back({visit.node, true});
-    if (farSide >= 0) stack.push_back({farSide, false});
+    if (sides.far >= 0) stack.push_back({sides.far, false});
     // SKELETON
-    // // Exercise 4: paint the node's far side, then the node, then its near side. Which
-    // // side of the node's plane the eye is on: eyeSide(scene, geometry.camera,
-    // // node.plane, predicates), >= 0 for the positive side (node.positive is that
-    // // subtree, node.negative the other, -1 for none; a leaf has node.plane ==
-    // // kNoPlane). The stack pops last in first out, so push the three in reverse: the
-    // // near subtree, the node itself ({visit.node, true}: its fragments are painted
-    // // when it comes off again), then the far subtree ({subtree, false}). What if the
-    // // eye lies on the plane?
+    // // Exercise 4: paint the node's far side, then the node, then its near side
+    // // (sidesSeenFrom, below, says which is which; -1 for an empty side). The stack
+    // // pops last in first out, so push the three in reverse: the near subtree
+    // // ({subtree, false}), the node itself ({visit.node, true}: its fragments are
+    // // painted when it comes off the stack again), then the far subtree.
     // (void)scene, (void)geometry;
     // END SOLUTION
   }
@@ -290,6 +284,26 @@ PaintOrder BspTree::backToFront(const PreparedScene& scene, const ScreenGeometry
   stats.add("predicate evaluations", predicates.evaluations);
   stats.add("predicate exact fall-backs", predicates.exactFallbacks);
   return order;
+}
+
+BspTree::Sides BspTree::sidesSeenFrom(const PreparedScene& scene, const CameraTransform& camera, const Node& node,
+                                     ExactPredicates& predicates) {
+  // BEGIN SOLUTION
+  // The eye's side is the near side. On the plane itself the node's fragments are seen
+  // edge-on, and either order of the subtrees is right; so is it for a node of zero-area
+  // triangles only, which has no plane.
+  const bool eyePositive = node.plane == kNoPlane || eyeSide(scene, camera, node.plane, predicates) >= 0;
+  return eyePositive ? Sides{node.negative, node.positive} : Sides{node.positive, node.negative};
+  // SKELETON
+  // // Exercise 4: which of the node's subtrees lies on the eye's side of its plane (the
+  // // near side) and which on the other (the far side)? eyeSide(scene, camera,
+  // // node.plane, predicates) is >= 0 where the eye is on the plane's positive side,
+  // // where the subtree node.positive lies (node.negative on the other; -1 for an empty
+  // // one). A node of zero-area triangles only has no plane (node.plane == kNoPlane):
+  // // either order is right there. What if the eye lies on the plane?
+  // (void)scene, (void)camera, (void)node, (void)predicates;
+  // return {-1, -1};
+  // END SOLUTION
 }
 
 std::string BspTree::diagram(const PreparedScene& scene, const CameraTransform& camera, int levels) const {
@@ -335,10 +349,9 @@ std::string BspTree::diagram(const PreparedScene& scene, const CameraTransform& 
       graph += "\"";
     }
     graph += "];\n";
-    const bool eyePositive = node.plane == kNoPlane || eyeSide(scene, camera, node.plane, predicates) >= 0;
-    for (const std::int32_t child : {eyePositive ? node.negative : node.positive, eyePositive ? node.positive : node.negative}) {
+    const Sides sides = sidesSeenFrom(scene, camera, node, predicates);
+    for (const auto& [child, far] : {std::pair{sides.far, true}, std::pair{sides.near, false}}) {
       if (child < 0) continue;
-      const bool far = child == (eyePositive ? node.negative : node.positive);
       graph += "  " + name + " -> n";
       graph += std::to_string(child) + " [label=\"" + (far ? "far" : "near") + "\"];\n";
       pending.push_back({child, level + 1});

@@ -48,6 +48,13 @@ class BspTree {
     std::uint32_t firstFragment = 0, fragmentCount = 0;
     std::int32_t positive = -1, negative = -1;  // subtrees (-1: empty) on each side of the plane
   };
+  // A node's two subtrees as the camera sees its plane (-1: empty): the walk paints the
+  // far one, the node, then the near one.
+  struct Sides {
+    std::int32_t far, near;
+  };
+  static Sides sidesSeenFrom(const PreparedScene& scene, const CameraTransform& camera, const Node& node, ExactPredicates& predicates);
+
   std::vector<Node> nodes_;  // nodes_[0] is the root
   std::vector<Fragment> fragments_;
   std::vector<Cut> cuts_;

@@ -154,12 +154,17 @@ class RowResolver {
     // SKELETON
     // // Exercise 15: two or more polygons (present_) over the span [a, b) of row y.
     // // Their depths at its two end centers (order_.key(triangles_[i], x, y), smaller is
-    // // nearer; DepthOrder::roundingBound is how far a computed key may be off): where one
-    // // polygon is nearest at both ends by more than the rounding, it fills the span
-    // // (decided(Outcome::decidedAtEnds, polygon)); a span of one pixel is decided by the
-    // // nearest there (Outcome::onePixel); otherwise count Outcome::split in counts.spans,
-    // // split the span (whereDepthsCross, or the middle) and resolve both parts. Why do
-    // // the two ends suffice?
+    // // nearer; DepthOrder::roundingBound is how far a computed key may be off; gather
+    // // them in ends_, and count them in counts.depthSamples): where one polygon is
+    // // nearest at both ends by more than twice the rounding of both values, it fills the
+    // // span (decided(Outcome::decidedAtEnds, polygon)); a span of one pixel is decided
+    // // by the nearest there (Outcome::onePixel), and with knobs_.split == Split::none any
+    // // span by the nearest at its left end (Outcome::leftEndOnly). Otherwise count
+    // // Outcome::split in counts.spans, split the span where the two nearest cross
+    // // (whereDepthsCross, with knobs_.split == Split::crossing) or in the middle, note the
+    // // split in marks when it is not null (the steps' picture), and resolve both parts.
+    // // (hsr why's events: witnessSpan, as decided() calls it; optional.) Why do the two
+    // // ends suffice?
     // (void)y, (void)a, (void)b, (void)counts, (void)marks;
     // return decided(Outcome::empty, std::nullopt);
     // END SOLUTION

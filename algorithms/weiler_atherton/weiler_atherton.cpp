@@ -194,12 +194,15 @@ Split splitByOutline(Piece piece, const ScreenTriangle& clip) {
   return split;
   // SKELETON
   // // Exercise 16: the piece meets the clip polygon's outline. Cut it by the outline's
-  // // edges in turn (insideEdge(clip, k); sideOf gives each corner's side, sides[k]
-  // // holds them for the piece's own corners): the part outside edge k is one outside
-  // // piece (clipped(outline, sides, edge, -1)), the part inside goes on to the next
-  // // edge (clipped(..., +1)); what is inside all three is the inside piece. Each piece
-  // // keeps its polygon and nearerThan. How many outside pieces can there be, and when
-  // // are there fewer?
+  // // edges in turn, k = 0, 1, 2 (insideEdge(clip, k)): the part outside edge k is one
+  // // outside piece, clipped(outline, side, edge, -1), and the part inside,
+  // // clipped(outline, side, edge, +1), goes on to the next edge; what is inside all
+  // // three is the inside piece. `side` holds sideOf(edge, corner.point) for each corner
+  // // of the outline being cut: sides[0] above is that for the piece's own corners and
+  // // edge 0; after a cut, find them again for what remains. An outline wholly inside
+  // // an edge needs no cut there; one wholly outside it is all outside. Each piece keeps
+  // // its polygon and nearerThan (Piece(polygon, outline, nearerThan)). How many outside
+  // // pieces can there be, and when are there fewer?
   // (void)clipped, (void)clip, (void)sides;
   // return {};
   // END SOLUTION

@@ -7,6 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <cstring>
+#include <utility>
+#include <vector>
 #include <random>
 
 #include "algorithms/culling/occlusion/fast_path.hpp"
@@ -206,6 +208,33 @@ TEST(Occlusion, ConservativeRowsEightAtATimeAreTheTextbookLoopsBitForBit) {
   // run that crosses zero.
   EXPECT_GE(runsWrittenFast, 1600);
   EXPECT_LT(runsWrittenFast, 2000);
+}
+
+// The conservative fast path's rounding by bits (fast_path.hpp) at its edges, where
+// random keys almost never fall: keys that are floats exactly (a power of two, and
+// not), a hair above a float, a hair below a power of two (rounding up carries into the
+// exponent), of either sign, from 2^-90 to 2^90; each rounded as roundedUp rounds it.
+// And keys beyond the range it takes (magnitudes under 1e-30 or over 1e30, within
+// float's), which it must leave to the textbook loop. Each run is 11 texels: one vector
+// and a tail of three under a mask.
+TEST(Occlusion, TheConservativeRoundingByBitsAtItsEdges) {
+  if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: rows are written one texel at a time here";
+  std::vector<std::pair<double, bool>> magnitudes;  // and whether the fast path takes it
+  for (const double power : {0x1p-90, 0x1p-20, 1.0, 0x1p20, 0x1p90})
+    for (const double factor : {1.0, 1 - 0x1p-40, 1 + 0x1p-40, 1.5, 1.5 + 0x1p-30, 1.5 - 0x1p-30})
+      magnitudes.emplace_back(power * factor, true);
+  for (const double beyond : {1e-31, 0.5e-30, 1e31, 1e36}) magnitudes.emplace_back(beyond, false);
+  for (const auto& [magnitude, taken] : magnitudes)
+    for (const double sign : {1.0, -1.0}) {
+      const RowKey key{sign * magnitude, 0};
+      std::vector<float> textbook(11, std::numeric_limits<float>::infinity()), fast = textbook;
+      conservativeRow(textbook.data(), 0, 10, &key, 1);
+      const bool writtenFast = conservativeRowEightAtATime(fast.data(), 0, 10, &key, 1);
+      EXPECT_EQ(writtenFast, taken) << sign * magnitude;
+      if (!writtenFast) conservativeRow(fast.data(), 0, 10, &key, 1);
+      EXPECT_EQ(std::memcmp(fast.data(), textbook.data(), fast.size() * sizeof(float)), 0) << sign * magnitude;
+      EXPECT_GT(double(textbook[0]), sign * magnitude) << "rounded up";
+    }
 }
 
 TEST(Occlusion, CenterRowsEightAtATimeAreTheTextbookLoopsBitForBit) {

@@ -12,7 +12,8 @@ rm -rf "$work"
 mkdir -p "$work"
 status=0
 bash "$checkout/scripts/student_edition.sh" 2 "$work/none" 2> "$work/none.txt" || status=$?
-[ "$status" -ne 0 ] && [ ! -e "$work/none" ] || { echo "exercise 2 has no edition: expected an error and no folder" >&2; exit 1; }
+[ "$status" -eq 2 ] && [ ! -e "$work/none" ] || { echo "exercise 2 has no edition: expected exit status 2 and no folder, got $status" >&2; exit 1; }
+if ls -A "$work" | grep -q '^\.student-edition'; then echo "a scratch folder was left beside OUT" >&2; exit 1; fi
 grep -qx "student_edition.sh: error: exercise 2 has no regions marked BEGIN SOLUTION; expected one of ${editions// /, }" "$work/none.txt" ||
   { cat "$work/none.txt"; echo "expected the exercises with editions to be exactly $editions" >&2; exit 1; }
 for exercise in $editions; do
@@ -21,6 +22,7 @@ for exercise in $editions; do
   folder=$(sed -n 's/^  \.\/build\/hsr grade \(.*\) --exercise .*/\1/p' "$work/made-$exercise.txt")
   if grep -rq 'BEGIN SOLUTION' "$edition/algorithms"; then echo "exercise $exercise: a solution region is left" >&2; exit 1; fi
   grep -rq "Exercise $exercise:" "$edition/$folder" || { echo "exercise $exercise: no skeleton in $folder" >&2; exit 1; }
+  [ "$(stat -c %a "$edition")" = 755 ] || { echo "exercise $exercise: the edition's folder is not readable by all" >&2; exit 1; }
   for secret in docs/instructors course/bugs; do
     if [ -e "$edition/$secret" ]; then echo "exercise $exercise: the edition holds $secret" >&2; exit 1; fi
   done

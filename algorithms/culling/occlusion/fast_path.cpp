@@ -32,13 +32,16 @@ HSR_AVX2 int signOfEveryKey(const RowKey* keys, int count, int first, int last) 
 }
 
 // The largest face key at eight texels from x, rounded as roundedUp rounds it, for a run
-// whose keys all have the sign `sign` (signOfEveryKey). The smallest float at or above a
+// up to texel `last` whose keys all have the sign `sign` (signOfEveryKey); lanes past
+// the run repeat its last texel, so that no lane holds a key the run's check did not
+// cover (extrapolated, it could overflow a float, and a trapping build would stop on
+// it), though those lanes are never stored. The smallest float at or above a
 // double in float's normal range is its bits with the 29 that float drops cleared:
 // toward zero, which is up for a negative key; a positive key's bits get 2^29 - 1 added
 // first, so that a nonzero dropped part carries into the bits float keeps. That double is
 // a float, narrowed exactly; one float further (nextUp) is then its bits plus the sign.
-HSR_AVX2 Float8 eightKeysRoundedUp(int x, int sign, const RowKey* keys, int count) {
-  const Double4 low = double(x) + Double4{0, 1, 2, 3}, high = low + 4.0;
+HSR_AVX2 Float8 eightKeysRoundedUp(int x, int last, int sign, const RowKey* keys, int count) {
+  const Double4 low = smaller(double(x) + Double4{0, 1, 2, 3}, lanesOf(last)), high = smaller(double(x) + Double4{4, 5, 6, 7}, lanesOf(last));
   Double4 lowFarthest = lanesOf(-std::numeric_limits<double>::infinity()), highFarthest = lowFarthest;
   for (int k = 0; k < count; ++k) {
     const Double4 atLow = keys[k].atZero + keys[k].slope * low, atHigh = keys[k].atZero + keys[k].slope * high;
@@ -72,7 +75,7 @@ HSR_AVX2 bool conservativeRowEightAtATime(float* row, int first, int last, const
   if (sign == 0) return false;
   int x = first;
   for (; x + 7 <= last; x += 8) {
-    const Float8 up = eightKeysRoundedUp(x, sign, keys, count);
+    const Float8 up = eightKeysRoundedUp(x, last, sign, keys, count);
     Float8 held;
     __builtin_memcpy(&held, row + x, sizeof held);
     const Float8 kept = up < held ? up : held;  // std::min(held, up)
@@ -80,7 +83,7 @@ HSR_AVX2 bool conservativeRowEightAtATime(float* row, int first, int last, const
   }
   if (x <= last) {  // the run's last few texels, loaded and stored under a mask
     const Int8 inRun = x + Int8{0, 1, 2, 3, 4, 5, 6, 7} <= last;
-    const Float8 up = eightKeysRoundedUp(x, sign, keys, count), held = maskedLoad(row + x, inRun);
+    const Float8 up = eightKeysRoundedUp(x, last, sign, keys, count), held = maskedLoad(row + x, inRun);
     maskedStore(row + x, inRun, up < held ? up : held);
   }
   return true;
