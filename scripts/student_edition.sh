@@ -35,7 +35,8 @@ git -C "$checkout" archive HEAD | tar -x -C "$scratch"
 # Not for students: the answer key, and the bug catalogue (its mutations quote the
 # solution's lines). The grader needs neither.
 rm -r "$scratch/docs/instructors" "$scratch/course/bugs"
-python3 - "$scratch" "$exercise" <<'PYTHON'
+# The edition's skeletons written in; prints the algorithm folder that holds them.
+folder=$(python3 - "$scratch" "$exercise" <<'PYTHON'
 import pathlib, re, sys
 root, exercise = pathlib.Path(sys.argv[1]), sys.argv[2]
 named = re.compile(r'\s*// // Exercise (\d+):')
@@ -77,10 +78,9 @@ if not folders:
     fail(f'exercise {exercise} has no regions marked BEGIN SOLUTION; expected one of {", ".join(sorted(numbers, key=int))}')
 if len(folders) > 1:
     fail(f'exercise {exercise} has regions in {" and ".join(sorted(folders))}; expected one algorithm folder')
-(root / '.student-edition-folder').write_text(' '.join(sorted(folders)))
+print(*folders)
 PYTHON
-folder=$(cat "$scratch/.student-edition-folder")
-rm "$scratch/.student-edition-folder"
+)
 mv "$scratch" "$out"
 trap - EXIT
 echo "the student edition of exercise $exercise is in $out ($folder with skeletons): build it with bash scripts/build.sh there, then"
