@@ -30,6 +30,7 @@ pipeline::Configuration configurationOf(const ConfiguredScene& options);
 
 struct RenderOptions : ConfiguredScene {
   std::string output, depth, ids;
+  std::string segments;   // a line algorithm's visible segments as text (what hsr grade reads from a line exercise)
   std::string triangles;  // the scene as a triangle file, at the render's size (hsr grade hands programs these)
   std::string lineStyle;  // line algorithms: visible | hidden | qi (default visible)
   bool stats = false;

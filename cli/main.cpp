@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
                             "line algorithms: visible (default), hidden (hidden parts dashed grey), qi (shade by quantitative invisibility)");
   renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
+  renderCommand->add_option("--segments", render.segments,
+                            "line algorithms: the visible segments (.txt), a line each: x0 y0 x1 y1 in pixels");
   renderCommand->add_option("--triangles", render.triangles, "the scene as a triangle file (.tri) at the render's size: what hsr grade hands a program");
   renderCommand->add_flag("--stats", render.stats, "print counters and phase times");
   renderCommand->add_option("--steps", render.steps,

@@ -219,6 +219,9 @@ int render(const RenderOptions& options) {
     throw InputError(std::string(options.depth.empty() ? "--ids" : "--depth") + ": " + algorithm.name +
                      " draws lines, which have no depth or id image");
 
+  if (!lines && !options.segments.empty())
+    throw InputError("--segments " + options.segments + ": " + algorithm.name + " draws pixels; segments come from a line algorithm");
+
   if (options.every > 0 && options.steps.empty()) throw InputError("--every " + std::to_string(options.every) + ": applies only with --steps DIR");
   std::optional<StepsFolder> stepsFolder;
   if (!options.steps.empty()) stepsFolder.emplace(options.steps);
@@ -242,6 +245,7 @@ int render(const RenderOptions& options) {
     else outputs.addColorPng(output, rendered.frame);
     if (!options.depth.empty()) outputs.addDepthExr(options.depth, rendered.frame);
     if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
+    if (!options.segments.empty()) outputs.addText(options.segments, visibleSegmentsText(rendered.drawing));
     if (!options.triangles.empty()) outputs.addText(options.triangles, triangleFileText(*scene.prepared));
   } catch (const std::bad_alloc&) {
     throw InputError(pipeline::outOfMemory(scene.prepared->width(), scene.prepared->height(), algorithm.name));

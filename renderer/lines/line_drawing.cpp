@@ -217,4 +217,17 @@ Image lineStepPicture(const LineSet& lines, std::span<const std::uint32_t> justD
   return picture;
 }
 
+std::string visibleSegmentsText(const LineSet& lines) {
+  std::string text = "# visible segments, x0 y0 x1 y1 in pixels (y down)\n";
+  for (const LineSegment& segment : lines.segments) {
+    if (!segment.visible()) continue;
+    const FeatureEdge& edge = lines.edges[segment.edge];
+    const dvec2 from = edge.pixelAt(segment.begin), to = edge.pixelAt(segment.end);
+    char line[128];
+    std::snprintf(line, sizeof line, "%.6f %.6f %.6f %.6f\n", from.x, from.y, to.x, to.y);
+    text += line;
+  }
+  return text;
+}
+
 }  // namespace hsr

@@ -50,5 +50,9 @@ std::string lineSetSvg(const LineSet& lines, LineStyle style, const EdgeNamer& n
 // The drawing rasterized (renderer/raster/raster's line rule) over a white background; the QI
 // style with its legend in the top left corner.
 Frame lineSetFrame(const LineSet& lines, LineStyle style);
+// The visible pieces as text, a line each, "x0 y0 x1 y1" in the view's pixel coordinates
+// (y down) to six decimals, after a comment line: what hsr render --segments writes and
+// hsr grade reads from a line exercise's submission (grading/line_judge.hpp).
+std::string visibleSegmentsText(const LineSet& lines);
 
 }  // namespace hsr

@@ -1,5 +1,6 @@
 #include "renderer/scene/triangle_file.hpp"
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -162,7 +163,11 @@ Scene parseTriangleFile(const std::string& text, const std::filesystem::path& fi
   if (count != std::floor(count)) lines.fail("triangles: expected a whole number");
   // Each run of lines with one object number is an object (the culling stages cull by
   // object); the triangles keep the file's order, so their ids stay the line numbers.
+  // Within an object, corners at exactly the same coordinates are one vertex, so faces
+  // meet at shared edges as in the scene the file came from (the line algorithms ask
+  // which faces meet at an edge).
   std::vector<Mesh> meshes;
+  std::map<std::array<double, 3>, std::uint32_t> vertexAt;  // the current object's
   double object = 0;
   for (std::size_t t = 0; t < std::size_t(count); ++t) {
     if (!lines.next(words)) lines.fail("triangles: " + std::to_string(t) + " triangle lines; expected " + std::to_string(std::size_t(count)));
@@ -172,7 +177,10 @@ Scene parseTriangleFile(const std::string& text, const std::filesystem::path& fi
     if (words.size() == 10) {
       const double number = lines.number(words[9], what + "'s object", 1, double(kMaxTriangles));
       if (number != std::floor(number)) lines.fail(what + "'s object: expected a whole number");
-      if (number != object) meshes.emplace_back();
+      if (number != object) {
+        meshes.emplace_back();
+        vertexAt.clear();
+      }
       object = number;
       words.pop_back();
     } else if (meshes.empty()) {
@@ -180,9 +188,14 @@ Scene parseTriangleFile(const std::string& text, const std::filesystem::path& fi
     }
     const std::vector<double> corners = lines.numbers(words, 0, 9, what, -kMaxCoordinate, kMaxCoordinate);
     Mesh& mesh = meshes.back();
-    const auto first = std::uint32_t(mesh.positions.size());
-    for (int k = 0; k < 3; ++k) mesh.positions.emplace_back(corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]);
-    mesh.triangles.push_back({first, first + 1, first + 2});
+    Triangle triangle;
+    for (int k = 0; k < 3; ++k) {
+      const std::array<double, 3> corner = {corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]};
+      const auto [at, added] = vertexAt.emplace(corner, std::uint32_t(mesh.positions.size()));
+      if (added) mesh.positions.emplace_back(corner[0], corner[1], corner[2]);
+      triangle[std::size_t(k)] = at->second;
+    }
+    mesh.triangles.push_back(triangle);
   }
   if (lines.next(words)) lines.fail("a line after the last triangle; expected the end of the file");
   for (Mesh& mesh : meshes) {

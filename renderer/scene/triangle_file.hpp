@@ -18,7 +18,9 @@
 //   triangles T
 //   AX AY AZ BX BY BZ CX CY CZ [O]   T lines; the triangle on line k has id k (from 1);
 //                                    O, the object it belongs to (a run of lines with one
-//                                    O is an object, which culling stages cull whole)
+//                                    O is an object, which culling stages cull whole;
+//                                    its corners at exactly equal coordinates are one
+//                                    vertex, so its faces meet at shared edges)
 //
 // A pixel (i, j) is sampled at its center; a point's pixel coordinates are
 // ((x / w + 1) W / 2, (1 - y / w) H / 2), row 0 at the top (renderer/util/conventions.hpp).

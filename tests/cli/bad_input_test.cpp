@@ -144,6 +144,8 @@ INSTANTIATE_TEST_SUITE_P(
              "--cull: appel does not draw from a culled set of triangles"},
         Case{"depth-image-of-a-drawing", kCube + " --algo roberts --depth OUT.exr -o OUT",
              "--depth: roberts draws lines, which have no depth or id image"},
+        Case{"segments-of-a-surface-algorithm", kCube + " --algo zbuffer -o OUT --segments lines.txt",
+             "--segments lines.txt: zbuffer draws pixels; segments come from a line algorithm"},
         Case{"roberts-non-convex", std::string(HSR_SOURCE_DIR) + "/scenes/bunny.toml --algo roberts -o OUT",
              "roberts cannot render it: object 'bunny' is not convex: a vertex lies"},
         Case{"roberts-body-too-large",
