@@ -337,8 +337,8 @@ Scene occlusion(std::uint64_t seed) {
 
 const std::vector<SceneGenerator>& sceneGenerators() {
   static const std::vector<SceneGenerator> generators = {
-      {"visibility", "boxes and spheres under perspective, at an odd size", visibility},
-      {"orthographic", "boxes and spheres under an orthographic camera", orthographic},
+      {"visibility", "boxes and spheres under perspective, at an odd size", visibility, false, true},
+      {"orthographic", "boxes and spheres under an orthographic camera", orthographic, false, true},
       {"fill-rule", "fans and a grid with pixel centers exactly on shared edges", fillRule, true},
       {"near-plane", "a floor, a wall and triangles reaching behind the eye", nearPlane},
       {"far-from-origin", "boxes and spheres 10^4 to 10^7 from the origin", farFromOrigin},

@@ -1,10 +1,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "grading/grading.hpp"
 #include "grading/judge.hpp"
+#include "grading/line_judge.hpp"
 #include "grading/run.hpp"
 #include "renderer/image/image_library.hpp"
 #include "renderer/reference/reference.hpp"
@@ -14,7 +16,7 @@
 namespace hsr::grading {
 namespace {
 
-// The shipped scenes every exercise's visible tests hand over, by the hard case each tests.
+// The shipped scenes every visible-surface exercise's visible tests hand over, by the hard case each tests.
 struct ShippedTest {
   const char* skill;
   const char* scene;  // under scenes/
@@ -42,6 +44,18 @@ constexpr ShippedTest kShipped[] = {
     {"occlusion", "hard/occ_near.toml"},
     {"occlusion", "hard/occ_edge_opening.toml"},
     {"occlusion", "hard/occ_gap.toml"},
+};
+// A line exercise's shipped scenes: closed solids in front of the near plane, Appel's input.
+constexpr ShippedTest kShippedDrawings[] = {
+    {"visibility", "cube.toml"},
+    {"visibility", "blocks.toml"},
+    {"visibility", "bunny.toml"},
+    {"visibility", "hard/torus.toml"},
+    {"visibility", "hard/touching_boxes.toml"},
+    {"orthographic", "hard/aligned_edges.toml"},
+    {"far-from-origin", "hard/uv_sphere.toml"},
+    {"interpenetrating", "hard/box_junctions.toml"},
+    {"interpenetrating", "hard/merged_city.toml"},
 };
 // The visible sample of each generator's scenes, and how many hidden ones each makes.
 constexpr std::uint64_t kSampleSeed = 2026;
@@ -134,6 +148,27 @@ std::string feedbackOf(const Judgement& judgement, const std::string& algorithm,
   return text;
 }
 
+// The feedback for a judged drawing: how much line is wrong, each cause with its longest
+// stretch and what to check, and how to see the shipped algorithm walk that edge.
+std::string drawingFeedbackOf(const DrawingJudgement& judgement, const std::string& algorithm, const std::string& sceneFile,
+                              const std::string& heatMap) {
+  char line[256];
+  std::snprintf(line, sizeof line, "%.2f of %.2f px of visible line wrong (%.3f px in stretches under %.2f px, excused as rounding)\n",
+                judgement.wrong, judgement.visibleLength, judgement.excused, kExcusedLength);
+  std::string text = line;
+  if (judgement.passed()) return text;
+  for (const LineCauseLength& cause : judgement.causes) {
+    std::snprintf(line, sizeof line, "- %s: %.2f px, the longest stretch ", lineCauseName(cause.cause), cause.pixels);
+    text += line + cause.first + "\n";
+    text += "  " + std::string(lineCauseAdvice(cause.cause)) + "\n";
+  }
+  const dvec2 at = judgement.causes.front().at;
+  text += "How the shipped algorithm walks the edge there: hsr why " + sceneFile + " --edge " + std::to_string(int(at.x)) + "," +
+          std::to_string(int(at.y)) + " " + algorithm + "\n";
+  text += "Where: " + heatMap + " (the visible lines grey, hidden ones light grey, wrong stretches red)\n";
+  return text;
+}
+
 // The algorithm a C++ folder replaces: the NAME of its CMakeLists.txt's hsr_algorithm(NAME
 // ...), which must be the exercise's; checked before anything is written.
 std::string algorithmOfFolder(const GradeOptions& options, const Exercise& exercise) {
@@ -179,7 +214,7 @@ std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, con
   writeHsrSubmission(wrapper, folder.string() + " in place of algorithms/" + algorithm + "/",
                      "python3 " + (options.source / "course/folder_build.py").string() + " " + folder.string() + " --algorithm " + algorithm +
                          " --build " + options.build.string() + " --out .",
-                     shippedOptions(exercise) + " " + exercise.folderOptions, claims);
+                     shippedOptions(exercise) + " " + exercise.folderOptions, exercise, claims);
   return wrapper;
 }
 
@@ -190,6 +225,7 @@ const std::vector<Exercise>& gradedExercises() {
       {1, "the z-buffer", "zbuffer", true, true, {}, "", "--knob path=scalar"},
       {3, "ray casting", "ray_casting", false, false, {}, "", "--knob path=scalar"},
       {4, "the painter's algorithm", "painter", true, false},
+      {5, "hidden lines: Appel's quantitative invisibility", "appel", false, false, {"visibility", "orthographic", "far-from-origin", "interpenetrating"}, "", "", true},
       {7, "culling: backface and frustum", "zbuffer", true, true, {"visibility", "orthographic", "far-from-origin", "far-plane", "occlusion"}, "backface,frustum"},
       {8, "occlusion culling", "zbuffer", true, true, {}, "occlusion"},
       {14, "Warnock's area subdivision", "warnock", true, false},
@@ -209,7 +245,7 @@ const Exercise& findExercise(int number) {
   for (const Exercise& exercise : gradedExercises())
     if (exercise.number == number) return exercise;
   throw InputError("--exercise " + std::to_string(number) + ": not graded automatically; expected one of " + gradedExerciseNumbers() +
-                   " (the visible-surface exercises)");
+                   " (the visible-surface exercises, and 5: hidden lines)");
 }
 
 std::vector<std::string> skills() {
@@ -230,7 +266,7 @@ Scene GradingTest::scene() const {
 
 std::vector<GradingTest> testsOf(const Exercise& exercise, std::optional<std::uint64_t> hiddenSeed) {
   std::vector<GradingTest> tests;
-  for (const ShippedTest& shipped : kShipped) {
+  for (const ShippedTest& shipped : exercise.drawsLines ? std::span<const ShippedTest>(kShippedDrawings) : std::span<const ShippedTest>(kShipped)) {
     GradingTest test;
     test.name = "visible/" + std::filesystem::path(shipped.scene).replace_extension().string();
     test.skill = shipped.skill;
@@ -240,6 +276,7 @@ std::vector<GradingTest> testsOf(const Exercise& exercise, std::optional<std::ui
   }
   const std::vector<SceneGenerator>& generators = sceneGenerators();
   for (std::size_t g = 0; g < generators.size(); ++g) {
+    if (exercise.drawsLines && !generators[g].forLines) continue;
     GradingTest sample;
     sample.name = "visible/" + std::string(generators[g].skill) + "-sample";
     sample.skill = generators[g].skill;
@@ -263,10 +300,11 @@ std::vector<GradingTest> testsOf(const Exercise& exercise, std::optional<std::ui
 std::vector<std::string> skillsOf(const Exercise& exercise) { return exercise.skills.empty() ? skills() : exercise.skills; }
 
 void writeHsrSubmission(const std::filesystem::path& folder, const std::string& comment, const std::string& build, const std::string& render,
-                        const std::vector<std::string>& claims) {
+                        const Exercise& exercise, const std::vector<std::string>& claims) {
   std::filesystem::create_directories(folder);
+  const char* answer = exercise.drawsLines ? "--segments $(out) -o $(out).svg" : "--ids $(out) -o $(out).color.png";
   std::ofstream(folder / "Makefile") << "# " << comment << "\nbuild:\n\t" << build << "\n\nrun:\n\t./hsr render $(file) " << render
-                                     << " --threads 1 --ids $(out) -o $(out).color.png\n\n.PHONY: build run\n";
+                                     << " --threads 1 " << answer << "\n\n.PHONY: build run\n";
   std::ofstream implemented(folder / "implemented.txt");
   for (const std::string& claim : claims) implemented << claim << "\n";
 }
@@ -331,33 +369,43 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
       const Scene scene = test.scene();
       PreparedScene prepared(scene);
       prepared.setSize(scene.width, scene.height);
-      const std::filesystem::path sceneFile = work / (file + ".tri"), image = work / (file + ".png");
+      const std::filesystem::path sceneFile = work / (file + ".tri"), answer = work / (file + (exercise.drawsLines ? ".txt" : ".png"));
       std::ofstream(sceneFile, std::ios::binary) << triangleFileText(prepared);
-      std::filesystem::remove(image, error);
-      const RunResult run = runCommand({"make", "-s", "run", "file=" + sceneFile.string(), "out=" + image.string()}, submission,
+      std::filesystem::remove(answer, error);
+      const RunResult run = runCommand({"make", "-s", "run", "file=" + sceneFile.string(), "out=" + answer.string()}, submission,
                                        work / (file + ".log"), options.limits.runSeconds);
       result.seconds = run.seconds;
-      std::vector<std::uint32_t> ids;
+      const std::string heatMap = file + "-where.png";
       if (!run.succeeded()) {
         result.output = "make run " + run.outcome() + " on " + sceneFile.filename().string() + "\n" + run.output;
-      } else if (const std::string problem = readIds(image, scene.width, scene.height, ids); !problem.empty()) {
-        result.output = "make run " + problem + "\n";
+      } else if (exercise.drawsLines) {
+        std::vector<DrawnSegment> segments;
+        if (const std::string problem = readSegments(answer, segments); !problem.empty()) {
+          result.output = "make run " + problem + "\n";
+        } else {
+          const DrawingJudgement judgement = judgeDrawing(prepared, segments, options.threads);
+          result.passed = judgement.passed();
+          result.output = drawingFeedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
+          if (!result.passed) heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});
+        }
       } else {
-        Stats stats;
-        const ReferenceImage reference = traceReference(prepared, options.threads, stats);
-        // A fill-rule scene's every pixel is decided by the conventions.
-        const std::vector<std::uint32_t> conventions =
-            test.pixelExact() && exercise.fillRule ? conventionsAnswer(prepared) : std::vector<std::uint32_t>();
-        const Judgement judgement = judge(prepared, reference, ids, conventions, exercise.tieRule);
-        result.passed = judgement.passed();
-        result.score = result.passed ? result.maxScore : 0;
-        const std::string heatMap = file + "-where.png";
-        result.output = feedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
-        if (!result.passed) {
-          result.heatMap = heatMap;
-          heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});
+        std::vector<std::uint32_t> ids;
+        if (const std::string problem = readIds(answer, scene.width, scene.height, ids); !problem.empty()) {
+          result.output = "make run " + problem + "\n";
+        } else {
+          Stats stats;
+          const ReferenceImage reference = traceReference(prepared, options.threads, stats);
+          // A fill-rule scene's every pixel is decided by the conventions.
+          const std::vector<std::uint32_t> conventions =
+              test.pixelExact() && exercise.fillRule ? conventionsAnswer(prepared) : std::vector<std::uint32_t>();
+          const Judgement judgement = judge(prepared, reference, ids, conventions, exercise.tieRule);
+          result.passed = judgement.passed();
+          result.output = feedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
+          if (!result.passed) heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});
         }
       }
+      result.score = result.passed ? result.maxScore : 0;
+      if (!heatMaps.empty() && heatMaps.back().file == heatMap) result.heatMap = heatMap;
     }
     report.tests.push_back(std::move(result));
   }

@@ -23,7 +23,8 @@
 namespace hsr::grading {
 
 // A coursework exercise hsr grade can grade: each asks for a visible-surface algorithm
-// whose id image the reference decides.
+// whose id image the reference decides, or a hidden-line algorithm whose drawing the
+// line reference decides.
 struct Exercise {
   int number;
   const char* title;
@@ -43,9 +44,12 @@ struct Exercise {
   // student edition asks for (the z-buffer's textbook loop, not its SIMD fast path; the
   // ray caster's one-ray traversal, not its packets or wide BVH).
   const char* folderOptions = "";
+  // Whether its answer is a line drawing (Exercise 5): `make run` then writes the visible
+  // segments as text (grading/line_judge.hpp), not an id image.
+  bool drawsLines = false;
 };
 const std::vector<Exercise>& gradedExercises();
-// Their numbers as a person lists them: "1, 3, 4, 7, 8, 14, 15, 16".
+// Their numbers as a person lists them: "1, 3, 4, 5, 7, 8, 14, 15, 16".
 std::string gradedExerciseNumbers();
 // The exercise numbered so; InputError naming the graded ones otherwise.
 const Exercise& findExercise(int number);
@@ -136,10 +140,11 @@ int selfCheck(const SelfCheckOptions& options);
 
 // A submission that runs an hsr it builds: a Makefile in `folder` whose make build runs
 // `build` (which leaves ./hsr there) and whose make run renders the scene with ./hsr and
-// `render` (hsr render's options), and an implemented.txt of `claims`, a line each. The
-// self-check's bugs and the C++ algorithm folders are graded through one.
+// `render` (hsr render's options) into the exercise's answer (ids, or a line exercise's
+// segments), and an implemented.txt of `claims`, a line each. The self-check's bugs and
+// the C++ algorithm folders are graded through one.
 void writeHsrSubmission(const std::filesystem::path& folder, const std::string& comment, const std::string& build, const std::string& render,
-                        const std::vector<std::string>& claims);
+                        const Exercise& exercise, const std::vector<std::string>& claims);
 
 // The reports courses already read: Gradescope's results.json, JUnit XML, and a page.
 std::string gradescopeJson(const GradeReport& report);

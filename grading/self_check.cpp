@@ -72,7 +72,7 @@ std::filesystem::path bugSubmission(const Bug& bug, const SelfCheckOptions& opti
   writeHsrSubmission(folder, bug.story,
                      "python3 " + (options.source / "course/bugs/mutant.py").string() + " build " + bug.name + " --build " +
                          options.build.string() + " --out .",
-                     render, skillsOf(findExercise(bug.exercise)));
+                     render, findExercise(bug.exercise), skillsOf(findExercise(bug.exercise)));
   return folder;
 }
 

@@ -16,10 +16,11 @@ case "$exercise" in  # the exercise's algorithm folder, in a student edition
   1|7|8) folder=algorithms/zbuffer ;;
   3) folder=algorithms/ray_casting ;;
   4) folder=algorithms/painter ;;
+  5) folder=algorithms/appel ;;
   14) folder=algorithms/warnock ;;
   15) folder=algorithms/watkins ;;
   16) folder=algorithms/weiler_atherton ;;
-  *) echo "make_autograding.sh: error: exercise $exercise is not graded; expected 1, 3, 4, 7, 8, 14, 15 or 16" >&2; exit 2 ;;
+  *) echo "make_autograding.sh: error: exercise $exercise is not graded; expected 1, 3, 4, 5, 7, 8, 14, 15 or 16" >&2; exit 2 ;;
 esac
 submission=${2:-$folder}
 setup='sudo bash scripts/setup.sh && cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DHSR_BUILD_TESTS=OFF -DHSR_BUILD_BENCH=OFF && cmake --build build --target hsr -j 2'

@@ -7,6 +7,8 @@
 
 #include "grading/grading.hpp"
 #include "grading/judge.hpp"
+#include "grading/line_judge.hpp"
+#include "algorithms/appel/appel.hpp"
 #include "json_reader.hpp"
 #include "renderer/scene/triangle_file.hpp"
 #include "renderer/util/error.hpp"
@@ -149,10 +151,11 @@ std::filesystem::path submission(const std::string& name, const std::string& mak
   return folder;
 }
 
-grading::GradeReport graded(const std::filesystem::path& folder, const std::string& test = "visible/cube", double runSeconds = 20) {
+grading::GradeReport graded(const std::filesystem::path& folder, const std::string& test = "visible/cube", double runSeconds = 20,
+                            int exercise = 1) {
   grading::GradeOptions options;
   options.submission = folder;
-  options.exercise = 1;
+  options.exercise = exercise;
   options.onlyTest = test;
   options.work = folder / "work";
   options.limits.runSeconds = runSeconds;
@@ -288,7 +291,7 @@ TEST(GradeCommand, BadInputIsOneLineAndExitTwo) {
   } cases[] = {
       {"grade", "grade: expected a submission's folder (or --self-check)"},
       {"grade course/shipped", "grade: --exercise is required"},
-      {"grade course/shipped --exercise 2", "--exercise 2: not graded automatically; expected one of 1, 3, 4, 7, 8, 14, 15, 16"},
+      {"grade course/shipped --exercise 2", "--exercise 2: not graded automatically; expected one of 1, 3, 4, 5, 7, 8, 14, 15, 16"},
       {"grade course/shipped --exercise 1 --seed 4", "--seed: makes the hidden tests; give --hidden too"},
       {"grade no/such/folder --exercise 1", "no/such/folder: no such folder"},
       {"grade course/shipped --exercise 1 --test visible/teapot", "--test visible/teapot: no such test; expected one of visible/cube"},
@@ -349,6 +352,132 @@ TEST(Judge, TheConventionsAnswerIsTheZBuffersOnPixelExactScenes) {
     const std::vector<std::uint32_t> answer = grading::conventionsAnswer(*prepared);
     EXPECT_TRUE(std::equal(answer.begin(), answer.end(), zbuffer.ids.begin(), zbuffer.ids.end())) << "seed " << seed;
   }
+}
+
+}  // namespace
+}  // namespace hsr
+
+namespace hsr {
+namespace {
+
+std::vector<grading::DrawnSegment> visibleSegmentsOf(const LineSet& lines) {
+  std::vector<grading::DrawnSegment> segments;
+  for (const LineSegment& piece : lines.segments)
+    if (piece.visible()) segments.push_back({lines.edges[piece.edge].pixelAt(piece.begin), lines.edges[piece.edge].pixelAt(piece.end)});
+  return segments;
+}
+
+std::vector<grading::LineCause> lineCausesOf(const grading::DrawingJudgement& judgement) {
+  std::vector<grading::LineCause> causes;
+  for (const grading::LineCauseLength& cause : judgement.causes) causes.push_back(cause.cause);
+  return causes;
+}
+
+// Appel's drawing passes the line judge, which works from the shared core alone; a
+// visible piece left out, a hidden one drawn and a line on no edge are each named, with
+// their length; a stretch shorter than the excused length is rounding.
+TEST(LineJudge, PassesAppelsDrawingAndNamesWhatIsWrong) {
+  const Scene scene = loadScene(test::sourcePath("scenes/blocks.toml"));
+  const auto prepared = preparedAt(scene, 200, 150);
+  Stats stats;
+  const LineSet drawing = appel::run(*prepared, appel::Knobs{}, stats);
+  const std::vector<grading::DrawnSegment> right = visibleSegmentsOf(drawing);
+  const grading::DrawingJudgement judged = grading::judgeDrawing(*prepared, right, 1);
+  EXPECT_TRUE(judged.passed()) << judged.wrong;
+  EXPECT_GT(judged.visibleLength, 500);
+
+  // The longest visible segment left out: hidden though visible, all of its length.
+  std::vector<grading::DrawnSegment> missing = right;
+  const auto longest = std::max_element(missing.begin(), missing.end(), [](const auto& a, const auto& b) {
+    return glm::length(a.to - a.from) < glm::length(b.to - b.from);
+  });
+  const double length = glm::length(longest->to - longest->from);
+  missing.erase(longest);
+  const grading::DrawingJudgement left = grading::judgeDrawing(*prepared, missing, 1);
+  EXPECT_EQ(lineCausesOf(left), std::vector{grading::LineCause::hiddenThoughVisible});
+  EXPECT_NEAR(left.wrong, length, 1e-6);
+
+  // Every piece drawn, hidden ones too: drawn though hidden, as long as the hidden pieces.
+  std::vector<grading::DrawnSegment> everything;
+  double hiddenLength = 0;
+  for (const LineSegment& piece : drawing.segments) {
+    const FeatureEdge& edge = drawing.edges[piece.edge];
+    everything.push_back({edge.pixelAt(piece.begin), edge.pixelAt(piece.end)});
+    if (!piece.visible()) hiddenLength += (piece.end - piece.begin) * edge.lengthPixels();
+  }
+  const grading::DrawingJudgement overdrawn = grading::judgeDrawing(*prepared, everything, 1);
+  EXPECT_EQ(lineCausesOf(overdrawn), std::vector{grading::LineCause::drawnThoughHidden});
+  EXPECT_NEAR(overdrawn.wrong + overdrawn.excused, hiddenLength, 1e-6);
+  EXPECT_NE(overdrawn.causes.front().first.find(", on edge "), std::string::npos) << overdrawn.causes.front().first;
+
+  // A line across the image on no edge; and one 0.04 px long, excused.
+  std::vector<grading::DrawnSegment> stray = right;
+  stray.push_back({{3.25, 140.5}, {3.25, 120.5}});
+  stray.push_back({{190.0, 3.0}, {190.04, 3.0}});
+  const grading::DrawingJudgement strayJudged = grading::judgeDrawing(*prepared, stray, 1);
+  EXPECT_EQ(lineCausesOf(strayJudged), std::vector{grading::LineCause::notALine});
+  EXPECT_NEAR(strayJudged.wrong, 20, 1e-9);
+  EXPECT_NEAR(strayJudged.excused, 0.04, 1e-9);
+  EXPECT_EQ(strayJudged.causes.front().first, "at (3.2, 130.5), 20.0 px long");
+
+  // The same drawing split into halves and written backwards is the same drawing.
+  std::vector<grading::DrawnSegment> split;
+  for (const grading::DrawnSegment& segment : right) {
+    const dvec2 middle = (segment.from + segment.to) / 2.0;
+    split.push_back({middle, segment.from});
+    split.push_back({segment.to, middle});
+  }
+  EXPECT_TRUE(grading::judgeDrawing(*prepared, split, 1).passed());
+}
+
+// A drawing that cannot be read names its line and what was expected.
+TEST(LineJudge, ABadDrawingNamesItsLine) {
+  const std::filesystem::path folder = test::outputPath("grading") / "bad-drawings";
+  std::filesystem::create_directories(folder);
+  const struct {
+    const char* text;
+    const char* problem;
+  } cases[] = {
+      {"# a comment\n1 2 3 4\n\n5 6 7\n", "drawing.txt:4: '5 6 7'; expected four numbers, x0 y0 x1 y1 (a visible segment in pixels)"},
+      {"1 2 3 4 5\n", "drawing.txt:1: '1 2 3 4 5'; expected four numbers"},
+      {"1 2 nan 4\n", "drawing.txt:1: '1 2 nan 4': a coordinate is not a finite number"},
+      {"1 2 1e999 4\n", "drawing.txt:1: '1 2 1e999 4': a coordinate is not a finite number"},
+      {"one two three four\n", "drawing.txt:1: 'one two three four'; expected four numbers"},
+  };
+  for (const auto& [text, problem] : cases) {
+    std::ofstream(folder / "drawing.txt") << text;
+    std::vector<grading::DrawnSegment> segments;
+    EXPECT_EQ(grading::readSegments(folder / "drawing.txt", segments).rfind(problem, 0), 0u) << text;
+  }
+  std::vector<grading::DrawnSegment> segments;
+  EXPECT_EQ(grading::readSegments(folder / "none.txt", segments), "wrote no drawing at none.txt");
+  std::ofstream(folder / "drawing.txt") << "# nothing visible\n";
+  EXPECT_EQ(grading::readSegments(folder / "drawing.txt", segments), "");
+  EXPECT_TRUE(segments.empty());
+}
+
+std::string hsrLines(const std::string& options) {
+  return std::string("build:\n\ttrue\nrun:\n\t") + HSR_BINARY + " render $(file) " + options +
+         " --threads 1 --segments $(out) -o $(out).svg\n";
+}
+
+// Exercise 5 end to end: hsr's Appel under the program contract passes every visible
+// test; a program drawing nothing, or a drawing that cannot be read, fails with the reason.
+TEST(Grade, Exercise5GradesDrawings) {
+  const grading::GradeReport appel = graded(submission("appel", hsrLines("--algo appel")), "", 20, 5);
+  EXPECT_EQ(appel.failed(), 0);
+  EXPECT_GE(appel.tests.size(), 10u);
+  for (const grading::TestResult& test : appel.tests) EXPECT_NE(test.output.find("px of visible line wrong"), std::string::npos) << test.output;
+  const grading::GradeReport empty = graded(submission("empty-drawing", "build:\n\ttrue\nrun:\n\techo '# nothing' > $(out)\n"),
+                                            "visible/cube", 20, 5);
+  ASSERT_EQ(empty.tests.size(), 1u);
+  EXPECT_FALSE(empty.tests[0].passed);
+  EXPECT_NE(empty.tests[0].output.find("- hidden though visible: "), std::string::npos) << empty.tests[0].output;
+  EXPECT_NE(empty.tests[0].output.find("hsr why "), std::string::npos) << empty.tests[0].output;
+  const grading::GradeReport garbled = graded(submission("garbled-drawing", "build:\n\ttrue\nrun:\n\techo 1 2 3 > $(out)\n"),
+                                              "visible/cube", 20, 5);
+  EXPECT_NE(garbled.tests[0].output.find("make run visible-cube.txt:1: '1 2 3'; expected four numbers"), std::string::npos)
+      << garbled.tests[0].output;
 }
 
 }  // namespace
