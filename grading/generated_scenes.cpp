@@ -341,7 +341,7 @@ const std::vector<SceneGenerator>& sceneGenerators() {
       {"orthographic", "boxes and spheres under an orthographic camera", orthographic, false, true},
       {"fill-rule", "fans and a grid with pixel centers exactly on shared edges", fillRule, true},
       {"near-plane", "a floor, a wall and triangles reaching behind the eye", nearPlane},
-      {"far-from-origin", "boxes and spheres 10^4 to 10^7 from the origin", farFromOrigin},
+      {"far-from-origin", "boxes and spheres 10^4 to 10^7 from the origin", farFromOrigin, false, true},
       {"coplanar", "overlapping rectangles on shared planes", coplanar},
       {"slivers", "triangles 10^3 to 10^6 times longer than wide", slivers},
       {"interpenetrating", "large triangles through one another", interpenetrating},

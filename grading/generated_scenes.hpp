@@ -22,8 +22,6 @@ struct SceneGenerator {
   bool pixelExact = false;
   // A line exercise's scene too (Exercise 5): every object a closed solid in front of
   // the near plane (Appel's quantitative invisibility counts the faces of closed solids).
-  // Not far-from-origin's: there Appel and the line reference disagree by up to a few
-  // pixels on the lines where solids pass through each other (docs/grading.md).
   bool forLines = false;
 };
 

@@ -205,11 +205,14 @@ class EdgeJudge {
   }
 
   // A junction's ends are computed, so it lies on the faces it joins only to rounding: a
-  // plane passing within 1e-9 of the scene's size of its point holds the point.
+  // plane passing within 1e-9 of the local size of its point holds the point, or within
+  // 16 units in the last place of the point's largest coordinate, the rounding of a
+  // point computed far from the origin (10^7 away, 2e-8, beyond 1e-9 of a unit box).
   bool onPlane(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& x) const {
     const dvec3 normal = glm::normalize(glm::cross(b - a, c - a));
     const double size = std::max({glm::length(b - a), glm::length(c - a), glm::length(x - a)});
-    return std::abs(glm::dot(normal, x - a)) <= 1e-9 * size;
+    const double magnitude = std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+    return std::abs(glm::dot(normal, x - a)) <= 1e-9 * size + 16 * std::numeric_limits<double>::epsilon() * magnitude;
   }
 
   struct Candidate {

@@ -21,7 +21,8 @@
 //      (renderer/geometry/exact.hpp) when the filter cannot decide.
 // A junction line (EdgeKind::junction) is computed, not a mesh edge, so it lies on the two
 // faces it joins only up to rounding: for it alone, a plane within 1e-9 of the local size
-// of the point holds it (and does not hide it).
+// of the point, or within 16 units in the last place of its largest coordinate (the
+// rounding of a point computed far from the origin), holds it (and does not hide it).
 // Event positions are computed in double precision; they bound intervals whose lengths
 // the line error sums, so their rounding moves the error by about 1e-12 pixels per edge.
 #pragma once
