@@ -372,6 +372,7 @@ class QuantitativeInvisibility {
         return;
       }
       if ((sideOfR >= 0) == (sideOfS >= 0)) return;
+      // BEGIN SOLUTION
       const int sideOfP = viewer_.side(r, s, p), sideOfQ = viewer_.side(r, s, q);
       int change = 0;
       for (const std::int8_t faceSide : c.faceSides) change += (sideOfQ == faceSide || sideOfQ == 0) - (sideOfP == faceSide || sideOfP == 0);
@@ -382,6 +383,18 @@ class QuantitativeInvisibility {
       const int spread = sideOfR != 0 ? sideOfR : -sideOfS;
       if (order == 0 || order == spread) return;
       found.push_back({crossingParameter(edge, c), change, false, index});
+      // SKELETON
+      // // Exercise 5: the projections of edge pq and contour rs cross. By how much does the
+      // // QI change there? Per face of the contour (c.faceSides: on which side of the sight
+      // // plane through r and s each face lies), +1 when the edge's end q lies on that side
+      // // (viewer_.side(r, s, q); 0, on the plane, counts as on it) and -1 when its start p
+      // // does. A change of 0 is no change. And does the contour pass in front of the edge,
+      // // or behind it? The sign of viewer_.exact().orient3d(p, q, r, s) against the spread
+      // // of the eye rays across the edge (sideOfR, or -sideOfS where sideOfR is 0): in
+      // // front when they differ and neither is 0 (README of this folder derives it). Record
+      // // a change in front: found.push_back({crossingParameter(edge, c), change, false, index});
+      // (void)sideOfR, (void)sideOfS;
+      // END SOLUTION
     }); });
     if (edge.meshEdge != FeatureEdge::kNone) {
       addPiercings(edge, intersections_.byEdge[edge.meshEdge], edge.vertexFrom != adjacency_.edges[edge.meshEdge].a, found);

@@ -7,7 +7,7 @@
 #   student_edition.sh HSR CHECKOUT WORK
 set -euo pipefail
 hsr=$1 checkout=$2 work=$3
-editions="1 3 4 14 15 16"
+editions="1 3 4 5 14 15 16"
 rm -rf "$work"
 mkdir -p "$work"
 status=0
@@ -26,12 +26,14 @@ for exercise in $editions; do
   for secret in docs/instructors course/bugs; do
     if [ -e "$edition/$secret" ]; then echo "exercise $exercise: the edition holds $secret" >&2; exit 1; fi
   done
+  test=visible/cube cause='- nothing drawn'
+  [ "$exercise" = 5 ] && test=visible/blocks cause='- (drawn though hidden|hidden though visible)'
   status=0
-  "$hsr" grade "$edition/$folder" --exercise "$exercise" --test visible/cube --out "$work/report-$exercise" > "$work/output-$exercise.txt" 2>&1 || status=$?
+  "$hsr" grade "$edition/$folder" --exercise "$exercise" --test "$test" --out "$work/report-$exercise" > "$work/output-$exercise.txt" 2>&1 || status=$?
   cat "$work/output-$exercise.txt"
   [ "$status" -eq 1 ] || { echo "exercise $exercise: expected the edition to fail its test (exit 1), got $status" >&2; exit 1; }
-  grep -q 'FAILED visible/cube' "$work/output-$exercise.txt"
-  grep -q -- '- nothing drawn' "$work/report-$exercise/results.json"
-  "$hsr" grade "$checkout/$folder" --exercise "$exercise" --test visible/cube --out "$work/shipped-$exercise" > /dev/null
+  grep -q "FAILED $test" "$work/output-$exercise.txt"
+  grep -qE -- "$cause" "$work/report-$exercise/results.json"
+  "$hsr" grade "$checkout/$folder" --exercise "$exercise" --test "$test" --out "$work/shipped-$exercise" > /dev/null
   echo "exercise $exercise: the edition of $folder fails until the student writes the code; the shipped folder passes"
 done
