@@ -376,6 +376,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
                                        work / (file + ".log"), options.limits.runSeconds);
       result.seconds = run.seconds;
       const std::string heatMap = file + "-where.png";
+      std::vector<std::uint8_t> where;  // a judged answer's heat map
       if (!run.succeeded()) {
         result.output = "make run " + run.outcome() + " on " + sceneFile.filename().string() + "\n" + run.output;
       } else if (exercise.drawsLines) {
@@ -386,7 +387,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
           const DrawingJudgement judgement = judgeDrawing(prepared, segments, options.threads);
           result.passed = judgement.passed();
           result.output = drawingFeedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
-          if (!result.passed) heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});
+          where = judgement.heatMap;
         }
       } else {
         std::vector<std::uint32_t> ids;
@@ -401,11 +402,14 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
           const Judgement judgement = judge(prepared, reference, ids, conventions, exercise.tieRule);
           result.passed = judgement.passed();
           result.output = feedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
-          if (!result.passed) heatMaps.push_back({heatMap, scene.width, scene.height, judgement.heatMap});
+          where = judgement.heatMap;
         }
       }
       result.score = result.passed ? result.maxScore : 0;
-      if (!heatMaps.empty() && heatMaps.back().file == heatMap) result.heatMap = heatMap;
+      if (!result.passed && !where.empty()) {
+        result.heatMap = heatMap;
+        heatMaps.push_back({heatMap, scene.width, scene.height, std::move(where)});
+      }
     }
     report.tests.push_back(std::move(result));
   }

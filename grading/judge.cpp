@@ -12,10 +12,6 @@
 namespace hsr::grading {
 namespace {
 
-struct CauseText {
-  const char* name;
-  const char* advice;
-};
 constexpr std::array<CauseText, kCauses> kCauseTexts = {{
     {"nothing drawn",
      "every pixel is background: is the depth buffer cleared to the far end (the largest value the test can "

@@ -38,6 +38,12 @@ enum class Cause {
   unknownId,         // an id that names no triangle of the scene
 };
 inline constexpr int kCauses = 11;
+// A cause's name in feedback, and what a student should check for it (also the line
+// judge's causes, grading/line_judge.cpp).
+struct CauseText {
+  const char* name;
+  const char* advice;
+};
 const char* causeName(Cause cause);
 // What a student should check for it, in a sentence.
 const char* causeAdvice(Cause cause);

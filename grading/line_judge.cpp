@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "grading/judge.hpp"
 #include "renderer/lines/feature_edges.hpp"
 #include "renderer/lines/line_set.hpp"
 #include "renderer/reference/line_reference.hpp"
@@ -17,10 +18,6 @@
 namespace hsr::grading {
 namespace {
 
-struct CauseText {
-  const char* name;
-  const char* advice;
-};
 constexpr std::array<CauseText, kLineCauses> kLineCauseTexts = {{
     {"drawn though hidden",
      "a stretch of a line of the view that a face hides: its QI is too low there. Does the count go up by one where the "
@@ -40,6 +37,12 @@ struct Piece {
   std::uint32_t edge;
 };
 
+// Whether both ends of `piece` lie within kOnLine of the line through `from` whose unit
+// normal is `across`.
+bool liesOnLine(const Piece& piece, const dvec2& from, const dvec2& across) {
+  return std::abs(glm::dot(piece.from - from, across)) <= kOnLine && std::abs(glm::dot(piece.to - from, across)) <= kOnLine;
+}
+
 // The stretches of segment from..to (as distances from `from`, in pixels) that no piece
 // lying on its line covers.
 std::vector<Interval> uncovered(const dvec2& from, const dvec2& to, std::span<const Piece> pieces) {
@@ -48,7 +51,7 @@ std::vector<Interval> uncovered(const dvec2& from, const dvec2& to, std::span<co
   const dvec2 along = (to - from) / length, across(-along.y, along.x);
   std::vector<Interval> covered;
   for (const Piece& piece : pieces) {
-    if (std::abs(glm::dot(piece.from - from, across)) > kOnLine || std::abs(glm::dot(piece.to - from, across)) > kOnLine) continue;
+    if (!liesOnLine(piece, from, across)) continue;
     const double a = glm::dot(piece.from - from, along), b = glm::dot(piece.to - from, along);
     const double begin = std::max(std::min(a, b), 0.0), end = std::min(std::max(a, b), length);
     if (end > begin) covered.push_back({begin, end});
@@ -68,7 +71,7 @@ std::vector<Interval> uncovered(const dvec2& from, const dvec2& to, std::span<co
 const Piece* pieceUnder(const dvec2& p, const dvec2& from, const dvec2& to, std::span<const Piece> pieces) {
   const dvec2 along = glm::normalize(to - from), across(-along.y, along.x);
   for (const Piece& piece : pieces) {
-    if (std::abs(glm::dot(piece.from - from, across)) > kOnLine || std::abs(glm::dot(piece.to - from, across)) > kOnLine) continue;
+    if (!liesOnLine(piece, from, across)) continue;
     const double a = glm::dot(piece.from - p, along), b = glm::dot(piece.to - p, along);
     if (std::min(a, b) <= 0 && std::max(a, b) >= 0) return &piece;
   }

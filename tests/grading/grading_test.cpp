@@ -87,9 +87,12 @@ TEST(GeneratedScenes, TheSameSeedMakesTheSameSceneAndEveryOneShowsSomething) {
   }
 }
 
-std::vector<grading::Cause> causesOf(const grading::Judgement& judgement) {
-  std::vector<grading::Cause> causes;
-  for (const grading::CauseCount& count : judgement.causes) causes.push_back(count.cause);
+// The causes a judgement names, in its order: an id image's (grading::Cause) or a
+// drawing's (grading::LineCause).
+template <typename Judged>
+auto causesOf(const Judged& judgement) {
+  std::vector<decltype(judgement.causes.front().cause)> causes;
+  for (const auto& count : judgement.causes) causes.push_back(count.cause);
   return causes;
 }
 
@@ -367,12 +370,6 @@ std::vector<grading::DrawnSegment> visibleSegmentsOf(const LineSet& lines) {
   return segments;
 }
 
-std::vector<grading::LineCause> lineCausesOf(const grading::DrawingJudgement& judgement) {
-  std::vector<grading::LineCause> causes;
-  for (const grading::LineCauseLength& cause : judgement.causes) causes.push_back(cause.cause);
-  return causes;
-}
-
 // Appel's drawing passes the line judge, which works from the shared core alone; a
 // visible piece left out, a hidden one drawn and a line on no edge are each named, with
 // their length; a stretch shorter than the excused length is rounding.
@@ -394,7 +391,7 @@ TEST(LineJudge, PassesAppelsDrawingAndNamesWhatIsWrong) {
   const double length = glm::length(longest->to - longest->from);
   missing.erase(longest);
   const grading::DrawingJudgement left = grading::judgeDrawing(*prepared, missing, 1);
-  EXPECT_EQ(lineCausesOf(left), std::vector{grading::LineCause::hiddenThoughVisible});
+  EXPECT_EQ(causesOf(left), std::vector{grading::LineCause::hiddenThoughVisible});
   EXPECT_NEAR(left.wrong, length, 1e-6);
 
   // Every piece drawn, hidden ones too: drawn though hidden, as long as the hidden pieces.
@@ -406,7 +403,7 @@ TEST(LineJudge, PassesAppelsDrawingAndNamesWhatIsWrong) {
     if (!piece.visible()) hiddenLength += (piece.end - piece.begin) * edge.lengthPixels();
   }
   const grading::DrawingJudgement overdrawn = grading::judgeDrawing(*prepared, everything, 1);
-  EXPECT_EQ(lineCausesOf(overdrawn), std::vector{grading::LineCause::drawnThoughHidden});
+  EXPECT_EQ(causesOf(overdrawn), std::vector{grading::LineCause::drawnThoughHidden});
   EXPECT_NEAR(overdrawn.wrong + overdrawn.excused, hiddenLength, 1e-6);
   EXPECT_NE(overdrawn.causes.front().first.find(", on edge "), std::string::npos) << overdrawn.causes.front().first;
 
@@ -415,7 +412,7 @@ TEST(LineJudge, PassesAppelsDrawingAndNamesWhatIsWrong) {
   stray.push_back({{3.25, 140.5}, {3.25, 120.5}});
   stray.push_back({{190.0, 3.0}, {190.04, 3.0}});
   const grading::DrawingJudgement strayJudged = grading::judgeDrawing(*prepared, stray, 1);
-  EXPECT_EQ(lineCausesOf(strayJudged), std::vector{grading::LineCause::notALine});
+  EXPECT_EQ(causesOf(strayJudged), std::vector{grading::LineCause::notALine});
   EXPECT_NEAR(strayJudged.wrong, 20, 1e-9);
   EXPECT_NEAR(strayJudged.excused, 0.04, 1e-9);
   EXPECT_EQ(strayJudged.causes.front().first, "at (3.2, 130.5), 20.0 px long");
