@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   renderCommand->add_option("-o,--output", render.output, "color image (.png), or for a line algorithm a drawing (.svg)")->required();
   renderCommand->add_option("--line-style", render.lineStyle,
                             "line algorithms: visible (default), hidden (hidden parts dashed grey), qi (shade by quantitative invisibility)");
-  renderCommand->add_option("--depth", render.depth, "depth image (.exr): distance along the view axis");
+  renderCommand->add_option("--depth", render.depth, "depth image (.exr, or .pfm for a portable float map): distance along the view axis");
   renderCommand->add_option("--ids", render.ids, "id image (.png): triangle index + 1 as 24-bit RGB, R high");
   renderCommand->add_option("--segments", render.segments,
                             "line algorithms: the visible segments (.txt), a line each: x0 y0 x1 y1 in pixels");

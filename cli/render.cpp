@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "pipeline/pipeline.hpp"
 #include "renderer/image/frame.hpp"
+#include "renderer/image/pfm.hpp"
 #include "renderer/lines/line_drawing.hpp"
 #include "renderer/lines/line_set.hpp"
 #include "renderer/raster/depth.hpp"
@@ -219,6 +220,10 @@ int render(const RenderOptions& options) {
     throw InputError(std::string(options.depth.empty() ? "--ids" : "--depth") + ": " + algorithm.name +
                      " draws lines, which have no depth or id image");
 
+  const std::filesystem::path depthFile = options.depth;
+  if (!options.depth.empty() && depthFile.extension() != ".exr" && depthFile.extension() != ".pfm")
+    throw InputError("--depth " + options.depth + ": expected a file name ending in .exr (OpenEXR) or .pfm (a portable float map)");
+
   if (!lines && !options.segments.empty())
     throw InputError("--segments " + options.segments + ": " + algorithm.name + " draws pixels; segments come from a line algorithm");
 
@@ -243,7 +248,8 @@ int render(const RenderOptions& options) {
     else if (polygonSvg) outputs.addText(output, visiblePolygonsSvg(rendered.polygons, rendered.frame));
     else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
     else outputs.addColorPng(output, rendered.frame);
-    if (!options.depth.empty()) outputs.addDepthExr(options.depth, rendered.frame);
+    if (depthFile.extension() == ".pfm") outputs.addText(depthFile, pfmBytes(rendered.frame.width, rendered.frame.height, rendered.frame.depth));
+    else if (!options.depth.empty()) outputs.addDepthExr(depthFile, rendered.frame);
     if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
     if (!options.segments.empty()) outputs.addText(options.segments, visibleSegmentsText(rendered.drawing));
     if (!options.triangles.empty()) outputs.addText(options.triangles, triangleFileText(*scene.prepared));

@@ -9,6 +9,7 @@
 #include "grading/line_judge.hpp"
 #include "grading/run.hpp"
 #include "renderer/image/image_library.hpp"
+#include "renderer/image/pfm.hpp"
 #include "renderer/reference/reference.hpp"
 #include "renderer/scene/triangle_file.hpp"
 #include "renderer/util/error.hpp"
@@ -222,7 +223,7 @@ std::filesystem::path algorithmFolderSubmission(const GradeOptions& options, con
 
 const std::vector<Exercise>& gradedExercises() {
   static const std::vector<Exercise> exercises = {
-      {1, "the z-buffer", "zbuffer", true, true, {}, "", "--knob path=scalar"},
+      {1, "the z-buffer", "zbuffer", true, true, {}, "", "--knob path=scalar", false, true},
       {3, "ray casting", "ray_casting", false, false, {}, "", "--knob path=scalar"},
       {4, "the painter's algorithm", "painter", true, false},
       {5, "hidden lines: Appel's quantitative invisibility", "appel", false, false, {"visibility", "orthographic", "far-from-origin", "interpenetrating"}, "", "", true},
@@ -302,7 +303,9 @@ std::vector<std::string> skillsOf(const Exercise& exercise) { return exercise.sk
 void writeHsrSubmission(const std::filesystem::path& folder, const std::string& comment, const std::string& build, const std::string& render,
                         const Exercise& exercise, const std::vector<std::string>& claims) {
   std::filesystem::create_directories(folder);
-  const char* answer = exercise.drawsLines ? "--segments $(out) -o $(out).svg" : "--ids $(out) -o $(out).color.png";
+  const std::string answer = exercise.drawsLines    ? "--segments $(out) -o $(out).svg"
+                             : exercise.writesDepth ? "--ids $(out) --depth $(depth) -o $(out).color.png"
+                                                    : "--ids $(out) -o $(out).color.png";
   std::ofstream(folder / "Makefile") << "# " << comment << "\nbuild:\n\t" << build << "\n\nrun:\n\t./hsr render $(file) " << render
                                      << " --threads 1 " << answer << "\n\n.PHONY: build run\n";
   std::ofstream implemented(folder / "implemented.txt");
@@ -371,9 +374,12 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
       prepared.setSize(scene.width, scene.height);
       const std::filesystem::path sceneFile = work / (file + ".tri"), answer = work / (file + (exercise.drawsLines ? ".txt" : ".png"));
       std::ofstream(sceneFile, std::ios::binary) << triangleFileText(prepared);
+      const std::filesystem::path depthImage = work / (file + ".depth.pfm");
       std::filesystem::remove(answer, error);
-      const RunResult run = runCommand({"make", "-s", "run", "file=" + sceneFile.string(), "out=" + answer.string()}, submission,
-                                       work / (file + ".log"), options.limits.runSeconds);
+      std::filesystem::remove(depthImage, error);
+      std::vector<std::string> command = {"make", "-s", "run", "file=" + sceneFile.string(), "out=" + answer.string()};
+      if (exercise.writesDepth) command.push_back("depth=" + depthImage.string());
+      const RunResult run = runCommand(command, submission, work / (file + ".log"), options.limits.runSeconds);
       result.seconds = run.seconds;
       const std::string heatMap = file + "-where.png";
       std::vector<std::uint8_t> where;  // a judged answer's heat map
@@ -391,7 +397,10 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
         }
       } else {
         std::vector<std::uint32_t> ids;
-        if (const std::string problem = readIds(answer, scene.width, scene.height, ids); !problem.empty()) {
+        std::vector<float> depth;
+        std::string problem = readIds(answer, scene.width, scene.height, ids);
+        if (problem.empty() && exercise.writesDepth) problem = readPfm(depthImage, scene.width, scene.height, depth);
+        if (!problem.empty()) {
           result.output = "make run " + problem + "\n";
         } else {
           Stats stats;
@@ -399,7 +408,7 @@ GradeReport grade(const GradeOptions& options, std::vector<HeatMap>& heatMaps) {
           // A fill-rule scene's every pixel is decided by the conventions.
           const std::vector<std::uint32_t> conventions =
               test.pixelExact() && exercise.fillRule ? conventionsAnswer(prepared) : std::vector<std::uint32_t>();
-          const Judgement judgement = judge(prepared, reference, ids, conventions, exercise.tieRule);
+          const Judgement judgement = judge(prepared, reference, ids, conventions, exercise.tieRule, depth);
           result.passed = judgement.passed();
           result.output = feedbackOf(judgement, shippedOptions(exercise), sceneFile.string(), heatMap);
           where = judgement.heatMap;

@@ -47,6 +47,9 @@ struct Exercise {
   // Whether its answer is a line drawing (Exercise 5): `make run` then writes the visible
   // segments as text (grading/line_judge.hpp), not an id image.
   bool drawsLines = false;
+  // Whether `make run` also writes a depth image (Exercise 1: the z-buffer and depth
+  // formats): each pixel's view distance, a PFM at depth=DEPTH.pfm.
+  bool writesDepth = false;
 };
 const std::vector<Exercise>& gradedExercises();
 // Their numbers as a person lists them: "1, 3, 4, 5, 7, 8, 14, 15, 16".

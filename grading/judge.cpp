@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "renderer/raster/depth.hpp"
 #include "renderer/reference/agreement.hpp"
 #include "renderer/util/stats.hpp"
 
@@ -40,6 +41,15 @@ constexpr std::array<CauseText, kCauses> kCauseTexts = {{
      "the image, the edge functions' signs for both windings, and degenerate-looking slivers"},
     {"beyond the far plane", "the triangle shown is met beyond the far plane there: clip at d <= far too"},
     {"not a triangle of the scene", "the id is larger than the scene's triangle count (24-bit RGB, R the high byte)"},
+    {"depth image: z, not the distance",
+     "the depth image holds each pixel's view distance d (world units along the view axis), not the depth buffer's z "
+     "in [0, 1]: decode z to d (under perspective z = f (d - n) / (d (f - n)), so d = f n / (f - z (f - n)))"},
+    {"depth image: not the shown triangle's distance",
+     "where a pixel shows a triangle, the depth image holds that triangle's view distance at the pixel center: under "
+     "perspective interpolate 1/d (or z), not d, across the screen; and a PFM's rows go from the image's bottom up"},
+    {"depth image: background nearer than the far plane",
+     "where a pixel shows the background, the depth image holds +infinity (or the far plane's distance): clear the "
+     "depth buffer to its far end, and write the background as far away"},
 }};
 
 // Whether any corner of the triangle lies in front of the near plane (d < near).
@@ -125,6 +135,36 @@ std::string distanceText(double distance) {
   return text;
 }
 
+// A depth image's verdict at a pixel whose id is right (see judge() in judge.hpp).
+struct DepthVerdict {
+  std::optional<Cause> cause;  // none when right
+  double expected = INFINITY;  // the shown triangle's distance at the center
+  double z = 1;                // and the float32 z-buffer's z there, before rounding
+};
+DepthVerdict checkDepth(const PreparedScene& scene, std::uint32_t shown, const dvec2& center, double kept) {
+  const CameraTransform& camera = scene.camera();
+  const DepthEncoding encoding = depthEncoding(DepthFormat::float32, camera);
+  const auto zOf = [&](double distance) { return encoding.z(camera.screenAffineDepth(distance)); };
+  const auto float32Step = [](double z) { return double(std::nextafter(float(z), 2.0f)) - double(float(z)); };
+  DepthVerdict verdict;
+  if (shown == 0) {
+    const double far = camera.camera().far, farZ = zOf(far);
+    if (!(kept >= far || zOf(kept) >= farZ - 2 * float32Step(farZ))) verdict.cause = Cause::backgroundDepth;
+    return verdict;
+  }
+  // z is affine across the screen, so its change over a pixel, right and down, bounds
+  // what moving the triangle's vertices by 1/256 pixel changes it by at the center.
+  const auto zAt = [&](double x, double y) { return zOf(planeHit(scene, camera, shown - 1, camera.rayThroughPixel(x, y)).distance); };
+  verdict.expected = planeHit(scene, camera, shown - 1, camera.rayThroughPixel(center.x, center.y)).distance;
+  verdict.z = zAt(center.x, center.y);
+  const double slope = std::abs(zAt(center.x + 1, center.y) - verdict.z) + std::abs(zAt(center.x, center.y + 1) - verdict.z);
+  const double allowed = 2 * float32Step(verdict.z) + (std::isfinite(slope) ? slope * kSnapDistance : 0) +
+                         std::abs(zOf(verdict.expected * (1 + 0x1p-23)) - verdict.z);
+  if (std::abs(zOf(kept) - verdict.z) <= allowed) return verdict;
+  verdict.cause = std::abs(kept - verdict.z) <= allowed ? Cause::depthIsZ : Cause::depthWrong;
+  return verdict;
+}
+
 }  // namespace
 
 std::vector<std::uint32_t> conventionsAnswer(const PreparedScene& scene) {
@@ -162,7 +202,7 @@ const char* causeName(Cause cause) { return kCauseTexts[std::size_t(cause)].name
 const char* causeAdvice(Cause cause) { return kCauseTexts[std::size_t(cause)].advice; }
 
 Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
-                std::span<const std::uint32_t> conventions, bool tieRule) {
+                std::span<const std::uint32_t> conventions, bool tieRule, std::span<const float> depth) {
   const CameraTransform& camera = scene.camera();
   const int width = scene.width();
   const std::uint32_t triangles = std::uint32_t(scene.triangleCount());
@@ -266,6 +306,16 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
       }
     }
 
+    // The depth image, where the id is right (a wrong id is the first thing to mend).
+    std::optional<DepthVerdict> depthVerdict;
+    if (!depth.empty() && verdict != Verdict::wrong) {
+      depthVerdict = checkDepth(scene, mine, center, depth[p]);
+      if (depthVerdict->cause) {
+        verdict = Verdict::wrong;
+        cause = *depthVerdict->cause;
+      }
+    }
+
     std::uint8_t* heat = &result.heatMap[4 * p];
     const auto grey = std::uint8_t(exact == 0 ? 24 : 70 + (exact * 37) % 90);
     heat[0] = heat[1] = heat[2] = grey;
@@ -281,7 +331,15 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
       heat[0] = 255;
       heat[1] = heat[2] = 0;
       CauseCount& count = found[std::size_t(cause)];
-      if (count.pixels++ == 0) {
+      if (count.pixels++ == 0 && depthVerdict) {
+        count.x = x;
+        count.y = y;
+        count.first = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): shows " +
+                      (mine == 0 ? std::string("background")
+                                 : "triangle " + std::to_string(mine) + ", at distance " + distanceText(depthVerdict->expected) +
+                                       " there (z " + distanceText(depthVerdict->z) + ")") +
+                      "; the depth image holds " + distanceText(depth[p]);
+      } else if (count.pixels == 1) {
         count.x = x;
         count.y = y;
         const double mineAt = metAt(mine <= triangles ? mine : 0), exactAt = metAt(exact);

@@ -36,8 +36,12 @@ enum class Cause {
   missing,           // background where a triangle is nearest
   beyondFar,         // shows a triangle met beyond the far plane
   unknownId,         // an id that names no triangle of the scene
+  // Exercise 1's depth image, at a pixel whose id is right:
+  depthIsZ,          // holds the depth buffer's z, not the view distance
+  depthWrong,        // holds another distance than the shown triangle's at the center
+  backgroundDepth,   // a background pixel holds a distance nearer than the far plane
 };
-inline constexpr int kCauses = 11;
+inline constexpr int kCauses = 14;
 // A cause's name in feedback, and what a student should check for it (also the line
 // judge's causes, grading/line_judge.cpp).
 struct CauseText {
@@ -77,7 +81,12 @@ struct Judgement {
 // so that a student edition's own z-buffer is never its judge.
 std::vector<std::uint32_t> conventionsAnswer(const PreparedScene& scene);
 
+// `depth`, when not empty (Exercise 1), is the submission's depth image: each pixel's
+// view distance, +infinity for the background. Where its id is right, a pixel's distance
+// must be the shown triangle's at the center, to within two float32 steps of the
+// z-buffer's z, what rounding a vertex to 1/256 pixel moves the triangle's plane by
+// there, and a float32 distance's rounding; a background pixel's, the far plane or beyond.
 Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std::span<const std::uint32_t> shown,
-                std::span<const std::uint32_t> conventions, bool tieRule = true);
+                std::span<const std::uint32_t> conventions, bool tieRule = true, std::span<const float> depth = {});
 
 }  // namespace hsr::grading

@@ -79,18 +79,27 @@ inline double nearestProjectedEdge(const PreparedScene& scene, const CameraTrans
   return nearest;
 }
 
-// The view distance at which a ray meets a triangle, or NaN when it misses it
+// Where a ray meets a triangle's plane: the point's barycentric coordinates u and v (it
+// lies in the triangle when u, v >= 0 and u + v <= 1) and its view distance
 // (Moller-Trumbore in double; for classifying the few pixels where algorithms differ).
-inline double hitDistance(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, const Ray& ray) {
+struct PlaneHit {
+  double u, v, distance;
+};
+inline PlaneHit planeHit(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, const Ray& ray) {
   const Triangle& t = scene.triangles()[triangle];
   const dvec3 a = scene.positions()[t[0]], e1 = scene.positions()[t[1]] - a, e2 = scene.positions()[t[2]] - a;
   const dvec3 p = glm::cross(ray.direction, e2);
   const double det = glm::dot(e1, p);
   const dvec3 s = ray.origin - a;
-  const double u = glm::dot(s, p) / det, v = glm::dot(ray.direction, glm::cross(s, e1)) / det;
-  if (!(u >= 0 && v >= 0 && u + v <= 1)) return NAN;
   const double along = glm::dot(e2, glm::cross(s, e1)) / det;
-  return glm::dot(ray.origin + along * ray.direction - camera.camera().eye, camera.forward());
+  return {glm::dot(s, p) / det, glm::dot(ray.direction, glm::cross(s, e1)) / det,
+          glm::dot(ray.origin + along * ray.direction - camera.camera().eye, camera.forward())};
+}
+
+// The view distance at which a ray meets a triangle, or NaN when it misses it.
+inline double hitDistance(const PreparedScene& scene, const CameraTransform& camera, std::uint32_t triangle, const Ray& ray) {
+  const auto [u, v, distance] = planeHit(scene, camera, triangle, ray);
+  return u >= 0 && v >= 0 && u + v <= 1 ? distance : NAN;
 }
 
 // An exact algorithm's depth tolerance: whether two view distances at a pixel center are

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "renderer/image/frame.hpp"
+#include "renderer/image/pfm.hpp"
 #include "test_support.hpp"
 
 namespace hsr {
@@ -203,7 +204,7 @@ INSTANTIATE_TEST_SUITE_P(
              "key.toml:6:1: objects[0].sise: unknown key"},
         Case{"output-folder-missing", kCube + " -o /no/such/folder/out.png", "the folder /no/such/folder does not exist"},
         Case{"output-not-png", kCube + " -o " + test::outputPath("bad-output-not-png.jpg").string(), "expected a file name ending in .png"},
-        Case{"depth-not-exr", kCube + " -o OUT --depth " + test::outputPath("depth.png").string(), "expected a file name ending in .exr"},
+        Case{"depth-not-exr", kCube + " -o OUT --depth " + test::outputPath("depth.png").string(), "expected a file name ending in .exr (OpenEXR) or .pfm"},
         Case{"threads-negative", kCube + " --threads -3 -o OUT", "--threads"},
         // hsr compare: everything is checked before the first render, so no folder appears.
         Case{"why-pixel-outside-the-image", kCube + " --size 64x48 --pixel 64,10",
@@ -360,6 +361,22 @@ TEST(Cli, RenderWritesColorDepthAndIds) {
   EXPECT_GE(seen.size(), 5u);  // background and at least two faces of two triangles each
   EXPECT_EQ(readImage(color).width, 64);
   EXPECT_TRUE(std::filesystem::exists(depth));
+  // The same depth as a portable float map: +infinity exactly where the ids show the
+  // background, and the cube's distances (its eye is 5.4 from the target) elsewhere.
+  const auto pfm = test::outputPath("cli-cube-depth.pfm");
+  ASSERT_EQ(test::runCommand(std::string(HSR_BINARY) + " render " + kCube + " --size 64x48 -o " + color.string() + " --depth " + pfm.string())
+                .exitCode,
+            0);
+  std::vector<float> distances;
+  ASSERT_EQ(readPfm(pfm, 64, 48, distances), "");
+  for (std::size_t p = 0; p < 64 * 48; ++p) {
+    if (idFromRgb(&idImage.pixels[3 * p]) == 0) {
+      EXPECT_EQ(distances[p], std::numeric_limits<float>::infinity()) << p;
+    } else {
+      EXPECT_GT(distances[p], 3.0f) << p;
+      EXPECT_LT(distances[p], 7.0f) << p;
+    }
+  }
 }
 
 // A size within the limits that this machine's memory cannot hold (here, a memory

@@ -10,6 +10,7 @@
 #include "grading/line_judge.hpp"
 #include "algorithms/appel/appel.hpp"
 #include "json_reader.hpp"
+#include "renderer/raster/depth.hpp"
 #include "renderer/scene/triangle_file.hpp"
 #include "renderer/util/error.hpp"
 #include "test_support.hpp"
@@ -122,6 +123,49 @@ TEST(Judge, NamesWhatIsWrong) {
   EXPECT_EQ(causesOf(grading::judge(prepared, reference, unknown, {})), std::vector{grading::Cause::unknownId});
 }
 
+// Exercise 1's depth image: the z-buffer's own distances pass; z written in their
+// place, distances 0.1% too far, and a background at distance 0 are each named. Where
+// the ids are already wrong, the depth is not judged again.
+TEST(Judge, ChecksTheDepthImageWhereTheIdsAreRight) {
+  const Scene scene = loadScene(test::sourcePath("scenes/counters.toml"));
+  const auto preparedScene = preparedAt(scene, 160, 90);
+  const PreparedScene& prepared = *preparedScene;
+  Stats stats;
+  const ReferenceImage reference = traceReference(prepared, 1, stats);
+  const Frame right = test::renderZBuffer(prepared);
+  const std::vector<float> distances(right.depth.begin(), right.depth.end());
+  EXPECT_TRUE(grading::judge(prepared, reference, right.ids, {}, true, distances).passed());
+
+  const CameraTransform& camera = prepared.camera();
+  const DepthEncoding encoding = depthEncoding(DepthFormat::float32, camera);
+  std::vector<float> z = distances, tooFar = distances, zeroBackground = distances;
+  std::int64_t covered = 0;
+  for (std::size_t p = 0; p < distances.size(); ++p) {
+    if (right.ids[p] == 0) {
+      z[p] = 1;
+      zeroBackground[p] = 0;
+    } else {
+      ++covered;
+      z[p] = Float32Depth::store(encoding.z(camera.screenAffineDepth(double(distances[p]))));
+      tooFar[p] = distances[p] * 1.001f;
+    }
+  }
+  const grading::Judgement holdsZ = grading::judge(prepared, reference, right.ids, {}, true, z);
+  std::vector<grading::Cause> named = causesOf(holdsZ);
+  std::sort(named.begin(), named.end());
+  EXPECT_EQ(named, (std::vector{grading::Cause::depthIsZ, grading::Cause::backgroundDepth}));
+  EXPECT_EQ(holdsZ.wrong, std::int64_t(distances.size()));
+  const grading::Judgement farther = grading::judge(prepared, reference, right.ids, {}, true, tooFar);
+  EXPECT_EQ(causesOf(farther), std::vector{grading::Cause::depthWrong});
+  EXPECT_EQ(farther.wrong, covered);
+  EXPECT_NE(farther.causes.front().first.find("; the depth image holds "), std::string::npos) << farther.causes.front().first;
+  EXPECT_EQ(causesOf(grading::judge(prepared, reference, right.ids, {}, true, zeroBackground)), std::vector{grading::Cause::backgroundDepth});
+
+  std::vector<std::uint32_t> unknown(right.ids.begin(), right.ids.end());
+  unknown[100] = std::uint32_t(prepared.triangleCount()) + 1;
+  EXPECT_EQ(causesOf(grading::judge(prepared, reference, unknown, {}, true, distances)), std::vector{grading::Cause::unknownId});
+}
+
 // On a fill-rule scene every pixel has the conventions' answer: background at a center
 // on a shared edge is a crack, and the later of two coplanar triangles a broken tie.
 TEST(Judge, DemandsTheFillRuleAndTheTieRuleOnPixelExactScenes) {
@@ -166,9 +210,11 @@ grading::GradeReport graded(const std::filesystem::path& folder, const std::stri
   return grading::grade(options, heatMaps);
 }
 
+// hsr itself under the program contract, with these options (and the depth image when
+// the exercise asks for one).
 std::string hsrRun(const std::string& options) {
   return std::string("build:\n\ttrue\nrun:\n\t") + HSR_BINARY + " render $(file) " + options +
-         " --threads 1 --ids $(out) -o $(out).color.png\n";
+         " --threads 1 --ids $(out) $(if $(depth),--depth $(depth)) -o $(out).color.png\n";
 }
 
 // A program that fails in any way fails the test with the reason, and the grader goes on.
@@ -183,6 +229,12 @@ TEST(Grade, ASubmissionThatFailsFailsItsTestWithTheReason) {
       {"no-image", "build:\n\ttrue\nrun:\n\ttrue\n", "make run wrote no image at visible-cube.png"},
       {"not-png", "build:\n\ttrue\nrun:\n\techo hello > $(out)\n", "make run its image cannot be read as a PNG"},
       {"wrong-size", hsrRun("--size 32x24"), "make run its image is 32x24; expected 400x300"},
+      // Exercise 1 asks for the depth image too.
+      {"no-depth", std::string("build:\n\ttrue\nrun:\n\t") + HSR_BINARY + " render $(file) --ids $(out) -o $(out).color.png\n",
+       "make run wrote no depth image at visible-cube.depth.pfm"},
+      {"depth-not-pfm", hsrRun("") + "\techo hello > $(depth)\n", "make run its depth image visible-cube.depth.pfm is not a PFM"},
+      {"depth-wrong-size", hsrRun("") + "\t" + HSR_BINARY + " render $(file) --size 32x24 --depth $(depth) -o $(out).small.png\n",
+       "make run its depth image visible-cube.depth.pfm is 32x24; expected 400x300"},
   };
   for (const auto& [name, makefile, reason] : cases) {
     const grading::GradeReport report = graded(submission(name, makefile));

@@ -1,12 +1,14 @@
 // What the C++ variants share, written apart from hsr: reading a triangle file (its
-// format: renderer/scene/triangle_file.hpp) and writing an id image as a PNG, with no
-// library (the PNG's pixels in stored, uncompressed deflate blocks).
+// format: renderer/scene/triangle_file.hpp), writing an id image as a PNG, with no
+// library (the PNG's pixels in stored, uncompressed deflate blocks), and a depth image
+// as a portable float map.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -122,6 +124,20 @@ inline void writeIdPng(const std::string& path, int width, int height, const std
                  std::uint8_t(h >> 16), std::uint8_t(h >> 8), std::uint8_t(h), 8, 2, 0, 0, 0});
   chunk("IDAT", zlib);
   chunk("IEND", {});
+}
+
+// A depth image (rows from the top down) as a greyscale PFM: a header, then float32s,
+// little-endian, rows from the bottom up.
+inline void writeDepthPfm(const std::string& path, int width, int height, const std::vector<float>& depth) {
+  std::ofstream out(path, std::ios::binary);
+  out << "Pf\n" << width << " " << height << "\n-1.0\n";
+  for (int y = height - 1; y >= 0; --y)
+    for (int x = 0; x < width; ++x) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &depth[std::size_t(y) * std::size_t(width) + std::size_t(x)], 4);
+      const char bytes[4] = {char(bits), char(bits >> 8), char(bits >> 16), char(bits >> 24)};
+      out.write(bytes, 4);
+    }
 }
 
 }  // namespace variant

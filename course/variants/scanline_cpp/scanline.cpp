@@ -1,8 +1,9 @@
 // A scanline z-buffer written apart from hsr: one row of float32 depth at a time (hsr's
 // scanline variant keeps a row too, but this one keeps no active edge list: each row
 // tests the triangles whose rows it lies in, found from a table of first rows). Depth
-// is float32 z in [0, 1] as OpenGL stores it: f (d - n) / (d (f - n)) under perspective.
-//   scanline SCENE.tri IDS.png
+// is float32 z in [0, 1] as OpenGL stores it: f (d - n) / (d (f - n)) under perspective,
+// decoded back to the view distance d for the depth image as each row is done.
+//   scanline SCENE.tri IDS.png DEPTH.pfm
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -46,8 +47,8 @@ bool topLeft(const Corner& a, const Corner& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: scanline SCENE.tri IDS.png\n");
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: scanline SCENE.tri IDS.png DEPTH.pfm\n");
     return 2;
   }
   const variant::TriangleFile scene = variant::readTriangleFile(argv[1]);
@@ -87,6 +88,7 @@ int main(int argc, char** argv) {
 
   std::vector<std::uint32_t> ids(std::size_t(width) * std::size_t(height), 0);
   std::vector<float> depth(static_cast<std::size_t>(width));
+  std::vector<float> distances(std::size_t(width) * std::size_t(height), std::numeric_limits<float>::infinity());
   std::vector<std::size_t> active;
   for (int y = 0; y < height; ++y) {
     active.insert(active.end(), startingOn[std::size_t(y)].begin(), startingOn[std::size_t(y)].end());
@@ -117,7 +119,13 @@ int main(int argc, char** argv) {
         }
       }
     }
+    for (int x = 0; x < width; ++x) {
+      const double z = depth[std::size_t(x)];
+      if (ids[std::size_t(y) * std::size_t(width) + std::size_t(x)] != 0)
+        distances[std::size_t(y) * std::size_t(width) + std::size_t(x)] = float(scene.perspective ? f * n / (f - z * (f - n)) : n + z * (f - n));
+    }
   }
   variant::writeIdPng(argv[2], width, height, ids);
+  variant::writeDepthPfm(argv[3], width, height, distances);
   return 0;
 }

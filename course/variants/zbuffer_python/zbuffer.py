@@ -76,7 +76,7 @@ def render(scene, reverse):
         screen = [((x / w * 0.5 + 0.5) * width, (0.5 - y / w * 0.5) * height, d) for x, y, d, w in polygon]
         for k in range(1, len(screen) - 1):
             draw(screen[0], screen[k], screen[k + 1], number, perspective, width, height, ids, depth, reverse)
-    return width, height, ids
+    return width, height, ids, depth
 
 
 def draw(a, b, c, number, perspective, width, height, ids, depth, reverse):
@@ -127,7 +127,15 @@ def write_png(path, width, height, ids):
                 chunk(b'IDAT', zlib.compress(rows)) + chunk(b'IEND', b''))
 
 
+def write_pfm(path, width, height, depth):
+    # A portable float map: a header, then float32s, little-endian, rows from the bottom up.
+    rows = b''.join(struct.pack('<%df' % width, *depth[y * width:(y + 1) * width]) for y in reversed(range(height)))
+    with open(path, 'wb') as f:
+        f.write(b'Pf\n%d %d\n-1.0\n' % (width, height) + rows)
+
+
 if __name__ == '__main__':
-    reverse = sys.argv[3:] == ['--order', 'reverse']
-    width, height, ids = render(read_scene(sys.argv[1]), reverse)
+    reverse = sys.argv[4:] == ['--order', 'reverse']
+    width, height, ids, depth = render(read_scene(sys.argv[1]), reverse)
     write_png(sys.argv[2], width, height, ids)
+    write_pfm(sys.argv[3], width, height, depth)

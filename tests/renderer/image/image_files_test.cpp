@@ -2,10 +2,13 @@
 // and by OpenImageIO (the module loaded on use), and bad files refused with their path.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <limits>
 
 #include "renderer/image/frame.hpp"
 #include "renderer/image/image_library.hpp"
+#include "renderer/image/pfm.hpp"
 #include "renderer/image/png.hpp"
 #include "renderer/util/error.hpp"
 #include "test_support.hpp"
@@ -59,6 +62,45 @@ TEST(ImageFiles, ExrDepthIsReadBackByOpenImageIO) {
   EXPECT_EQ(image.width, 4);
   EXPECT_EQ(image.height, 3);
   EXPECT_EQ(image.channels, 1);
+}
+
+// A PFM is written rows from the bottom up, little-endian, and read back as it was;
+// a file that is not one, or not of the size asked for, is refused in words.
+TEST(ImageFiles, PfmDepthRoundTripsAndBadOnesAreNamed) {
+  const std::vector<float> topDown = {1.5f, 2.5f, 3.5f, std::numeric_limits<float>::infinity(), -0.0f, 1e-30f};
+  const std::string bytes = pfmBytes(3, 2, topDown);
+  ASSERT_EQ(bytes.substr(0, 12), "Pf\n3 2\n-1.0\n");
+  ASSERT_EQ(bytes.size(), 12u + 6 * 4);
+  EXPECT_EQ(bytes.substr(12, 4), std::string("\x00\x00\x80\x7f", 4));  // the bottom row first: +infinity
+  const auto path = test::outputPath("depth.pfm");
+  std::ofstream(path, std::ios::binary) << bytes;
+  std::vector<float> read;
+  ASSERT_EQ(readPfm(path, 3, 2, read), "");
+  EXPECT_EQ(std::memcmp(read.data(), topDown.data(), topDown.size() * 4), 0);
+  // Big-endian (a positive scale) reads as well.
+  std::string bigEndian = "Pf\n1 1\n1.0\n";
+  bigEndian += std::string("\x3f\xc0\x00\x00", 4);
+  std::ofstream(path, std::ios::binary) << bigEndian;
+  ASSERT_EQ(readPfm(path, 1, 1, read), "");
+  EXPECT_EQ(read[0], 1.5f);
+
+  const struct {
+    std::string file, problem;
+  } bad[] = {
+      {"hello", "its depth image depth.pfm is not a PFM: it starts with \"hello\"; expected Pf"},
+      {"PF\n3 2\n-1.0\n", "its depth image depth.pfm is a colour PFM (PF); expected Pf, one float per pixel"},
+      {"Pf\n3\n", "its depth image depth.pfm: its header is not \"Pf W H SCALE\""},
+      {"Pf\n3 2\nlittle\n", "its depth image depth.pfm: its scale \"little\" is not a number; expected -1.0 (little-endian)"},
+      {"Pf\n3 2\n0\n", "its depth image depth.pfm: its scale is 0; expected -1.0 (little-endian) or 1.0 (big-endian)"},
+      {"Pf\n2 3\n-1.0\n", "its depth image depth.pfm is 2x3; expected 3x2, the scene's size line"},
+      {"Pf\n3 2\n-1.0", "its depth image depth.pfm: its header is not followed by the floats"},
+      {"Pf\n3 2\n-1.0\n" + std::string(20, '\0'), "its depth image depth.pfm holds 20 bytes of floats; expected 24 (3 x 2 float32s)"},
+  };
+  for (const auto& [file, problem] : bad) {
+    std::ofstream(path, std::ios::binary) << file;
+    EXPECT_EQ(readPfm(path, 3, 2, read), problem) << file;
+  }
+  EXPECT_EQ(readPfm(test::outputPath("no-such-depth.pfm"), 3, 2, read), "wrote no depth image at no-such-depth.pfm");
 }
 
 TEST(ImageFiles, BadFilesAreRefusedWithTheirPath) {
