@@ -116,6 +116,9 @@ std::string readSegments(const std::filesystem::path& file, std::vector<DrawnSeg
     if (!numbers) return where + "'" + line.substr(0, 60) + "'; expected four numbers, x0 y0 x1 y1 (a visible segment in pixels)";
     if (!std::all_of(v.begin(), v.end(), [](double c) { return std::isfinite(c); }))
       return where + "'" + line.substr(0, 60) + "': a coordinate is not a finite number";
+    if (segments.size() == kMostSegments)
+      return where + "more than 100,000 segments; expected the visible parts of the view's lines (a few hundred segments on the "
+             "shipped scenes)";
     segments.push_back({{v[0], v[1]}, {v[2], v[3]}});
   }
   return "";

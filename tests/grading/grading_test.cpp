@@ -528,6 +528,14 @@ TEST(LineJudge, ABadDrawingNamesItsLine) {
   std::ofstream(folder / "drawing.txt") << "# nothing visible\n";
   EXPECT_EQ(grading::readSegments(folder / "drawing.txt", segments), "");
   EXPECT_TRUE(segments.empty());
+  // A drawing of more segments than the judge takes is refused at the first one too many.
+  {
+    std::ofstream many(folder / "drawing.txt");
+    for (std::size_t k = 0; k <= grading::kMostSegments; ++k) many << "1 2 3 4\n";
+  }
+  EXPECT_EQ(grading::readSegments(folder / "drawing.txt", segments),
+            "drawing.txt:100001: more than 100,000 segments; expected the visible parts of the view's lines (a few hundred segments on "
+            "the shipped scenes)");
 }
 
 std::string hsrLines(const std::string& options) {
