@@ -1,6 +1,5 @@
 #include "renderer/image/pfm.hpp"
 
-#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -10,16 +9,20 @@
 namespace hsr {
 namespace {
 
-// A float as little-endian bytes, whatever the machine's order.
+// A float as little-endian bytes, whatever the machine's order. (memcpy, not
+// std::bit_cast: emscripten's libc++ lacks it.)
 void appendLittleEndian(std::string& bytes, float value) {
-  const auto bits = std::bit_cast<std::uint32_t>(value);
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
   for (int shift = 0; shift < 32; shift += 8) bytes.push_back(char((bits >> shift) & 0xff));
 }
 
 float fromEndian(const unsigned char* four, bool littleEndian) {
   std::uint32_t bits = 0;
   for (int k = 0; k < 4; ++k) bits |= std::uint32_t(four[littleEndian ? k : 3 - k]) << (8 * k);
-  return std::bit_cast<float>(bits);
+  float value = 0;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
 }
 
 }  // namespace
