@@ -43,7 +43,8 @@ constexpr std::array<CauseText, kCauses> kCauseTexts = {{
     {"not a triangle of the scene", "the id is larger than the scene's triangle count (24-bit RGB, R the high byte)"},
     {"depth image: z, not the distance",
      "the depth image holds each pixel's view distance d (world units along the view axis), not the depth buffer's z "
-     "in [0, 1]: decode z to d (under perspective z = f (d - n) / (d (f - n)), so d = f n / (f - z (f - n)))"},
+     "in [0, 1]: decode z to d (under perspective z = f (d - n) / (d (f - n)), so d = f n / (f - z (f - n)); "
+     "orthographic, d = n + z (f - n))"},
     {"depth image: not the shown triangle's distance",
      "where a pixel shows a triangle, the depth image holds that triangle's view distance at the pixel center: under "
      "perspective interpolate 1/d (or z), not d, across the screen; and a PFM's rows go from the image's bottom up"},
@@ -147,9 +148,11 @@ DepthVerdict checkDepth(const PreparedScene& scene, std::uint32_t shown, const d
   const auto zOf = [&](double distance) { return encoding.z(camera.screenAffineDepth(distance)); };
   const auto float32Step = [](double z) { return double(std::nextafter(float(z), 2.0f)) - double(float(z)); };
   DepthVerdict verdict;
+  // A distance is positive: in front of the eye (under perspective a negative one's z
+  // would pass for one beyond the far plane).
   if (shown == 0) {
     const double far = camera.camera().far, farZ = zOf(far);
-    if (!(kept >= far || zOf(kept) >= farZ - 2 * float32Step(farZ))) verdict.cause = Cause::backgroundDepth;
+    if (!(kept >= far || (kept > 0 && zOf(kept) >= farZ - 2 * float32Step(farZ)))) verdict.cause = Cause::backgroundDepth;
     return verdict;
   }
   // z is affine across the screen, so its change over a pixel, right and down, bounds
@@ -158,9 +161,10 @@ DepthVerdict checkDepth(const PreparedScene& scene, std::uint32_t shown, const d
   verdict.expected = planeHit(scene, camera, shown - 1, camera.rayThroughPixel(center.x, center.y)).distance;
   verdict.z = zAt(center.x, center.y);
   const double slope = std::abs(zAt(center.x + 1, center.y) - verdict.z) + std::abs(zAt(center.x, center.y + 1) - verdict.z);
-  const double allowed = 2 * float32Step(verdict.z) + (std::isfinite(slope) ? slope * kSnapDistance : 0) +
-                         std::abs(zOf(verdict.expected * (1 + 0x1p-23)) - verdict.z);
-  if (std::abs(zOf(kept) - verdict.z) <= allowed) return verdict;
+  // A plane seen edge-on has no distance to judge at the center.
+  if (!std::isfinite(verdict.z) || !std::isfinite(slope)) return verdict;
+  const double allowed = 2 * float32Step(verdict.z) + slope * kSnapDistance + std::abs(zOf(verdict.expected * (1 + 0x1p-23)) - verdict.z);
+  if (kept > 0 && std::abs(zOf(kept) - verdict.z) <= allowed) return verdict;
   verdict.cause = std::abs(kept - verdict.z) <= allowed ? Cause::depthIsZ : Cause::depthWrong;
   return verdict;
 }
@@ -331,7 +335,8 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
       heat[0] = 255;
       heat[1] = heat[2] = 0;
       CauseCount& count = found[std::size_t(cause)];
-      if (count.pixels++ == 0 && depthVerdict) {
+      const bool firstOfItsCause = count.pixels++ == 0;
+      if (firstOfItsCause && depthVerdict) {
         count.x = x;
         count.y = y;
         count.first = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): shows " +
@@ -339,7 +344,7 @@ Judgement judge(const PreparedScene& scene, const ReferenceImage& reference, std
                                  : "triangle " + std::to_string(mine) + ", at distance " + distanceText(depthVerdict->expected) +
                                        " there (z " + distanceText(depthVerdict->z) + ")") +
                       "; the depth image holds " + distanceText(depth[p]);
-      } else if (count.pixels == 1) {
+      } else if (firstOfItsCause) {
         count.x = x;
         count.y = y;
         const double mineAt = metAt(mine <= triangles ? mine : 0), exactAt = metAt(exact);

@@ -9,6 +9,8 @@
 namespace hsr {
 namespace {
 
+constexpr std::uintmax_t kLongestHeader = 256;  // "Pf", two sizes and a scale, with room to spare
+
 // A float as little-endian bytes, whatever the machine's order. (memcpy, not
 // std::bit_cast: emscripten's libc++ lacks it.)
 void appendLittleEndian(std::string& bytes, float value) {
@@ -36,13 +38,20 @@ std::string pfmBytes(int width, int height, std::span<const float> topDown) {
 }
 
 std::string readPfm(const std::filesystem::path& file, int width, int height, std::vector<float>& topDown) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return "wrote no depth image at " + file.filename().string();
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A regular file, and no larger than a header and the floats could be: a pipe or a
+  // runaway program's gigabytes are refused before they are read.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) return "wrote no depth image at " + file.filename().string();
   const std::string name = "its depth image " + file.filename().string();
+  const std::uintmax_t floatBytes = 4 * std::uintmax_t(width) * std::uintmax_t(height), size = std::filesystem::file_size(file, error);
+  if (error || size > floatBytes + kLongestHeader)
+    return name + " holds " + std::to_string(size) + " bytes; expected about " + std::to_string(floatBytes) + " (" + std::to_string(width) +
+           " x " + std::to_string(height) + " float32s and a header)";
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   // The header: three whitespace-separated words after the magic, then one whitespace
   // character before the floats.
-  std::istringstream header(bytes.substr(0, 256));
+  std::istringstream header(bytes.substr(0, kLongestHeader));
   std::string magic, scaleWord;
   long fileWidth = 0, fileHeight = 0;
   header >> magic;

@@ -160,6 +160,12 @@ TEST(Judge, ChecksTheDepthImageWhereTheIdsAreRight) {
   EXPECT_EQ(farther.wrong, covered);
   EXPECT_NE(farther.causes.front().first.find("; the depth image holds "), std::string::npos) << farther.causes.front().first;
   EXPECT_EQ(causesOf(grading::judge(prepared, reference, right.ids, {}, true, zeroBackground)), std::vector{grading::Cause::backgroundDepth});
+  // A distance is positive: under perspective a negative one's z lies beyond the far
+  // plane's, and must not pass for the background or for a far surface.
+  std::vector<float> negative = distances;
+  for (float& d : negative) d = -std::abs(d);
+  const grading::Judgement behind = grading::judge(prepared, reference, right.ids, {}, true, negative);
+  EXPECT_EQ(behind.wrong, std::int64_t(distances.size()));
 
   std::vector<std::uint32_t> unknown(right.ids.begin(), right.ids.end());
   unknown[100] = std::uint32_t(prepared.triangleCount()) + 1;

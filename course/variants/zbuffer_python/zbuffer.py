@@ -3,7 +3,9 @@
 hsr grade --self-check must pass. It keeps each pixel's view distance as a double
 (hsr's z-buffer stores float32 z): where the two disagree, only the reference decides.
 
-    python3 zbuffer.py SCENE.tri IDS.png [--order submission|reverse]
+    python3 zbuffer.py SCENE.tri IDS.png DEPTH.pfm [--order submission|reverse]
+
+DEPTH.pfm: each pixel's view distance, the depth image Exercise 1 asks for.
 
 reverse: the triangles drawn last to first, a tie then given to the lower id, so that
 the image is the one submission order gives: the same answer by another traversal.

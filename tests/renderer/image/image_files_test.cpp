@@ -101,6 +101,13 @@ TEST(ImageFiles, PfmDepthRoundTripsAndBadOnesAreNamed) {
     EXPECT_EQ(readPfm(path, 3, 2, read), problem) << file;
   }
   EXPECT_EQ(readPfm(test::outputPath("no-such-depth.pfm"), 3, 2, read), "wrote no depth image at no-such-depth.pfm");
+  // A folder (or a pipe) is no file to read; a file far larger than 3 x 2 floats is
+  // refused before it is read.
+  const auto folder = test::outputPath("depth-folder.pfm");
+  std::filesystem::create_directories(folder);
+  EXPECT_EQ(readPfm(folder, 3, 2, read), "wrote no depth image at depth-folder.pfm");
+  std::ofstream(path, std::ios::binary) << "Pf\n3 2\n-1.0\n" + std::string(1000, '\0');
+  EXPECT_EQ(readPfm(path, 3, 2, read), "its depth image depth.pfm holds 1012 bytes; expected about 24 (3 x 2 float32s and a header)");
 }
 
 TEST(ImageFiles, BadFilesAreRefusedWithTheirPath) {
