@@ -97,15 +97,30 @@ auto causesOf(const Judged& judgement) {
   return causes;
 }
 
+// The counters at 160 x 90, their exact reference and the z-buffer's right answer.
+// (The scene is held by pointer: a PreparedScene points to the Scene it was made from.)
+struct CountersJudged {
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<PreparedScene> prepared;
+  ReferenceImage reference;
+  Frame right;
+};
+CountersJudged countersJudged() {
+  auto scene = std::make_unique<Scene>(loadScene(test::sourcePath("scenes/counters.toml")));
+  auto prepared = preparedAt(*scene, 160, 90);
+  Stats stats;
+  ReferenceImage reference = traceReference(*prepared, 1, stats);
+  Frame right = test::renderZBuffer(*prepared);
+  return {std::move(scene), std::move(prepared), std::move(reference), std::move(right)};
+}
+
 // Each broken convention is named: nothing drawn, a farther surface won (no depth test),
 // a crack on a shared edge, an id that is no triangle; a right answer passes.
 TEST(Judge, NamesWhatIsWrong) {
-  const Scene scene = loadScene(test::sourcePath("scenes/counters.toml"));
-  const auto preparedScene = preparedAt(scene, 160, 90);
-  const PreparedScene& prepared = *preparedScene;
-  Stats stats;
-  const ReferenceImage reference = traceReference(prepared, 1, stats);
-  const Frame right = test::renderZBuffer(prepared);
+  const CountersJudged counters = countersJudged();
+  const PreparedScene& prepared = *counters.prepared;
+  const ReferenceImage& reference = counters.reference;
+  const Frame& right = counters.right;
   EXPECT_TRUE(grading::judge(prepared, reference, right.ids, {}).passed());
 
   const std::vector<std::uint32_t> nothing(right.ids.size(), 0);
@@ -127,12 +142,10 @@ TEST(Judge, NamesWhatIsWrong) {
 // place, distances 0.1% too far, and a background at distance 0 are each named. Where
 // the ids are already wrong, the depth is not judged again.
 TEST(Judge, ChecksTheDepthImageWhereTheIdsAreRight) {
-  const Scene scene = loadScene(test::sourcePath("scenes/counters.toml"));
-  const auto preparedScene = preparedAt(scene, 160, 90);
-  const PreparedScene& prepared = *preparedScene;
-  Stats stats;
-  const ReferenceImage reference = traceReference(prepared, 1, stats);
-  const Frame right = test::renderZBuffer(prepared);
+  const CountersJudged counters = countersJudged();
+  const PreparedScene& prepared = *counters.prepared;
+  const ReferenceImage& reference = counters.reference;
+  const Frame& right = counters.right;
   const std::vector<float> distances(right.depth.begin(), right.depth.end());
   EXPECT_TRUE(grading::judge(prepared, reference, right.ids, {}, true, distances).passed());
 
