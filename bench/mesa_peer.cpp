@@ -4,8 +4,11 @@
 //
 //   build/bench/mesa_peer --threads 2 [--runs 15] [counters city dragons ...]
 //
-// hsr is timed twice, by the textbook loop (path=scalar) and by the fast path
-// (path=simd, algorithms/zbuffer/fast_path.hpp), which draw the same ids.
+// hsr is timed three times: by the textbook loop (path=scalar) and by the fast path
+// (path=simd, algorithms/zbuffer/fast_path.hpp), which draw the same ids and keep their
+// depth buffer for whoever asks for distances (as Mesa's stays in its framebuffer); and
+// by the fast path asked for ids alone (FullFrameOptions::keepDepth off), which is all
+// this comparison reads, and which keeps nothing.
 //
 // Both draw ids, not shading: Mesa gets every triangle's id as a flat vertex colour.
 // OSMesa's own depth buffer stops at 24 bits, so Mesa draws into a framebuffer object
@@ -194,27 +197,31 @@ int main(int argc, char** argv) try {
     // bins triangles into.
     hsr::Frame frame(kWidth, kHeight);
     hsr::ScreenGeometry geometry{prepared.camera(), {}, {}};
-    const auto hsrVisibility = [&](hsr::zbuffer::Path path) {
+    const auto hsrVisibility = [&](hsr::zbuffer::Path path, bool keepDepth) {
       hsr::Stats stats;
       hsr::buildScreenTriangles(prepared, prepared.camera(), {}, threads, stats, geometry);
-      hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats, {.path = path});
+      hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats, {.path = path, .keepDepth = keepDepth});
     };
-    Timing scalar, simd, theirs;
-    for (int run = 0; run < runs + 2; ++run) {  // interleaved, so all three see the same machine load
-      const double a = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::scalar); });
-      const double b = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::simd); });
-      const double c = millisecondsOf([&] { mesa.draw(); });
+    Timing scalar, simd, idsOnly, theirs;
+    for (int run = 0; run < runs + 2; ++run) {  // interleaved, so all four see the same machine load
+      const double a = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::scalar, true); });
+      const double b = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::simd, true); });
+      const double c = millisecondsOf([&] { hsrVisibility(hsr::zbuffer::Path::simd, false); });
+      const double d = millisecondsOf([&] { mesa.draw(); });
       if (run >= 2) {
         scalar.milliseconds.push_back(a);
         simd.milliseconds.push_back(b);
-        theirs.milliseconds.push_back(c);
+        idsOnly.milliseconds.push_back(c);
+        theirs.milliseconds.push_back(d);
       }
     }
     std::printf("%s (%zu triangles)\n", name.c_str(), prepared.triangleCount());
     std::printf("  hsr scalar median %7.2f ms (min %7.2f, max %7.2f)\n", scalar.median(), scalar.min(), scalar.max());
     std::printf("  hsr simd   median %7.2f ms (min %7.2f, max %7.2f)\n", simd.median(), simd.min(), simd.max());
+    std::printf("  ids only   median %7.2f ms (min %7.2f, max %7.2f)\n", idsOnly.median(), idsOnly.min(), idsOnly.max());
     std::printf("  Mesa       median %7.2f ms (min %7.2f, max %7.2f)\n", theirs.median(), theirs.min(), theirs.max());
-    std::printf("  ratio hsr/Mesa (medians): scalar %.2f, simd %.2f\n", scalar.median() / theirs.median(), simd.median() / theirs.median());
+    std::printf("  ratio hsr/Mesa (medians): scalar %.2f, simd %.2f, simd ids only %.2f\n", scalar.median() / theirs.median(),
+                simd.median() / theirs.median(), idsOnly.median() / theirs.median());
     compareIds(frame.ids, mesa.ids());
   }
   return 0;

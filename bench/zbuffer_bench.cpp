@@ -80,6 +80,26 @@ void raster(benchmark::State& state) {
   state.counters["skipped"] = double(warmUp.counter("fragments skipped by block depth"));
 }
 
+// Step 3 when a stage asks for distances: the depth the full frame kept (as float32 z),
+// decoded by Frame::distances(), timed alone (the pass before it is not timed). What a
+// frame that no stage reads the distances of saves.
+void decode(benchmark::State& state) {
+  const char* name = kRasterScenes[state.range(0)];
+  const hsr::PreparedScene& scene = *sceneNamed(name).prepared;
+  const int threads = static_cast<int>(state.range(1));
+  hsr::Stats setUp;
+  const hsr::ScreenGeometry geometry = buildScreenTriangles(scene, {}, threads, setUp);
+  hsr::Frame frame(scene.width(), scene.height());
+  for (auto _ : state) {
+    state.PauseTiming();
+    hsr::Stats stats;
+    hsr::zbuffer::renderFullFrame(geometry, hsr::DepthFormat::float32, threads, frame, stats);
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(frame.distances().data());
+  }
+  state.SetLabel(std::string(name) + " distances decoded threads=" + std::to_string(threads));
+}
+
 // The machine's floor under raster: clearing what a visibility pass must write at least
 // once, the frame's ids and view distances (8 bytes a pixel), with memset, one part per
 // thread on the same threads as the pass. A pass that fills a few large triangles (counters)
@@ -160,6 +180,8 @@ BENCHMARK(visibility)->Apply(visibilityArguments)->Unit(benchmark::kMillisecond)
 BENCHMARK(raster)->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(reference)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
+BENCHMARK(decode)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);
 BENCHMARK(memsetFloor)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()
     ->ComputeStatistics("min", minimum)->ComputeStatistics("max", maximum);

@@ -72,9 +72,9 @@ void printPlan(const LoadedScene& scene, const pipeline::Configuration& configur
 }
 
 // The nearest and farthest view distances a frame shows (its finite depths), if any.
-std::optional<std::pair<double, double>> visibleDepths(const Frame& frame) {
+std::optional<std::pair<double, double>> visibleDepths(const Frame& frame, Stats& stats) {
   double nearest = std::numeric_limits<double>::infinity(), farthest = 0;
-  for (const float d : frame.depth)
+  for (const float d : frame.distances(&stats))
     if (std::isfinite(d)) nearest = std::min(nearest, double(d)), farthest = std::max(farthest, double(d));
   if (!(nearest <= farthest)) return std::nullopt;
   return std::pair(nearest, farthest);
@@ -248,7 +248,7 @@ int render(const RenderOptions& options) {
     else if (polygonSvg) outputs.addText(output, visiblePolygonsSvg(rendered.polygons, rendered.frame));
     else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
     else outputs.addColorPng(output, rendered.frame);
-    if (depthFile.extension() == ".pfm") outputs.addText(depthFile, pfmBytes(rendered.frame.width, rendered.frame.height, rendered.frame.depth));
+    if (depthFile.extension() == ".pfm") outputs.addText(depthFile, pfmBytes(rendered.frame.width, rendered.frame.height, rendered.frame.distances(&stats)));
     else if (!options.depth.empty()) outputs.addDepthExr(depthFile, rendered.frame);
     if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
     if (!options.segments.empty()) outputs.addText(options.segments, visibleSegmentsText(rendered.drawing));
@@ -266,10 +266,12 @@ int render(const RenderOptions& options) {
   // Why the image or drawing may be wrong somewhere, as the algorithm says.
   const std::string& partial = lines ? rendered.drawing.partial : frame.partial;
   if (!partial.empty()) std::fprintf(stderr, "hsr: warning: the %s is partial: %s\n", lines ? "drawing" : "image", partial.c_str());
-  const std::optional<std::pair<double, double>> depths = lines ? std::nullopt : visibleDepths(frame);
-  if (stats.counter(kDepthTiesCounter) > 0 && depths && algorithm.depthFormat)
-    reportDepthTies(stats.counter(kDepthTiesCounter), algorithm.depthFormat(configuration.knobs), scene.prepared->camera(), depths->second,
-                    options.stats || options.explain);
+  // The visible depths read the distances, which the z-buffer then decodes: only for the
+  // depth ties' warning, and for --explain's resolutions after what the render decided.
+  if (stats.counter(kDepthTiesCounter) > 0 && algorithm.depthFormat && !lines)
+    if (const auto depths = visibleDepths(frame, stats))
+      reportDepthTies(stats.counter(kDepthTiesCounter), algorithm.depthFormat(configuration.knobs), scene.prepared->camera(),
+                      depths->second, options.stats || options.explain);
   if (options.stats) {
     // Asked for here, not counted by any pass: the pixels a surface shows (for depth
     // complexity, fragments per covered pixel).
@@ -278,7 +280,7 @@ int render(const RenderOptions& options) {
   }
   if (options.explain) {
     printDecisions(stats, seconds);
-    if (depths) printDepthResolutions(scene.prepared->camera(), *depths);
+    if (const auto depths = lines ? std::nullopt : visibleDepths(frame, stats)) printDepthResolutions(scene.prepared->camera(), *depths);
   }
   return 0;
 }

@@ -48,6 +48,10 @@ std::vector<std::string> decisionsTaken(const Stats& stats) {
   if (counted("occlusion: occludees tested") > 0)
     decisions.push_back("occlusion culling: " + n(counted("occlusion: occluders rasterized")) + " occluders drawn, " +
                         n(counted("occlusion: occludees culled")) + " of " + n(counted("occlusion: occludees tested")) + " objects culled");
+  if (counted("depth buffer bytes") > 0)
+    say(counted(kDistancesDecodedCounter) > 0,
+        "distances: the depth buffer decoded to view distances at " + n(counted(kDistancesDecodedCounter)) + " pixels",
+        "distances: none decoded; nothing read them, and the depth buffer stayed as its format stored it");
   say(counted("normals computed") > 0,
       "normals: " + n(counted("normals computed")) + " corner normals computed, for the " + n(counted("shading set-ups")) +
           " triangles shading set up",

@@ -73,6 +73,7 @@ ShadowMaps::ShadowMaps(const PreparedScene& scene, const ShadowSettings& setting
       stats.add("shadow map texels", static_cast<std::int64_t>(map.frame.pixelCount()));
       stats.add("shadow map fragments written", mapStats.counter("fragments written"));
       const double texelsPerUnit = view.perspective() ? settings.resolution / 2.0 : settings.resolution / view.camera().orthoHeight;
+      map.frame.distances();  // the shadow test compares distances
       lightViewsDrawn.push_back({view, std::move(map.frame.depth), texelsPerUnit});
     }
   }

@@ -88,7 +88,7 @@ void blendOverOpaque(const PreparedScene& scene, const PaintedPieces& glass, Pix
                      Stats& stats) {
   PhaseTimer timer(stats, "transparency");
   setUpShading(glass, shader, threads, stats);
-  const PixelBuffer<float> opaqueDepth = frame.depth;
+  const PixelBuffer<float> opaqueDepth = frame.distances(&stats);  // then frame.depth holds distances, and the nearest glass goes there
   const TileGrid tiles(frame.width, frame.height);
   std::vector<dvec3> blended(frame.pixelCount());
   std::vector<TileCounts> counts(tiles.count());

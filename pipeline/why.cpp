@@ -298,7 +298,7 @@ std::vector<PixelAnswer> explainPixels(const PreparedScene& scene, const Configu
     PixelAnswer& answer = answers[asked];
     const std::size_t at = std::size_t(answer.pixel.y) * std::size_t(scene.width()) + std::size_t(answer.pixel.x);
     answer.shown = visibility.frame.ids[at];
-    answer.distance = visibility.frame.depth[at];
+    answer.distance = visibility.frame.distances(&stats)[at];
     answer.culled = answer.reference.id != conventions::kBackgroundId &&
                     !std::binary_search(kept.triangles.begin(), kept.triangles.end(), answer.reference.id - 1);
     // The culling stages ran first: their fate for the reference's triangle leads the history.

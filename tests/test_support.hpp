@@ -304,7 +304,7 @@ inline PixelShares everyPointTraced(const Scene& scene, int width, int height, i
 
 // Whether two frames hold the same depth, bit for bit (NaN and -0 included).
 inline bool sameDepthBits(const Frame& a, const Frame& b) {
-  return a.depth.size() == b.depth.size() && std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;
+  return a.distances().size() == b.distances().size() && std::memcmp(a.distances().data(), b.distances().data(), a.distances().size() * sizeof(float)) == 0;
 }
 
 // A frame against sampledOneByOne's: the same id at every pixel (the first that differ

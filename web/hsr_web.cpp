@@ -331,7 +331,10 @@ bool hasRender() { return shown().algorithm != nullptr; }
 // The last render's images, as views of the module's memory (valid until the next render).
 emscripten::val colorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.color.size(), shown().frame.color.data())); }
 emscripten::val idPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.ids.size(), shown().frame.ids.data())); }
-emscripten::val depthPixels() { return emscripten::val(emscripten::typed_memory_view(shown().frame.depth.size(), shown().frame.depth.data())); }
+emscripten::val depthPixels() {
+  const PixelBuffer<float>& distance = shown().frame.distances();
+  return emscripten::val(emscripten::typed_memory_view(distance.size(), distance.data()));
+}
 emscripten::val errorPixels() { return emscripten::val(emscripten::typed_memory_view(shown().error.size(), shown().error.data())); }
 emscripten::val referenceIdPixels() {
   return emscripten::val(emscripten::typed_memory_view(shown().referenceIds.size(), shown().referenceIds.data()));

@@ -315,29 +315,31 @@ HSR_AVX2 void SimdTile::draw(const ScreenTriangle& tri) {
   counts_.skippedByBlockDepth += counts.skippedByBlockDepth;
 }
 
-HSR_AVX2 void SimdTile::decode(std::span<float> distance, bool perspective) const {
-  const __m256d a = _mm256_set1_pd(encoding_.a), reciprocalB = _mm256_set1_pd(1.0 / encoding_.b), one = _mm256_set1_pd(1.0);
+HSR_AVX2 void decodeRowsFast(const DepthEncoding& encoding, bool perspective, DepthBuffer<const float> stored,
+                             std::span<const std::uint32_t> ids, std::span<float> distance, std::pair<int, int> rows) {
+  const __m256d a = _mm256_set1_pd(encoding.a), reciprocalB = _mm256_set1_pd(1.0 / encoding.b), one = _mm256_set1_pd(1.0);
   const __m256 infinity = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   const __m256i background = _mm256_set1_epi32(static_cast<int>(conventions::kBackgroundId));
-  for (int y = rect_.y0; y < rect_.y1; ++y)
-    for (int x = rect_.x0; x < rect_.x1; x += kBlock) {
-      const std::size_t at = std::size_t(y) * width_ + x;
-      const RowOfEight row(x, rect_.x1);
+  const int width = int(stored.stride);
+  for (int y = rows.first; y < rows.second; ++y)
+    for (int x = 0; x < width; x += kBlock) {
+      const std::size_t at = std::size_t(y) * stored.stride + std::size_t(x);
+      const RowOfEight row(x, width);
       // Lanes past the image's edge read as background.
-      const __m256i isBackground = _mm256_or_si256(_mm256_cmpeq_epi32(row.load(&ids_[at]), background),
+      const __m256i isBackground = _mm256_or_si256(_mm256_cmpeq_epi32(row.load(&ids[at]), background),
                                                    _mm256_xor_si256(row.lanes(), _mm256_set1_epi32(-1)));
       if (_mm256_testc_si256(isBackground, _mm256_set1_epi32(-1))) {  // all background: no division to do
         row.store(&distance[at], infinity);
         continue;
       }
-      const __m256 stored = row.load(&depth_.at(x, y));
+      const __m256 values = row.load(&stored.at(x, y));  // read before the distances are stored where they may be
       __m128 half[2];
       for (int h = 0; h < 2; ++h) {
         // As DepthTest::distance: t = (z - a) (1 / b), and the distance 1 / t in perspective.
         // Background lanes (and those past the image's edge) divide 1 by 1 instead: the
         // far end of reversed-float32-inf is t = 0, and the scalar loop divides only
         // where a triangle was drawn (the debug build traps a division by zero).
-        const __m128 four = h == 0 ? _mm256_castps256_ps128(stored) : _mm256_extractf128_ps(stored, 1);
+        const __m128 four = h == 0 ? _mm256_castps256_ps128(values) : _mm256_extractf128_ps(values, 1);
         const __m256d undrawn = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(h == 0 ? _mm256_castsi256_si128(isBackground) : _mm256_extracti128_si256(isBackground, 1)));
         const __m256d t = _mm256_blendv_pd(_mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(four), a), reciprocalB), one, undrawn);
         half[h] = _mm256_cvtpd_ps(perspective ? _mm256_div_pd(one, t) : t);
@@ -357,7 +359,6 @@ void drawTileFast(const Tile<Format>& tile, TileWatcher* watcher) {
     else depthTestTriangle(tile, tri);           // step 2, a few pixels: the textbook's
     if (watcher) watcher->drawn(drawn, tri);
   }
-  fast.decode(tile.frame.depth, tile.geometry.camera.perspective());  // step 3
 }
 template void drawTileFast(const Tile<Float32Depth>&, TileWatcher*);
 template void drawTileFast(const Tile<ReversedFloat32Depth>&, TileWatcher*);

@@ -1,5 +1,6 @@
-// The z-buffer's fast path: the full-frame loop's step 2 and step 3 for one tile, eight
-// pixels at a time with AVX2, with hierarchical rejection of 8 x 8 blocks.
+// The z-buffer's fast path: the full-frame loop's step 2 for one tile, eight
+// pixels at a time with AVX2, with hierarchical rejection of 8 x 8 blocks, and step 3
+// (decoding the depth kept) eight pixels at a time.
 //
 // It computes what the textbook loop computes, with the same operations in the same
 // order on each pixel, so the ids, the depths and the counters come out bit for bit the
@@ -28,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "algorithms/zbuffer/textbook.hpp"
@@ -50,9 +52,6 @@ class SimdTile {
   bool worthDrawing(const ScreenTriangle& tri) const;
   // Step 2 for one triangle: every pixel of the tile it covers, depth-tested.
   void draw(const ScreenTriangle& tri);
-  // Step 3: the tile's depth decoded to view distance (perspective: 1 / t), +infinity
-  // on the background.
-  void decode(std::span<float> distance, bool perspective) const;
 
  private:
   TileGrid::Rect rect_;
@@ -68,8 +67,14 @@ class SimdTile {
   std::vector<float> blockFarthest_;
 };
 
+// Step 3 (decodeRows, textbook.hpp) for a float format, eight pixels at a time: the same
+// operations on each pixel, the same bits. `stored` may hold its values where the
+// distances go; each eight are read before they are written.
+void decodeRowsFast(const DepthEncoding& encoding, bool perspective, DepthBuffer<const float> stored, std::span<const std::uint32_t> ids,
+                    std::span<float> distance, std::pair<int, int> rows);
+
 // The textbook's loop on one tile (drawTile, textbook.hpp), with the tile's large
-// triangles drawn by SimdTile and its depth decoded by it: the same steps, the same bits.
+// triangles drawn by SimdTile: the same steps, the same bits.
 // For Float32Depth and ReversedFloat32Depth.
 template <typename Format>
 void drawTileFast(const Tile<Format>& tile, TileWatcher* watcher);

@@ -2,8 +2,10 @@
 // cut into tiles drawn in parallel, the depth buffer they share, the fast path where it
 // runs, --steps' pictures, and the counters.
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <type_traits>
 
 #include "algorithms/zbuffer/fast_path.hpp"
@@ -49,6 +51,39 @@ class StepsWatcher final : public TileWatcher {
   std::vector<double>& testedAt_;
 };
 
+// Step 3 (decodeRows, textbook.hpp), left for the stage that asks for distances
+// (Frame::distances), by the loop that drew (`simd`: the fast path's, decodeRowsFast).
+// What it decodes: the textbook loop's depth buffer, kept whole (`kept`), or, when that
+// is null, the values the fast path left in the frame's depth.
+// Without keepDepth the caller has said it reads the ids alone, and nothing is kept.
+template <typename Format, bool kFastPathBuilt>
+void leaveStep3(Frame& frame, const CameraTransform& camera, const DepthEncoding& encoding,
+                std::shared_ptr<const typename Format::Stored[]> kept, int threads, bool keepDepth, bool simd) {
+  if (!keepDepth) {
+    frame.leaveUndecoded([](std::span<float>, std::span<const std::uint32_t>) {
+      HSR_CHECK(!"the z-buffer was asked for ids alone (FullFrameOptions::keepDepth), and kept no depth to decode");
+    });
+    return;
+  }
+  const int width = frame.width, height = frame.height;
+  frame.leaveUndecoded([=, kept = std::move(kept)](std::span<float> distance, std::span<const std::uint32_t> ids) {
+    using Stored = typename Format::Stored;
+    const Stored* values = kept ? kept.get() : reinterpret_cast<const Stored*>(distance.data());
+    const DepthBuffer<const Stored> stored{values, std::size_t(width), 0, 0};
+    const DepthTest<Format> test{encoding};
+    // One band of rows per worker: a row is too little work to be claimed alone.
+    const std::size_t bands = std::size_t(parallelWorkers(std::size_t(height), threads));
+    parallelFor(bands, threads, [&](std::size_t band, int) {
+      const auto [first, end] = partRange(std::size_t(height), bands, band);
+      const std::pair<int, int> rows{int(first), int(end)};
+      if constexpr (kFastPathBuilt) {
+        if (simd) return decodeRowsFast(encoding, camera.perspective(), stored, ids, distance, rows);
+      }
+      decodeRows(test, camera, stored, ids, distance, rows);
+    });
+  });
+}
+
 }  // namespace
 
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
@@ -79,7 +114,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
     const auto depthValues = [&](const TileGrid& grid, int workers) {
       return simd ? std::size_t(parallelWorkers(grid.count(), workers)) * grid.largestTileArea() : frame.pixelCount();
     };
-    const auto depth = uninitializedArray<typename Format::Stored>(depthValues(tiles, threads));
+    auto depth = uninitializedArray<typename Format::Stored>(depthValues(tiles, threads));
     std::vector<double> testedAt(recording ? frame.pixelCount() : 0);  // fragments tested per pixel, for the steps
     std::vector<DepthTest<Format>> tileResults(bins.size());
     parallelFor(bins.size(), threads, [&](std::size_t index, int worker) {
@@ -99,8 +134,15 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
       } else {
         drawTile(tile, watching);
       }
+      // The fast path's buffer is reused for this worker's next tile: the tile's depth, as
+      // stored, is kept in the frame's (a float format's values are floats) for step 3.
+      if (simd && options.keepDepth)
+        for (int y = area.y0; y < area.y1; ++y)
+          std::copy_n(&tile.depth.at(area.x0, y), area.x1 - area.x0, reinterpret_cast<typename Format::Stored*>(&frame.depth[tile.pixel(area.x0, y)]));
       tileResults[index] = test;
     });
+    leaveStep3<Format, kFastPathBuilt>(frame, geometry.camera, encoding, simd ? nullptr : std::shared_ptr<const typename Format::Stored[]>(std::move(depth)), threads,
+               options.keepDepth, simd);
     if (recording)
       recording->steps.record("overdraw: fragments tested per pixel (" + std::to_string(tileResults[0].counts.tested) + " in all, " +
                                   std::to_string(tileResults[0].counts.written) + " written)",

@@ -36,6 +36,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
                     bool depthTest, const Recording* recording, PixelWitness* witness) {
   PhaseTimer timer(stats, "rasterization");
   const auto& triangles = geometry.triangles;
+  frame.leaveUndecoded({});  // step 5 writes the distances, row by row
 
   // Step 1: a bucket per row of the triangles whose first row it is, in submission order.
   const auto startingAt = trianglesByFirstRow(triangles, frame.height);
@@ -68,7 +69,8 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
           rasterizeSpan(tri, int(y), tri.minX, tri.maxX + 1,
                         [&](int x) { test.test(tri, x, int(y), depthRow[std::size_t(x)], frame.ids[row + std::size_t(x)]); });
         }
-        // Step 5: the row is final: decode its depth into the frame before the buffer is reused.
+        // Step 5: the row is final: decode its depth into the frame before the buffer is
+        // reused (the full frame keeps its buffer and decodes when asked; a row is gone by then).
         for (int x = 0; x < frame.width; ++x)
           frame.depth[row + std::size_t(x)] = test.distance(frame.ids[row + std::size_t(x)], depthRow[std::size_t(x)], geometry.camera);
         if (recording && recording->steps.due(y, last)) recordRow(*recording, geometry.camera, frame, y, triangles, active, entering);
@@ -83,6 +85,7 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
     }
     stats.add("depth buffer bytes",
               static_cast<std::int64_t>(std::size_t(workers) * std::size_t(frame.width) * sizeof(typename Format::Stored)));
+    stats.add(kDistancesDecodedCounter, static_cast<std::int64_t>(frame.pixelCount()));
   });
 }
 

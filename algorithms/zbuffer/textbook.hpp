@@ -5,19 +5,22 @@
 //   2. for every triangle, in the order they are submitted, and every pixel whose center
 //      it covers: compute the triangle's depth there, and keep the fragment (its depth
 //      and id) if it is nearer than what the pixel holds;
-//   3. the depth buffer now holds, at every pixel, the nearest depth drawn there: decode
-//      it to a distance along the view axis for the frame.
+//   3. the depth buffer now holds, at every pixel, the nearest depth drawn there: when a
+//      later stage asks for distances (fog, an outline, a --depth image, a metric), decode
+//      it to a distance along the view axis; until then it stays as the format stored it.
 //
-// drawTile below is that loop. Everything around it is machinery (full_frame.cpp): the
-// image cut into tiles drawn in parallel (a tile's triangles in submission order, so the
-// image is the same for any number of threads), the fast path that draws a tile's large
-// triangles eight pixels at a time (fast_path.hpp, the same bits), and --steps' pictures.
+// drawTile below is steps 1 and 2, decodeRows step 3. Everything around them is machinery
+// (full_frame.cpp): the image cut into tiles drawn in parallel (a tile's triangles in
+// submission order, so the image is the same for any number of threads), the fast path
+// that draws a tile's large triangles eight pixels at a time (fast_path.hpp, the same
+// bits), the depth buffer kept for step 3 (Frame::distances), and --steps' pictures.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/raster/raster.hpp"
@@ -98,17 +101,7 @@ void depthTestTriangle(const Tile<Format>& tile, const ScreenTriangle& tri) {
   // END SOLUTION
 }
 
-// Step 3: what the format stored, decoded to a distance along the view axis.
-template <typename Format>
-void decodeTile(const Tile<Format>& tile) {
-  const auto [x0, y0, x1, y1] = tile.area;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      tile.frame.depth[tile.pixel(x, y)] = tile.test.distance(tile.frame.ids[tile.pixel(x, y)], tile.depth.at(x, y), tile.geometry.camera);
-}
-
-// The loop: step 1, then step 2 for every triangle in the order they were submitted,
-// then step 3.
+// The loop: step 1, then step 2 for every triangle in the order they were submitted.
 template <typename Format>
 void drawTile(const Tile<Format>& tile, TileWatcher* watcher) {
   clearTile(tile);
@@ -117,7 +110,21 @@ void drawTile(const Tile<Format>& tile, TileWatcher* watcher) {
     depthTestTriangle(tile, tri);
     if (watcher) watcher->drawn(drawn, tri);
   }
-  decodeTile(tile);
+}
+
+// Step 3, for the rows `rows` of a frame as wide as `stored`'s stride: what the format
+// stored, decoded to a distance along the view axis (+infinity on the background).
+// `stored` may hold its values where the distances go (a float format's depth kept in the
+// frame): each pixel is read before it is written.
+template <typename Format>
+void decodeRows(const DepthTest<Format>& test, const CameraTransform& camera, DepthBuffer<const typename Format::Stored> stored,
+                std::span<const std::uint32_t> ids, std::span<float> distance, std::pair<int, int> rows) {
+  const int width = int(stored.stride);
+  for (int y = rows.first; y < rows.second; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t pixel = std::size_t(y) * stored.stride + std::size_t(x);
+      distance[pixel] = test.distance(ids[pixel], stored.at(x, y), camera);
+    }
 }
 
 }  // namespace hsr::zbuffer

@@ -3,7 +3,8 @@
 //
 // Inputs: a PreparedScene (world-space triangles with ids), a view, the knobs.
 // Output: per pixel, the visible triangle's id + 1 (0 = background) and its depth as
-// the chosen format stored it (decoded to view distance).
+// the chosen format stored it, decoded to view distance when a later stage asks
+// (Frame::distances; the full frame keeps its buffer until then).
 #pragma once
 
 #include <cstddef>
@@ -69,7 +70,8 @@ inline const KnobTable<Knobs>& knobTable() {
 // The visibility pass: the geometry stage, then the chosen variant, into visibility.frame
 // (ids and depth). threads: 0 = all cores; the same bits for every count. Stats:
 // "fragments tested", "fragments written", "depth ties" (DepthTest), "depth buffer
-// bytes", and the geometry stage's. With request.why, every fragment tested at a pixel
+// bytes", the geometry stage's, and "distances decoded" where they were (the scanline
+// variant decodes every row; the full frame's are decoded by Frame::distances, on demand). With request.why, every fragment tested at a pixel
 // asked about is recorded there (DepthTest), and the full frame runs the textbook loop.
 void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility);
 
@@ -82,8 +84,10 @@ struct Recording {
   const PreparedScene& scene;
 };
 
-// The variants' visibility passes: they overwrite every pixel of frame.ids and
-// frame.depth (a Frame of the scene's size may be reused) and leave frame.color alone.
+// The variants' visibility passes: they overwrite every pixel of frame.ids and leave
+// frame.color alone (a Frame of the scene's size may be reused). The scanline variant
+// writes the distances; the full frame leaves its depth buffer with the frame, decoded
+// by the first call to frame.distances().
 // With a recording, the full frame draws the whole image as one tile (every triangle in
 // submission order, one thread) and records after triangles; the scanline variant runs
 // its rows on one thread and records after rows. Same image and counters either way.
@@ -92,6 +96,9 @@ struct FullFrameOptions {
   Path path = Path::simd;
   const Recording* recording = nullptr;
   PixelWitness* witness = nullptr;  // hsr why's pixels (DepthTest), drawn by the textbook loop
+  // Off: the caller reads frame.ids alone (a peer compared on ids), so the depth buffer
+  // is not kept for step 3, and asking the frame for distances is a bug in the caller.
+  bool keepDepth = true;
 };
 void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int threads, Frame& frame, Stats& stats,
                      const FullFrameOptions& options = {});

@@ -30,6 +30,15 @@ Frame::Frame(int w, int h, int threads)
   });
 }
 
+const PixelBuffer<float>& Frame::distances(Stats* stats) const {
+  if (decoder_) {
+    decoder_(depth, ids);
+    decoder_ = nullptr;
+    if (stats) stats->add(kDistancesDecodedCounter, static_cast<std::int64_t>(pixelCount()));
+  }
+  return depth;
+}
+
 OutputFiles::~OutputFiles() {
   for (const auto& [temporary, final] : staged_) {
     std::error_code ignored;
@@ -89,7 +98,7 @@ void OutputFiles::addIdsPng(const std::filesystem::path& path, const Frame& fram
 
 void OutputFiles::addDepthExr(const std::filesystem::path& path, const Frame& frame) {
   const auto temporary = stage(path, ".exr");
-  const std::string error = imageLibrary().writeDepthExr(temporary.string(), frame.width, frame.height, frame.depth.data());
+  const std::string error = imageLibrary().writeDepthExr(temporary.string(), frame.width, frame.height, frame.distances().data());
   if (!error.empty()) throw InputError(path.string() + ": cannot write the image: " + error);
 }
 

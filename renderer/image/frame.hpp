@@ -6,19 +6,32 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "renderer/image/image.hpp"
 #include "renderer/util/memory.hpp"
+#include "renderer/util/stats.hpp"
 
 namespace hsr {
+
+// What Frame::distances() counts when it decodes: the pixels decoded.
+inline constexpr const char* kDistancesDecodedCounter = "distances decoded";
+
+// How a pass that left its depth buffer in its own format turns it into view distances:
+// into `depth` (which may be where the stored values wait), from what it kept, with the
+// ids telling the background from the surfaces.
+using DistanceDecoder = std::function<void(std::span<float> depth, std::span<const std::uint32_t> ids)>;
 
 struct Frame {
   int width = 0, height = 0;
   PixelBuffer<std::uint8_t> color;  // RGBA8, row 0 at the top
-  PixelBuffer<float> depth;         // distance along the view axis; +infinity = background
+  // Distance along the view axis; +infinity = background. Read it through distances():
+  // a pass may leave it undecoded (the z-buffer keeps its depth buffer as its format
+  // stored it), and only a pass that writes distances writes here.
+  mutable PixelBuffer<float> depth;
   PixelBuffer<std::uint32_t> ids;   // global triangle index + 1; 0 = background
   // Why the image is known to be wrong in places (an algorithm stopped at a limit), or
   // "" when it is not: hsr render warns and records it in the PNG's description.
@@ -30,6 +43,18 @@ struct Frame {
   // was half the z-buffer's pass on counters at 1920x1080).
   Frame(int w, int h, int threads = 1);
   std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+
+  // The view distances: decoded on the first call when the pass left them undecoded, and
+  // then counted as "distances decoded" in `stats` (when given); once only. The first call
+  // is not to be made from several threads at once.
+  const PixelBuffer<float>& distances(Stats* stats = nullptr) const;
+  // What a pass that keeps its depth in its own format leaves: the decoder distances()
+  // will run. An empty one: `depth` holds distances (as a pass that writes them leaves it).
+  void leaveUndecoded(DistanceDecoder decoder) { decoder_ = std::move(decoder); }
+  bool decoded() const { return !decoder_; }
+
+ private:
+  mutable DistanceDecoder decoder_;
 };
 
 // A colour, 8 bits per channel.

@@ -13,6 +13,7 @@ SurfaceError surfaceError(const Frame& frame, const ReferenceImage& reference) {
   const Frame& truth = reference.frame;
   HSR_CHECK(frame.width == truth.width && frame.height == truth.height);
   SurfaceError error;
+  const PixelBuffer<float>& distance = frame.distances();
   double depthSum = 0;
   for (std::size_t pixel = 0; pixel < frame.pixelCount(); ++pixel) {
     if (reference.ambiguous[pixel]) {
@@ -22,7 +23,7 @@ SurfaceError surfaceError(const Frame& frame, const ReferenceImage& reference) {
       error.wrongPixels += frame.ids[pixel] != truth.ids[pixel];
     }
     if (frame.ids[pixel] == truth.ids[pixel] && truth.ids[pixel] != conventions::kBackgroundId) {
-      const double difference = std::abs(double(frame.depth[pixel]) - double(truth.depth[pixel]));
+      const double difference = std::abs(double(distance[pixel]) - double(truth.depth[pixel]));
       ++error.depthPixels;
       depthSum += difference;
       error.depthErrorMax = std::max(error.depthErrorMax, difference);

@@ -12,7 +12,7 @@ namespace hsr {
 // The fraction of a surface's color left after fog at view distance d (1 = clear).
 double fogClearFraction(const FogSettings& fog, double distance);
 
-// Phase "fog": every pixel that shows a surface, blended by frame.depth. The background
+// Phase "fog": every pixel that shows a surface, blended by its view distance (frame.distances()). The background
 // is already the far end.
 void applyFog(const FogSettings& fog, Frame& frame, int threads, Stats& stats);
 

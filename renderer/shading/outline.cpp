@@ -32,12 +32,13 @@ void drawOutline(const PreparedScene& scene, const CameraTransform& camera, cons
   PhaseTimer timer(stats, "outline");
   const std::vector<std::int8_t> facing = viewFacing(scene, camera, stats);
   const std::vector<FeatureEdge> edges = featureEdges(scene, camera, facing, outline.creaseDegrees, stats);
+  const PixelBuffer<float>& viewDistance = frame.distances(&stats);
   const auto farthestNearby = [&](int x, int y) {
     float farthest = 0;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const int nx = std::clamp(x + dx, 0, frame.width - 1), ny = std::clamp(y + dy, 0, frame.height - 1);
-        farthest = std::max(farthest, frame.depth[std::size_t(ny) * std::size_t(frame.width) + std::size_t(nx)]);
+        farthest = std::max(farthest, viewDistance[std::size_t(ny) * std::size_t(frame.width) + std::size_t(nx)]);
       }
     return farthest;
   };

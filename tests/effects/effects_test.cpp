@@ -42,10 +42,11 @@ const std::map<std::string, std::set<std::string>>& ownedWork() {
                      "shadowed lookups", "shadow maps", "pass: shadow maps", "specular terms"}},
       // The transparent objects leave the depth buffer for the sorted pass, and the shadow
       // maps' casters, so those passes' own counts change too: only the sorted pass is new.
+      // It is the first pass that reads distances: the z-buffer decodes its depth for it.
       {"+ transparency", {"blended writes", "shading set-ups", "normals computed", "pieces painted", "cut tests", "transparency", "pass: transparency", "ordering", "shading invocations",
                           "specular terms", "shadow lookups", "shadowed lookups", "fragments written", "fragments tested",
                           "screen triangles", "triangles in", "triangles clipped", "triangles outside view",
-                          "triangles between pixel centers", "vertices transformed", "shadow map fragments written"}},
+                          "triangles between pixel centers", "vertices transformed", "shadow map fragments written", kDistancesDecodedCounter}},
       {"+ fog", {"fog blends", "fog", "pass: fog"}},
       {"+ outline", {"outline edges", "outline pixels", "feature edges", "mesh edges built", "facing tests",
                      "predicate evaluations", "predicate exact fall-backs", "edge adjacency", "outline", "pass: outline"}},
@@ -104,6 +105,29 @@ TEST(Effects, AddingAnEffectAddsOnlyItsOwnPass) {
       previous = stats;
     }
   }
+}
+
+// The z-buffer keeps its depth buffer undecoded until a pass reads distances: up the
+// ladder, transparency is the first (the glass is tested against the opaque distances),
+// and fog alone asks too; the shadow maps' light views decode their own, counted apart.
+TEST(Effects, TheZBufferDecodesDistancesOnlyForAPassThatReadsThem) {
+  const test::LoadedScene showcase(test::sourcePath(kShowcase), 320);
+  const std::vector<studies::EffectStep> ladder = studies::effectLadder(showcase.scene);
+  bool reading = false;
+  for (const studies::EffectStep& step : ladder) {
+    reading = reading || step.name == "+ transparency";
+    const PreparedScene prepared(step.scene);
+    Stats stats;
+    renderWith("zbuffer", prepared, stats);
+    EXPECT_EQ(stats.counter(kDistancesDecodedCounter), reading ? std::int64_t(prepared.width()) * prepared.height() : 0) << step.name;
+  }
+  Scene fogOnly = ladder.front().scene;
+  fogOnly.effects.fog = true;
+  const PreparedScene foggy(fogOnly);
+  Stats stats;
+  renderWith("zbuffer", foggy, stats);
+  EXPECT_EQ(stats.counter(kDistancesDecodedCounter), std::int64_t(foggy.width()) * foggy.height());
+  EXPECT_GT(stats.counter("fog blends"), 0);
 }
 
 TEST(Effects, EachEffectCountsItsWorkWhenDeclared) {
@@ -258,7 +282,7 @@ TEST(Effects, FogBlendsEachPixelByItsFormula) {
         continue;
       }
       ++covered;
-      const double keep = fogClearFraction(foggy.effects.fogSettings, before.depth[pixel]);
+      const double keep = fogClearFraction(foggy.effects.fogSettings, before.distances()[pixel]);
       for (int c = 0; c < 3; ++c)
         ASSERT_EQ(after.color[4 * pixel + c], channelByte(keep * before.color[4 * pixel + c] / 255.0 + (1 - keep) * foggy.effects.fogSettings.color[c]))
             << "pixel " << pixel;

@@ -146,7 +146,7 @@ TEST(Judge, ChecksTheDepthImageWhereTheIdsAreRight) {
   const PreparedScene& prepared = *counters.prepared;
   const ReferenceImage& reference = counters.reference;
   const Frame& right = counters.right;
-  const std::vector<float> distances(right.depth.begin(), right.depth.end());
+  const std::vector<float> distances(right.distances().begin(), right.distances().end());
   EXPECT_TRUE(grading::judge(prepared, reference, right.ids, {}, true, distances).passed());
 
   const CameraTransform& camera = prepared.camera();

@@ -197,7 +197,7 @@ TEST(HardCase, SliversAndZeroAreaTrianglesStayExact) {
   }
   test::CaseFailures nan("a depth is NaN"), zeroArea("a zero-area triangle drew a pixel");
   for (std::size_t p = 0; p < frame.pixelCount(); ++p) {
-    nan.expect(!std::isnan(frame.depth[p]), [&] { return test::describePixel(frame, p); });
+    nan.expect(!std::isnan(frame.distances()[p]), [&] { return test::describePixel(frame, p); });
     // Triangles 13, 15, ..., 23 repeat a vertex: exactly zero area, they may own no pixel.
     // (12, 14, ..., 22 are collinear in decimal, not quite in binary: the rays judge those.)
     const std::uint32_t id = frame.ids[p];

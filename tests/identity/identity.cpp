@@ -91,7 +91,7 @@ std::string renderLine(const std::string& sceneName, const Scene& scene, const C
     Stats stats;
     const pipeline::Rendered rendered = pipeline::render(prepared, configuration, threads, stats);
     if (configuration.algorithm->kind == AlgorithmKind::line) return start + "drawing=" + hex(hashOf(rendered.drawing));
-    return start + "ids=" + hex(hashOf(rendered.frame.ids)) + " depth=" + hex(hashOf(rendered.frame.depth)) +
+    return start + "ids=" + hex(hashOf(rendered.frame.ids)) + " depth=" + hex(hashOf(rendered.frame.distances())) +
            " color=" + hex(hashOf(rendered.frame.color));
   } catch (const InputError& error) {
     return start + "refused: " + error.what();

@@ -35,7 +35,7 @@ std::string differences(const PreparedScene& scene, DepthFormat format, int thre
   const Rendered fast = visibilityBy(scene, zbuffer::Path::simd, format, threads);
   std::string found;
   if (fast.frame.ids != textbook.frame.ids) found += " ids";
-  if (std::memcmp(fast.frame.depth.data(), textbook.frame.depth.data(), fast.frame.depth.size() * sizeof(float)) != 0) found += " depth";
+  if (std::memcmp(fast.frame.distances().data(), textbook.frame.distances().data(), fast.frame.distances().size() * sizeof(float)) != 0) found += " depth";
   for (const char* counter : {"fragments tested", "fragments written", "depth ties"})
     if (fast.stats.counter(counter) != textbook.stats.counter(counter))
       found += std::string(" ") + counter + " (" + std::to_string(fast.stats.counter(counter)) + " against " +
@@ -82,7 +82,7 @@ TEST(FastPath, AReusedFrameHoldingOtherValuesComesOutAsAFreshOne) {
     std::fill(reused.depth.begin(), reused.depth.end(), -1.0f);
     zbuffer::renderFullFrame(geometry, DepthFormat::float32, 2, reused, stats, {.path = path});
     EXPECT_EQ(reused.ids, fresh.ids) << (path == zbuffer::Path::simd ? "simd" : "scalar");
-    EXPECT_EQ(reused.depth, fresh.depth) << (path == zbuffer::Path::simd ? "simd" : "scalar");
+    EXPECT_EQ(reused.distances(), fresh.distances()) << (path == zbuffer::Path::simd ? "simd" : "scalar");
     EXPECT_GT(std::count(fresh.ids.begin(), fresh.ids.end(), conventions::kBackgroundId), fresh.ids.size() / 2);
   }
 }

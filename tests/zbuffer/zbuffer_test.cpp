@@ -2,6 +2,8 @@
 // the thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "algorithms/zbuffer/zbuffer.hpp"
@@ -12,7 +14,7 @@ namespace {
 
 bool sameBits(const Frame& a, const Frame& b) {
   return a.ids == b.ids && a.color == b.color &&
-         std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;
+         std::memcmp(a.distances().data(), b.distances().data(), a.distances().size() * sizeof(float)) == 0;
 }
 
 TEST(ZBuffer, SameBitsForAnyThreadCount) {
@@ -56,8 +58,42 @@ TEST(ZBuffer, CountersShowWhatEachVariantDid) {
   EXPECT_EQ(full.counter("depth buffer bytes"), 640 * 360 * 2);
   EXPECT_EQ(scanline.counter("depth buffer bytes"), 2 * 640 * 2);  // one row per worker
   EXPECT_GT(scanline.counter("active triangles summed over rows"), 0);
+  // The scanline variant decodes each row before its buffer is reused; the full frame
+  // keeps its buffer, and counters has no pass that asks for distances.
+  EXPECT_EQ(scanline.counter(kDistancesDecodedCounter), 640 * 360);
+  EXPECT_EQ(full.counter(kDistancesDecodedCounter), 0);
   // Most of the 31 counters are beside or behind the camera and never reach the rasterizer.
   EXPECT_GT(full.counter("triangles outside view"), full.counter("triangles in") / 2);
+}
+
+// Step 3 waits for a stage that asks: the full frame leaves its depth buffer as the format
+// stored it, and the first call to distances() decodes it, once, to the distances the
+// scanline variant decodes row by row. Asked for ids alone, it keeps nothing, and asking
+// for distances then is a bug in the caller, stopped with a message.
+TEST(ZBuffer, TheFullFrameDecodesItsDistancesOnceWhenAskedFor) {
+  const test::LoadedScene counters(test::sourcePath("scenes/counters.toml"), 320);
+  Stats setUp;
+  const ScreenGeometry geometry = buildScreenTriangles(counters.prepared, {}, 2, setUp);
+  for (const DepthFormat format : {DepthFormat::float32, DepthFormat::unorm24})
+    for (const zbuffer::Path path : {zbuffer::Path::simd, zbuffer::Path::scalar}) {
+      const std::string what = std::string(depthFormatName(format)) + (path == zbuffer::Path::simd ? " simd" : " scalar");
+      Frame frame(counters.prepared.width(), counters.prepared.height()), eager(frame.width, frame.height);
+      Stats stats, asked, scanlineStats;
+      zbuffer::renderFullFrame(geometry, format, 2, frame, stats, {.path = path});
+      EXPECT_FALSE(frame.decoded()) << what;
+      EXPECT_EQ(stats.counter(kDistancesDecodedCounter), 0) << what;
+      const std::vector<float> first(frame.distances(&asked).begin(), frame.distances(&asked).end());
+      EXPECT_TRUE(frame.decoded()) << what;
+      EXPECT_EQ(asked.counter(kDistancesDecodedCounter), std::int64_t(frame.pixelCount())) << what << ": decoded once";
+      zbuffer::renderScanline(geometry, format, 2, eager, scanlineStats);
+      EXPECT_EQ(std::memcmp(first.data(), eager.distances().data(), first.size() * sizeof(float)), 0) << what;
+      EXPECT_GT(std::count_if(first.begin(), first.end(), [](float d) { return std::isfinite(d) && d > 0; }), 0) << what;
+    }
+  Frame idsOnly(counters.prepared.width(), counters.prepared.height());
+  zbuffer::renderFullFrame(geometry, DepthFormat::float32, 2, idsOnly, setUp, {.keepDepth = false});
+  EXPECT_GT(std::count_if(idsOnly.ids.begin(), idsOnly.ids.end(), [](std::uint32_t id) { return id != 0; }), 0);
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_DEATH(idsOnly.distances(), "asked for ids alone");
 }
 
 TEST(ZBuffer, ShadingWorkFollowsTheDeclaredEffects) {

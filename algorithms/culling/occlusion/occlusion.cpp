@@ -194,6 +194,7 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
 
 DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
   DepthMap map(view.width, view.height);
+  const PixelBuffer<float>& distance = frame.distances();
   // Texel x spans view pixels [x / scale, (x + 1) / scale): the pixels it overlaps.
   const auto pixels = [](int texel, double scale, int size) {
     const int first = static_cast<int>(std::floor(texel / scale));
@@ -207,7 +208,7 @@ DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
       double farthest = -std::numeric_limits<double>::infinity();
       for (int py = top; py <= bottom; ++py)
         for (int px = left; px <= right; ++px) {
-          const float depth = frame.depth[std::size_t(py) * std::size_t(frame.width) + std::size_t(px)];
+          const float depth = distance[std::size_t(py) * std::size_t(frame.width) + std::size_t(px)];
           farthest = std::max(farthest, std::isinf(depth) ? std::numeric_limits<double>::infinity() : view.key(depth));
         }
       map.at(x, y) = roundedUp(farthest);

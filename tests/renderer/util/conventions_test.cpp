@@ -127,7 +127,7 @@ TEST(Conventions, FrameDepthIsViewDistanceForEveryFormat) {
     const double tolerance = format == DepthFormat::unorm16 ? 0.02 : 1e-4;  // one unorm16 step at d = 7 is ~0.01
     test::CaseFailures off(std::string("a depth is not the wall's distance 7 in ") + depthFormatName(format));
     for (std::size_t p = 0; p < frame.pixelCount(); ++p)
-      off.expect(std::abs(frame.depth[p] - 7.0) <= tolerance, [&] { return test::describePixel(frame, p) + ": " + std::to_string(frame.depth[p]); });
+      off.expect(std::abs(frame.distances()[p] - 7.0) <= tolerance, [&] { return test::describePixel(frame, p) + ": " + std::to_string(frame.distances()[p]); });
     EXPECT_NO_FAILED_CASES(off);
   }
 }
