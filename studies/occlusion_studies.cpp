@@ -130,6 +130,7 @@ int walkthrough(const StudyOptions& options, const std::filesystem::path& folder
       result.falselyCulled += wrong;
       result.falseCullFrames += wrong > 0;
       std::swap(result.visibility.frame, result.last);
+      result.last.distances();  // decoded untimed, as every mode once decoded in its pass: only the previous frame reads them
       result.lastCamera = world.camera, result.hasLast = true;
     }
     progress.update(std::size_t(f + 1), "walkthrough");

@@ -114,8 +114,6 @@ void drawTile(const Tile<Format>& tile, TileWatcher* watcher) {
 
 // Step 3, for the rows `rows` of a frame as wide as `stored`'s stride: what the format
 // stored, decoded to a distance along the view axis (+infinity on the background).
-// `stored` may hold its values where the distances go (a float format's depth kept in the
-// frame): each pixel is read before it is written.
 template <typename Format>
 void decodeRows(const DepthTest<Format>& test, const CameraTransform& camera, DepthBuffer<const typename Format::Stored> stored,
                 std::span<const std::uint32_t> ids, std::span<float> distance, std::pair<int, int> rows) {

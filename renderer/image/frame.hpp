@@ -29,8 +29,9 @@ struct Frame {
   int width = 0, height = 0;
   PixelBuffer<std::uint8_t> color;  // RGBA8, row 0 at the top
   // Distance along the view axis; +infinity = background. Read it through distances():
-  // a pass may leave it undecoded (the z-buffer keeps its depth buffer as its format
-  // stored it), and only a pass that writes distances writes here.
+  // a pass may leave its own depth here undecoded (the z-buffer's fast path, its values
+  // as stored) with a decoder (leaveUndecoded). Mutable: decoding on first read is not a
+  // change a reader of a const Frame sees.
   mutable PixelBuffer<float> depth;
   PixelBuffer<std::uint32_t> ids;   // global triangle index + 1; 0 = background
   // Why the image is known to be wrong in places (an algorithm stopped at a limit), or

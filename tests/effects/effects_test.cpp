@@ -109,7 +109,7 @@ TEST(Effects, AddingAnEffectAddsOnlyItsOwnPass) {
 
 // The z-buffer keeps its depth buffer undecoded until a pass reads distances: up the
 // ladder, transparency is the first (the glass is tested against the opaque distances),
-// and fog alone asks too; the shadow maps' light views decode their own, counted apart.
+// and fog alone asks too; the shadow maps' light views decode their own, not counted here.
 TEST(Effects, TheZBufferDecodesDistancesOnlyForAPassThatReadsThem) {
   const test::LoadedScene showcase(test::sourcePath(kShowcase), 320);
   const std::vector<studies::EffectStep> ladder = studies::effectLadder(showcase.scene);

@@ -92,8 +92,26 @@ TEST(ZBuffer, TheFullFrameDecodesItsDistancesOnceWhenAskedFor) {
   Frame idsOnly(counters.prepared.width(), counters.prepared.height());
   zbuffer::renderFullFrame(geometry, DepthFormat::float32, 2, idsOnly, setUp, {.keepDepth = false});
   EXPECT_GT(std::count_if(idsOnly.ids.begin(), idsOnly.ids.end(), [](std::uint32_t id) { return id != 0; }), 0);
+  const std::string style = GTEST_FLAG_GET(death_test_style);
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_DEATH(idsOnly.distances(), "asked for ids alone");
+  GTEST_FLAG_SET(death_test_style, style);
+}
+
+// A frame reused by another algorithm after the full frame left its depth undecoded (a
+// study's frame, an interactive viewer's): the other algorithm's distances are its own,
+// not decoded again as though they were the z-buffer's stored values.
+TEST(ZBuffer, AnotherAlgorithmInAReusedFrameKeepsItsOwnDistances) {
+  const test::LoadedScene counters(test::sourcePath("scenes/counters.toml"), 160);
+  const PreparedScene& scene = counters.prepared;
+  Stats stats;
+  const VisibilityRequest request{scene, scene.camera(), nullptr, 2, stats};
+  Visibility reused{Frame(scene.width(), scene.height()), std::nullopt}, fresh{Frame(scene.width(), scene.height()), std::nullopt};
+  test::algorithmOf(zbuffer::Knobs{}).visibility(request, test::valuesOf(zbuffer::Knobs{}), reused);
+  ASSERT_FALSE(reused.frame.decoded());
+  for (Visibility* answer : {&reused, &fresh}) test::algorithmOf(ray_casting::Knobs{}).visibility(request, test::valuesOf(ray_casting::Knobs{}), *answer);
+  EXPECT_EQ(reused.frame.ids, fresh.frame.ids);
+  EXPECT_EQ(reused.frame.distances(), fresh.frame.distances());
 }
 
 TEST(ZBuffer, ShadingWorkFollowsTheDeclaredEffects) {
