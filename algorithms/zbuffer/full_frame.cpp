@@ -61,7 +61,7 @@ void leaveStep3(Frame& frame, const CameraTransform& camera, const DepthEncoding
                 std::shared_ptr<const typename Format::Stored[]> kept, int threads, bool keepDepth, bool simd) {
   if (!keepDepth) {
     frame.leaveUndecoded([](std::span<float>, std::span<const std::uint32_t>) {
-      HSR_CHECK(!"the z-buffer was asked for ids alone (FullFrameOptions::keepDepth), and kept no depth to decode");
+      checkFailed("the z-buffer was asked for ids alone (FullFrameOptions::keepDepth), and kept no depth to decode", __FILE__, __LINE__);
     });
     return;
   }
