@@ -248,9 +248,11 @@ int render(const RenderOptions& options) {
     else if (polygonSvg) outputs.addText(output, visiblePolygonsSvg(rendered.polygons, rendered.frame));
     else if (lines && style != LineStyle::visible) outputs.addColorPng(output, lineSetFrame(rendered.drawing, style));
     else outputs.addColorPng(output, rendered.frame);
-    if (!options.depth.empty()) rendered.frame.distances(&stats);  // decoded here, where it is counted
-    if (depthFile.extension() == ".pfm") outputs.addText(depthFile, pfmBytes(rendered.frame.width, rendered.frame.height, rendered.frame.distances()));
-    else if (!options.depth.empty()) outputs.addDepthExr(depthFile, rendered.frame);
+    if (!options.depth.empty()) {
+      const PixelBuffer<float>& distances = rendered.frame.distances(&stats);  // decoded here, where it is counted
+      if (depthFile.extension() == ".pfm") outputs.addText(depthFile, pfmBytes(rendered.frame.width, rendered.frame.height, distances));
+      else outputs.addDepthExr(depthFile, rendered.frame);
+    }
     if (!options.ids.empty()) outputs.addIdsPng(options.ids, rendered.frame);
     if (!options.segments.empty()) outputs.addText(options.segments, visibleSegmentsText(rendered.drawing));
     if (!options.triangles.empty()) outputs.addText(options.triangles, triangleFileText(*scene.prepared));

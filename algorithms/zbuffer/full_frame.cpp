@@ -52,13 +52,13 @@ class StepsWatcher final : public TileWatcher {
 };
 
 // Step 3 (decodeRows, textbook.hpp), left for the stage that asks for distances
-// (Frame::distances), by the loop that drew (`simd`: the fast path's, decodeRowsFast).
-// What it decodes: the textbook loop's depth buffer, kept whole (`kept`), or, when that
-// is null, the values the fast path left in the frame's depth.
+// (Frame::distances). What it decodes: the textbook loop's depth buffer, kept whole
+// (`kept`), or, when that is null, the values the fast path left in the frame's depth,
+// which the fast path's own step 3 decodes (decodeRowsFast).
 // Without keepDepth the caller has said it reads the ids alone, and nothing is kept.
 template <typename Format, bool kFastPathBuilt>
 void leaveStep3(Frame& frame, const CameraTransform& camera, const DepthEncoding& encoding,
-                std::shared_ptr<const typename Format::Stored[]> kept, int threads, bool keepDepth, bool simd) {
+                std::shared_ptr<const typename Format::Stored[]> kept, int threads, bool keepDepth) {
   if (!keepDepth) {
     frame.leaveUndecoded([](std::span<float>, std::span<const std::uint32_t>) {
       checkFailed("the z-buffer was asked for ids alone (FullFrameOptions::keepDepth), and kept no depth to decode", __FILE__, __LINE__);
@@ -77,7 +77,7 @@ void leaveStep3(Frame& frame, const CameraTransform& camera, const DepthEncoding
       const auto [first, end] = partRange(std::size_t(height), bands, band);
       const std::pair<int, int> rows{int(first), int(end)};
       if constexpr (kFastPathBuilt) {
-        if (simd) return decodeRowsFast(encoding, camera.perspective(), stored, ids, distance, rows);
+        if (!kept) return decodeRowsFast(encoding, camera.perspective(), stored, ids, distance, rows);
       }
       decodeRows(test, camera, stored, ids, distance, rows);
     });
@@ -142,7 +142,7 @@ void renderFullFrame(const ScreenGeometry& geometry, DepthFormat format, int thr
       tileResults[index] = test;
     });
     leaveStep3<Format, kFastPathBuilt>(frame, geometry.camera, encoding, simd ? nullptr : std::shared_ptr<const typename Format::Stored[]>(std::move(depth)), threads,
-               options.keepDepth, simd);
+               options.keepDepth);
     if (recording)
       recording->steps.record("overdraw: fragments tested per pixel (" + std::to_string(tileResults[0].counts.tested) + " in all, " +
                                   std::to_string(tileResults[0].counts.written) + " written)",

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "algorithms/zbuffer/textbook.hpp"
 #include "algorithms/zbuffer/zbuffer.hpp"
 #include "renderer/raster/active_triangles.hpp"
 #include "renderer/util/parallel.hpp"
@@ -69,10 +70,11 @@ void renderScanline(const ScreenGeometry& geometry, DepthFormat format, int thre
           rasterizeSpan(tri, int(y), tri.minX, tri.maxX + 1,
                         [&](int x) { test.test(tri, x, int(y), depthRow[std::size_t(x)], frame.ids[row + std::size_t(x)]); });
         }
-        // Step 5: the row is final: decode its depth into the frame before the buffer is
-        // reused (the full frame keeps its buffer and decodes when asked; a row is gone by then).
-        for (int x = 0; x < frame.width; ++x)
-          frame.depth[row + std::size_t(x)] = test.distance(frame.ids[row + std::size_t(x)], depthRow[std::size_t(x)], geometry.camera);
+        // Step 5: the row is final: decode its depth into the frame (the full frame's step 3,
+        // decodeRows) before the buffer is reused (the full frame keeps its buffer and
+        // decodes when asked; a row is gone by then).
+        decodeRows(test, geometry.camera, DepthBuffer<const typename Format::Stored>{depthRow.data(), depthRow.size(), 0, int(y)}, frame.ids,
+                   frame.depth, {int(y), int(y) + 1});
         if (recording && recording->steps.due(y, last)) recordRow(*recording, geometry.camera, frame, y, triangles, active, entering);
       }
       bandResults[band] = test;
