@@ -36,6 +36,11 @@ std::vector<std::string> decisionsTaken(const Stats& stats) {
         "exact fall-back: " + n(counted("reference exact fall-backs")) + " of " + n(counted("reference rays")) +
             " rays where the double-precision filter could not decide",
         "exact fall-back: none; the double-precision filter decided every ray");
+  if (counted("reference rays") > 0)
+    say(counted("reference tiles proved") > 0,
+        "tiles proved: " + n(counted("reference rays proved")) + " of " + n(counted("reference rays")) + " rays answered by " +
+            n(counted("reference tiles proved")) + " proofs that a tile shows one triangle whole, or nothing; the rest searched ray by ray",
+        "tiles proved: none; every ray searched (a tile is proved only with packets, and where it shows one triangle whole, or nothing)");
   if (counted("predicate evaluations") > 0)
     decisions.push_back("exact predicates: " + n(counted("predicate exact fall-backs")) + " of " + n(counted("predicate evaluations")) +
                         " evaluations fell back to exact arithmetic");

@@ -11,6 +11,7 @@
 #include "renderer/rays/ray_packet.hpp"
 #include "renderer/reference/bounded_woop.hpp"
 #include "renderer/reference/nearest_hit.hpp"
+#include "renderer/reference/tile_proof.hpp"
 #include "renderer/shading/fog.hpp"
 #include "renderer/shading/outline.hpp"
 #include "renderer/shading/shading.hpp"
@@ -31,7 +32,12 @@ SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, Ref
     : scene_(scene),
       bvh_(scene.triangleBvh(stats, threads)),
       triangles_(scene.leafTriangles(stats)),
-      wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats, threads) : nullptr) {}
+      wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats, threads) : nullptr) {
+  if (!bvh_.empty()) {
+    const BvhNode& root = bvh_.nodes()[0];
+    sceneBox_ = {dvec3(root.bounds[0][0], root.bounds[0][1], root.bounds[0][2]), dvec3(root.bounds[1][0], root.bounds[1][1], root.bounds[1][2])};
+  }
+}
 
 void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const {
   // Eight rays at a time; where they cannot travel together (they straddle a plane of
@@ -48,6 +54,83 @@ void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, in
     else
       for (int half = x; half < x + rays; half += 4)
         if (!tracePacket(camera, y, half, std::min(4, x + rays - half), hits + (half - x0), counters)) traceOneByOne(half, std::min(4, x + rays - half));
+  }
+}
+
+namespace {
+
+// Whether a row of hits shows one answer plainly: the same triangle (or nothing) at every
+// pixel, no pixel ambiguous, no decision exact. Such a row gives a tile its candidate.
+bool oneAnswer(const ReferenceHit* row, int count, std::uint32_t id) {
+  return std::all_of(row, row + count, [&](const ReferenceHit& hit) { return hit.id == id && !hit.ambiguous && !hit.usedExact; });
+}
+
+}  // namespace
+
+bool SurfaceReference::answerByProof(const CameraTransform& camera, int x0, int y0, int width, int height, std::uint32_t id,
+                                     ReferenceHit* hits, std::size_t stride, Counters& counters) const {
+  std::optional<PackedTriangle> candidate;
+  if (id != 0) {
+    const Triangle& corners = scene_.triangles()[id - 1];
+    const std::vector<dvec3>& positions = scene_.positions();
+    candidate = PackedTriangle{positions[corners[0]], positions[corners[1]], positions[corners[2]], id};
+  }
+  // The proof, over the pixels' rectangle, edges and all.
+  const std::optional<TileRegion> region = TileRegion::of(camera, sceneBox_, x0, y0, x0 + width, y0 + height, candidate ? &*candidate : nullptr);
+  if (!region || region->touchedByAnother(bvh_, triangles_, counters.nodesVisited)) return false;
+  ++counters.tilesProved;
+  for (int row = 0; row < height; ++row) {
+    ReferenceHit* rowHits = hits + std::size_t(row) * stride;
+    if (!candidate) {
+      std::fill(rowHits, rowHits + width, ReferenceHit{});
+      counters.raysProved += width;
+      continue;
+    }
+    for (int x = 0; x < width; x += RayPacket::kRays) {
+      const int count = std::min(RayPacket::kRays, width - x);
+      if (candidateRun(camera, y0 + row, x0 + x, count, *candidate, rowHits + x, counters)) counters.raysProved += count;
+      else traceRun(camera, y0 + row, x0 + x, count, rowHits + x, counters);
+    }
+  }
+  return true;
+}
+
+void SurfaceReference::traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, const ReferenceHit* above,
+                                 ReferenceHit* hits, std::size_t stride, Counters& counters) const {
+  const auto searchRows = [&](int from) {
+    for (int row = from; row < height; ++row) traceRun(camera, y0 + row, x0, width, hits + std::size_t(row) * stride, counters);
+  };
+  if (!wideBvh_) return searchRows(0);
+  // The candidate: what the row above showed, if it showed one answer plainly; else what
+  // the tile's own first row, searched ray by ray, shows.
+  int searched = 0;
+  if (!above || !oneAnswer(above, width, above[0].id)) {
+    traceRun(camera, y0, x0, width, hits, counters);
+    searched = 1;
+    above = hits;
+    if (height == 1 || !oneAnswer(above, width, above[0].id)) return searchRows(1);
+  }
+  if (!answerByProof(camera, x0, y0 + searched, width, height - searched, above[0].id, hits + std::size_t(searched) * stride, stride, counters))
+    searchRows(searched);
+}
+
+void SurfaceReference::traceTileRow(const CameraTransform& camera, int y0, int height, const ReferenceHit* above, ReferenceHit* hits,
+                                    std::size_t stride, Counters& counters) const {
+  const int width = camera.width();
+  for (int x0 = 0; x0 < width;) {
+    // Tiles whose row above shows one answer, the same along them all, are proved as one
+    // run first (a single proof for a stretch of floor or sky), and tile by tile where
+    // that fails.
+    int end = std::min(x0 + kTileSize, width);
+    if (above && wideBvh_ && oneAnswer(above + x0, end - x0, above[x0].id))
+      while (end < width && end - x0 < kRunTiles * kTileSize && oneAnswer(above + end, std::min(kTileSize, width - end), above[x0].id))
+        end = std::min(end + kTileSize, width);
+    if (end - x0 > kTileSize && answerByProof(camera, x0, y0, end - x0, height, above[x0].id, hits + x0, stride, counters)) {
+      x0 = end;
+      continue;
+    }
+    for (; x0 < end; x0 += kTileSize)
+      traceTile(camera, x0, y0, std::min(kTileSize, width - x0), height, above ? above + x0 : nullptr, hits + x0, stride, counters);
   }
 }
 
@@ -198,43 +281,54 @@ void traceReference(const PreparedScene& scene, int threads, Stats& stats, Refer
   image.ambiguousPixels = image.exactFallbacks = image.blendTiedPixels = 0;
   image.blendTied.clear();
 
-  // One work item per row; each writes only its own pixels and counters.
-  const auto rows = static_cast<std::size_t>(scene.height());
-  std::vector<SurfaceReference::Counters> counters(rows);
-  std::vector<std::int64_t> exactRays(rows, 0), ambiguousPixels(rows, 0);
-  std::vector<std::vector<ReferenceHit>> rowHits(std::size_t(resolveThreadCount(threads)), std::vector<ReferenceHit>(std::size_t(scene.width())));
-  parallelFor(rows, threads, [&](std::size_t row, int worker) {
-    // Counted on this thread's stack and stored once: neighbouring rows' counters share
+  // One work item per band of four rows of tiles; each writes only its own pixels and
+  // counters. Within a band, a tile's candidate may come from the tile above it.
+  constexpr int kTile = SurfaceReference::kTileSize, kBand = 4 * kTile;
+  const auto width = static_cast<std::size_t>(scene.width());
+  const auto bands = static_cast<std::size_t>((scene.height() + kBand - 1) / kBand);
+  std::vector<SurfaceReference::Counters> counters(bands);
+  std::vector<std::int64_t> exactRays(bands, 0), ambiguousPixels(bands, 0);
+  std::vector<std::vector<ReferenceHit>> bandHits(std::size_t(resolveThreadCount(threads)), std::vector<ReferenceHit>(kBand * width));
+  parallelFor(bands, threads, [&](std::size_t band, int worker) {
+    // Counted on this thread's stack and stored once: neighbouring bands' counters share
     // cache lines, and other threads work on them.
-    SurfaceReference::Counters rowCounters;
-    std::int64_t rowExact = 0, rowAmbiguous = 0;
-    std::vector<ReferenceHit>& hits = rowHits[std::size_t(worker)];
-    reference.traceRun(camera, int(row), 0, scene.width(), hits.data(), rowCounters);
-    for (int x = 0; x < scene.width(); ++x) {
-      const std::size_t pixel = row * std::size_t(scene.width()) + std::size_t(x);
-      const ReferenceHit& hit = hits[std::size_t(x)];
-      image.frame.ids[pixel] = hit.id;
-      image.frame.depth[pixel] = static_cast<float>(hit.distance);
-      image.ambiguous[pixel] = hit.ambiguous;
-      rowExact += hit.usedExact;
-      rowAmbiguous += hit.ambiguous;
+    SurfaceReference::Counters bandCounters;
+    std::int64_t bandExact = 0, bandAmbiguous = 0;
+    std::vector<ReferenceHit>& hits = bandHits[std::size_t(worker)];
+    const int y0 = int(band) * kBand, rows = std::min(kBand, scene.height() - y0);
+    for (int top = 0; top < rows; top += kTile) {
+      ReferenceHit* tileRow = &hits[std::size_t(top) * width];
+      reference.traceTileRow(camera, y0 + top, std::min(kTile, rows - top), top > 0 ? tileRow - width : nullptr, tileRow, width, bandCounters);
     }
-    counters[row] = rowCounters;
-    exactRays[row] = rowExact;
-    ambiguousPixels[row] = rowAmbiguous;
+    for (std::size_t pixel = 0; pixel < std::size_t(rows) * width; ++pixel) {
+      const ReferenceHit& hit = hits[pixel];
+      const std::size_t at = std::size_t(y0) * width + pixel;
+      image.frame.ids[at] = hit.id;
+      image.frame.depth[at] = static_cast<float>(hit.distance);
+      image.ambiguous[at] = hit.ambiguous;
+      bandExact += hit.usedExact;
+      bandAmbiguous += hit.ambiguous;
+    }
+    counters[band] = bandCounters;
+    exactRays[band] = bandExact;
+    ambiguousPixels[band] = bandAmbiguous;
   });
   SurfaceReference::Counters total;
-  for (std::size_t row = 0; row < rows; ++row) {
-    total.nodesVisited += counters[row].nodesVisited;
-    total.triangleTests += counters[row].triangleTests;
-    total.exactTriangleTests += counters[row].exactTriangleTests;
-    total.exactComparisons += counters[row].exactComparisons;
-    image.exactFallbacks += exactRays[row];
-    image.ambiguousPixels += ambiguousPixels[row];
+  for (std::size_t band = 0; band < bands; ++band) {
+    total.nodesVisited += counters[band].nodesVisited;
+    total.triangleTests += counters[band].triangleTests;
+    total.exactTriangleTests += counters[band].exactTriangleTests;
+    total.exactComparisons += counters[band].exactComparisons;
+    total.tilesProved += counters[band].tilesProved;
+    total.raysProved += counters[band].raysProved;
+    image.exactFallbacks += exactRays[band];
+    image.ambiguousPixels += ambiguousPixels[band];
   }
   stats.add("reference rays", static_cast<std::int64_t>(image.frame.pixelCount()));
   stats.add("reference exact fall-backs", image.exactFallbacks);
   stats.add("reference ambiguous pixels", image.ambiguousPixels);
+  stats.add("reference tiles proved", total.tilesProved);
+  stats.add("reference rays proved", total.raysProved);
   stats.add("bvh nodes visited", total.nodesVisited);
   stats.add("ray-triangle tests", total.triangleTests);
   stats.add("exact ray-triangle tests", total.exactTriangleTests);

@@ -17,6 +17,9 @@
 //      faces overlapping, a center exactly on a shared edge or vertex) is *ambiguous*:
 //      any of them is a correct answer. The id recorded is the lowest, and metrics skip
 //      the pixel.
+//   5. With packets, a tile of pixels that shows one triangle whole, or nothing, is
+//      proved to (renderer/reference/tile_proof.hpp) and not searched ray by ray: the same
+//      answers.
 #pragma once
 
 #include <cstdint>
@@ -41,8 +44,9 @@ struct ReferenceHit {
 };
 
 // How the reference traverses the BVH for a row of primary rays: eight rays at a time
-// through the wide BVH where the CPU has AVX2 (reference_packets.cpp), or the textbook
-// traversal of one ray at a time. The same ids, depths, ambiguity and fall-backs.
+// through the wide BVH where the CPU has AVX2 (reference_packets.cpp), with tiles proved
+// whole where they can be (traceTile), or the textbook traversal of one ray at a time.
+// The same ids, depths, ambiguity and fall-backs.
 enum class ReferenceTraversal { packets, textbook };
 
 class SurfaceReference {
@@ -54,6 +58,7 @@ class SurfaceReference {
   // Per-ray work counters, summed by the caller.
   struct Counters {
     std::int64_t nodesVisited = 0, triangleTests = 0, exactTriangleTests = 0, exactComparisons = 0;
+    std::int64_t tilesProved = 0, raysProved = 0;  // traceTile's proofs, and the rays they answered
   };
   // `tied`, when given, receives the triangles exactly nearest (global index + 1, ascending):
   // the one winner, every triangle of a certified tie, or none where nothing is met.
@@ -62,6 +67,16 @@ class SurfaceReference {
   // trace() for the rays through pixels x0 .. x0 + count - 1 of row y
   // (CameraTransform::rayThroughPixel), by the traversal chosen.
   void traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const;
+  // traceRun() for a row of tiles of pixels: rows y0 .. y0 + height - 1 (height at most
+  // kTileSize) of the whole image width, into hits[row * stride + x]; the same answers.
+  // With packets, where the row above (`above`, answered already; or null) or else a
+  // tile's own first row shows one triangle whole, or nothing, the tile's other rows are
+  // proved to show it if they do (renderer/reference/tile_proof.hpp), and their rays are
+  // then not searched; up to kRunTiles neighbouring tiles whose row above shows the same
+  // are proved at once.
+  static constexpr int kTileSize = 8, kRunTiles = 8;
+  void traceTileRow(const CameraTransform& camera, int y0, int height, const ReferenceHit* above, ReferenceHit* hits, std::size_t stride,
+                    Counters& counters) const;
 
   // Every triangle the ray meets between the near and far planes, nearest first in the
   // exact order of their distances, up to the first opaque one (for the exact blend of
@@ -84,9 +99,22 @@ class SurfaceReference {
   const Bvh& bvh_;
   const std::vector<PackedTriangle>& triangles_;  // in bvh_.order(), so a leaf reads one contiguous run
   const WideBvh* wideBvh_;                         // for packets; null for the textbook traversal
+  Aabb sceneBox_;                                  // the BVH's root box: every triangle
   // Up to eight rays of a row as one packet, when they can travel together
   // (RayPacket::travelTogether); false when they cannot.
   bool tracePacket(const CameraTransform& camera, int y, int x, int count, ReferenceHit* hits, Counters& counters) const;
+  // traceTileRow's tile at x0 .. x0 + width - 1, and its proof: the pixels of the rectangle
+  // x0 .. x0 + width - 1, y0 .. y0 + height - 1 answered by a proof that they show triangle
+  // `id` (0: nothing), or false when it fails and nothing was written.
+  void traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, const ReferenceHit* above, ReferenceHit* hits,
+                 std::size_t stride, Counters& counters) const;
+  bool answerByProof(const CameraTransform& camera, int x0, int y0, int width, int height, std::uint32_t id, ReferenceHit* hits,
+                     std::size_t stride, Counters& counters) const;
+  // Up to eight rays of a row where a tile's proof showed that no triangle but
+  // `candidate` can be met before it: their hits on it, or false when they cannot travel
+  // together or one of them does not surely meet it between the near and far planes.
+  bool candidateRun(const CameraTransform& camera, int y, int x, int count, const PackedTriangle& candidate, ReferenceHit* hits,
+                    Counters& counters) const;
 };
 
 // Exact shadow rays: a point is shadowed from a light when a segment from it to the light
@@ -118,6 +146,7 @@ struct ReferenceImage {
 
 // The visibility pass alone: ids, depth and ambiguity; the color is left black.
 // Stats: "reference rays", "reference exact fall-backs", "reference ambiguous pixels",
+// "reference tiles proved" and "reference rays proved" (SurfaceReference::traceTile),
 // "bvh nodes visited", "ray-triangle tests", "exact ray-triangle tests", "exact depth
 // comparisons"; phases "reference" and (on first use) "bvh build". threads: 0 = all cores.
 ReferenceImage traceReference(const PreparedScene& scene, int threads, Stats& stats,
