@@ -24,11 +24,18 @@ Cross crossWithMagnitude(const dvec3& a, const dvec3& b) {
 
 }  // namespace
 
+// The margin covers the rounding of the value's terms, which is relative to the
+// differences p - anchor, and the rounding of the points themselves (a corner of the
+// region, a ray's origin under orthographic), which is relative to their coordinates:
+// far from the origin, the larger.
 TileRegion::Halfspace TileRegion::Halfspace::through(const dvec3& normal, const dvec3& magnitude, const dvec3& anchor, double offset,
                                                      const Aabb& reach) {
-  dvec3 farthest;
-  for (int axis = 0; axis < 3; ++axis) farthest[axis] = std::max(std::abs(reach.lo[axis] - anchor[axis]), std::abs(reach.hi[axis] - anchor[axis]));
-  return {normal, anchor, offset, kMargin * (glm::dot(magnitude, farthest) + std::abs(offset))};
+  dvec3 farthest, largest;
+  for (int axis = 0; axis < 3; ++axis) {
+    farthest[axis] = std::max(std::abs(reach.lo[axis] - anchor[axis]), std::abs(reach.hi[axis] - anchor[axis]));
+    largest[axis] = std::max({std::abs(reach.lo[axis]), std::abs(reach.hi[axis]), std::abs(anchor[axis])});
+  }
+  return {normal, anchor, offset, kMargin * (glm::dot(magnitude, farthest + largest) + std::abs(offset))};
 }
 
 bool TileRegion::Halfspace::surelyOutside(const dvec3& p) const { return glm::dot(normal, p - anchor) - offset < -margin; }

@@ -17,8 +17,10 @@
 // by separating planes (apart()): a face of the region with the triangle surely outside;
 // the triangle's own plane, or the plane through one of its edges and the rays' origin,
 // with the region's eight corners surely on the far side. "Surely" leaves a margin of 1e-9
-// of the magnitudes involved, some ten million times the rounding of the test itself (a
-// few units of 2^-53), so a rounding error can only keep something in, never leave it out;
+// of the magnitudes involved (the differences the value is computed from, and the
+// coordinates of the points, whose own rounding is relative to them), far above the
+// rounding of the test and of its points (a few units of 2^-53 of the same), so a
+// rounding error can only keep something in, never leave it out;
 // and behind T's plane the margin keeps in any triangle close enough for its depth
 // interval to meet T's, but for one seen almost exactly edge-on (README, "What the
 // reference trusts"). Anything left touching the region ends the proof, and the tile's

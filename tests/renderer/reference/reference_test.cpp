@@ -236,41 +236,55 @@ TEST(Reference, PacketsGiveTheTextbookTraversalsAnswerOnRandomScenes) {
 // A tile whose row above, or first row, shows one triangle whole (or nothing) is proved to
 // show it throughout (renderer/reference/tile_proof.hpp), and its rays are not searched. A
 // small triangle in front of a wall that fills the view, at gaps down to none at all,
-// must neither be lost nor change a bit of the answer: under both projections, and ten
-// million units from the origin, where a gap of 1e-12 rounds away and the two are
-// coplanar (a tie). Without the wall, the tiles around it show nothing, and are proved to.
+// must neither be lost nor change a bit of the answer: under both projections, and 2^23
+// units from the origin, where a gap of 1e-12 rounds away and the two are coplanar (a
+// tie). Without the wall, the tiles around it show nothing, and are proved to. The same
+// scene shrunk a thousand times: 2^23 out, the rounding of the proof's corners is then
+// more than a margin over differences alone (a review found a tie that such a margin
+// proved a plain hit; this scene does not reproduce it, and passes either way). Every
+// corner is a dyadic fraction, so that the wall and the small triangle are exactly
+// coplanar at a gap of 0 wherever they are.
 TEST(Reference, TilesProvedWholeMissNothingInFrontOfTheirTriangle) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the reference traces one ray at a time here";
   for (const bool perspective : {false, true})
-    for (const double offset : {0.0, 1e7})
-      for (const bool wall : {true, false})
-        for (const double gap : {1.0, 1e-6, 1e-12, 0.0}) {
-          Camera camera = test::pixelCamera(64);
-          if (perspective) camera.projection = Projection::perspective, camera.fovYDegrees = 90;
-          // Looking a little aside, so no ray runs along an axis (such rays are traced one by
-          // one, not in packets: RayPacket::travelTogether).
-          camera.eye += offset, camera.target += offset + dvec3(0.5, 0.3, 0);
-          const dvec3 at(offset);
-          std::vector<Mesh> meshes;
-          if (wall) meshes.push_back(test::triangleMesh({at + dvec3(-500, -500, 0), at + dvec3(500, -500, 0), at + dvec3(0, 500, 0)}));
-          // About three pixels across under orthographic, ten under perspective.
-          const double size = perspective ? 3.0 : 1.0;
-          meshes.push_back(test::triangleMesh(
-              {at + dvec3(-1.2 * size, -1.7 * size, gap), at + dvec3(2.3 * size, -0.4 * size, gap), at + dvec3(0.6 * size, 2.2 * size, gap)}));
-          const Scene scene = test::sceneOf(camera, 96, 64, meshes);
-          PreparedScene prepared(scene);
-          const std::string what = std::string(perspective ? "perspective" : "orthographic") + " offset " + std::to_string(offset) +
-                                   (wall ? " wall" : " no wall") + " gap " + std::to_string(gap);
-          EXPECT_EQ(packetsAgainstTextbook(prepared, 1), "") << what;
-          Stats stats;
-          const ReferenceImage image = traceReference(prepared, 1, stats);
-          const std::uint32_t small = wall ? 2 : 1;
-          long shown = 0;
-          for (std::size_t p = 0; p < image.frame.pixelCount(); ++p) shown += image.frame.ids[p] == small || image.ambiguous[p];
-          EXPECT_GT(shown, 4) << what;
-          EXPECT_GT(stats.counter("reference tiles proved"), 0) << what;
-          EXPECT_GT(stats.counter("reference rays proved"), 96 * 64 / 2) << what;
-        }
+    for (const double offset : {0.0, 0x1p23})
+      for (const double scale : {1.0, 0x1p-10})
+        for (const bool wall : {true, false})
+          for (const double gap : {1.0, 1e-6, 1e-12, 0.0}) {
+            Camera camera = test::pixelCamera(64);
+            if (perspective) camera.projection = Projection::perspective, camera.fovYDegrees = 90;
+            const dvec3 at(offset);
+            // Looking a little aside, so no ray runs along an axis (such rays are traced one
+            // by one, not in packets: RayPacket::travelTogether).
+            camera.eye = at + scale * camera.eye, camera.target = at + scale * dvec3(0.5, 0.3, 0);
+            camera.orthoHeight *= scale, camera.near *= scale, camera.far *= scale;
+            std::vector<Mesh> meshes;
+            // The wall leans (z grows with x and y), so that far out its points fall
+            // between the coordinates a double holds, and so do the proof's corners on it.
+            const auto corner = [&](double x, double y, double z) { return at + scale * dvec3(x, y, z + 0.25 * x + 0.125 * y); };
+            if (wall)
+              meshes.push_back(test::triangleMesh({corner(-60, -60, 0), corner(60, -60, 0), corner(60, 60, 0), corner(-60, -60, 0),
+                                                   corner(60, 60, 0), corner(-60, 60, 0)}));
+            // About three pixels across under orthographic, ten under perspective.
+            const double size = perspective ? 3.0 : 1.0;
+            meshes.push_back(test::triangleMesh({corner(-1.25 * size, -1.75 * size, gap), corner(2.25 * size, -0.375 * size, gap),
+                                                 corner(0.625 * size, 2.25 * size, gap)}));
+            const Scene scene = test::sceneOf(camera, 96, 64, meshes);
+            PreparedScene prepared(scene);
+            const std::string what = std::string(perspective ? "perspective" : "orthographic") + " offset " + std::to_string(offset) +
+                                     " scale " + std::to_string(scale) + (wall ? " wall" : " no wall") + " gap " + std::to_string(gap);
+            EXPECT_EQ(packetsAgainstTextbook(prepared, 1), "") << what;
+            Stats stats;
+            const ReferenceImage image = traceReference(prepared, 1, stats);
+            const std::uint32_t small = wall ? 3 : 1;
+            long shown = 0;
+            for (std::size_t p = 0; p < image.frame.pixelCount(); ++p) shown += image.frame.ids[p] == small || image.ambiguous[p];
+            EXPECT_GT(shown, 4) << what;
+            if (offset == 0 || scale == 1) {
+              EXPECT_GT(stats.counter("reference tiles proved"), 0) << what;
+              EXPECT_GT(stats.counter("reference rays proved"), 96 * 64 / 3) << what;
+            }
+          }
 }
 
 }  // namespace
