@@ -99,12 +99,11 @@ std::vector<std::uint8_t> traverseObjectBvh(const PreparedScene& scene, ViewVolu
     std::uint32_t mask = visit.mask;
     ++visited;
     const BvhNode& node = bvh.nodes()[index];
-    const dvec3 lo(node.bounds[0][0], node.bounds[0][1], node.bounds[0][2]);
-    const dvec3 hi(node.bounds[1][0], node.bounds[1][1], node.bounds[1][2]);
+    const Aabb nodeBox = node.box();
     // The node's box (rounded outward from its contents) outside a plane: nothing
     // below it can be seen. Wholly inside a plane: nothing below it needs that plane.
     int outsideOf = -1;
-    if (!volume.boxMayBeInside((lo + hi) * 0.5, (hi - lo) * 0.5, mask, &outsideOf)) {
+    if (!volume.boxMayBeInside(nodeBox, mask, &outsideOf)) {
       if (why) [[unlikely]]
         forEachInstanceUnder(bvh, index, [&](std::uint32_t instance) {
           if (std::string* found = why->about(instance))

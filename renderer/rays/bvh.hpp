@@ -36,6 +36,7 @@ struct BvhNode {
   std::uint16_t count;   // primitives in a leaf; 0 for an interior node
   std::uint16_t axis;    // interior: the split axis, so traversal can visit the nearer child first
   bool leaf() const { return count != 0; }
+  Aabb box() const { return {dvec3(bounds[0][0], bounds[0][1], bounds[0][2]), dvec3(bounds[1][0], bounds[1][1], bounds[1][2])}; }
 };
 
 class Bvh {

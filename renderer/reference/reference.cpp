@@ -33,10 +33,7 @@ SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, Ref
       bvh_(scene.triangleBvh(stats, threads)),
       triangles_(scene.leafTriangles(stats)),
       wideBvh_(traversal == ReferenceTraversal::packets && cpuHasAvx2() ? &scene.wideTriangleBvh(stats, threads) : nullptr) {
-  if (!bvh_.empty()) {
-    const BvhNode& root = bvh_.nodes()[0];
-    sceneBox_ = {dvec3(root.bounds[0][0], root.bounds[0][1], root.bounds[0][2]), dvec3(root.bounds[1][0], root.bounds[1][1], root.bounds[1][2])};
-  }
+  if (!bvh_.empty()) sceneBox_ = bvh_.nodes()[0].box();
 }
 
 void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const {
@@ -70,11 +67,7 @@ bool oneAnswer(const ReferenceHit* row, int count, std::uint32_t id) {
 bool SurfaceReference::answerByProof(const CameraTransform& camera, int x0, int y0, int width, int height, std::uint32_t id,
                                      ReferenceHit* hits, std::size_t stride, Counters& counters) const {
   std::optional<PackedTriangle> candidate;
-  if (id != 0) {
-    const Triangle& corners = scene_.triangles()[id - 1];
-    const std::vector<dvec3>& positions = scene_.positions();
-    candidate = PackedTriangle{positions[corners[0]], positions[corners[1]], positions[corners[2]], id};
-  }
+  if (id != 0) candidate = scene_.leafTriangle(id - 1);
   // The proof, over the pixels' rectangle, edges and all.
   const std::optional<TileRegion> region = TileRegion::of(camera, sceneBox_, x0, y0, x0 + width, y0 + height, candidate ? &*candidate : nullptr);
   if (!region || region->touchedByAnother(bvh_, triangles_, counters.nodesVisited)) return false;

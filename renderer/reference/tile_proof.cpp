@@ -40,9 +40,9 @@ TileRegion::Halfspace TileRegion::Halfspace::through(const dvec3& normal, const 
 
 bool TileRegion::Halfspace::surelyOutside(const dvec3& p) const { return glm::dot(normal, p - anchor) - offset < -margin; }
 
-bool TileRegion::Halfspace::surelyOutside(const dvec3& low, const dvec3& high) const {
+bool TileRegion::Halfspace::surelyOutside(const Aabb& box) const {
   // The box's corner where the value is greatest.
-  return surelyOutside({normal.x >= 0 ? high.x : low.x, normal.y >= 0 ? high.y : low.y, normal.z >= 0 ? high.z : low.z});
+  return surelyOutside({normal.x >= 0 ? box.hi.x : box.lo.x, normal.y >= 0 ? box.hi.y : box.lo.y, normal.z >= 0 ? box.hi.z : box.lo.z});
 }
 
 std::optional<TileRegion> TileRegion::of(const CameraTransform& camera, const Aabb& scene, double x0, double y0, double x1, double y1,
@@ -117,9 +117,8 @@ bool TileRegion::apart(const PreparedScene::LeafTriangle& triangle) const {
     return std::all_of(corners_.begin(), corners_.end(), [&](const dvec3& p) { return plane.surelyOutside(p); });
   };
   const Cross normal = crossWithMagnitude(triangle.b - triangle.a, triangle.c - triangle.a);
-  if (cornersOutside(Halfspace::through(normal.value, normal.magnitude, triangle.a, 0, reach_)) ||
-      cornersOutside(Halfspace::through(-normal.value, normal.magnitude, triangle.a, 0, reach_)))
-    return true;
+  const Halfspace ownPlane = Halfspace::through(normal.value, normal.magnitude, triangle.a, 0, reach_);
+  if (cornersOutside(ownPlane) || cornersOutside(ownPlane.flipped())) return true;
   for (int edge = 0; edge < 3; ++edge) {
     const dvec3& from = points[std::size_t(edge)];
     const dvec3& to = points[std::size_t((edge + 1) % 3)];
@@ -141,9 +140,8 @@ bool TileRegion::touchedByAnother(const Bvh& bvh, const std::vector<PreparedScen
   while (size > 0) {
     const BvhNode& node = nodes[stack[--size]];
     ++nodesVisited;
-    const dvec3 low(node.bounds[0][0], node.bounds[0][1], node.bounds[0][2]);
-    const dvec3 high(node.bounds[1][0], node.bounds[1][1], node.bounds[1][2]);
-    if (std::any_of(halfspaces_.begin(), halfspaces_.end(), [&](const Halfspace& face) { return face.surelyOutside(low, high); })) continue;
+    const Aabb box = node.box();
+    if (std::any_of(halfspaces_.begin(), halfspaces_.end(), [&](const Halfspace& face) { return face.surelyOutside(box); })) continue;
     if (!node.leaf()) {
       stack[size++] = node.index;
       stack[size++] = node.index + 1;

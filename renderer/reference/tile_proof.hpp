@@ -61,8 +61,10 @@ class TileRegion {
     double offset, margin;
     static Halfspace through(const dvec3& normal, const dvec3& magnitude, const dvec3& anchor, double offset, const Aabb& reach);
     bool surelyOutside(const dvec3& p) const;
-    // Every point of the box [low, high] surely outside.
-    bool surelyOutside(const dvec3& low, const dvec3& high) const;
+    // Every point of the box surely outside.
+    bool surelyOutside(const Aabb& box) const;
+    // The other side, with the same margin.
+    Halfspace flipped() const { return {-normal, anchor, -offset, margin}; }
   };
   bool apart(const PreparedScene::LeafTriangle& triangle) const;
 

@@ -205,11 +205,7 @@ const Bvh& PreparedScene::triangleBvh(Stats& stats, int threads) const {
     triangleBvh_ = Bvh(boxes, threads);
     stats.add("bvh nodes built", static_cast<std::int64_t>(triangleBvh_.nodes().size()));
     leafTriangles_.resize(triangles_.size());
-    parallelForEach(triangles_.size(), kChunk, threads, [&](std::size_t slot) {
-      const std::uint32_t triangle = triangleBvh_.order()[slot];
-      const Triangle& t = triangles_[triangle];
-      leafTriangles_[slot] = {positions_[t[0]], positions_[t[1]], positions_[t[2]], triangle + 1};
-    });
+    parallelForEach(triangles_.size(), kChunk, threads, [&](std::size_t slot) { leafTriangles_[slot] = leafTriangle(triangleBvh_.order()[slot]); });
   });
   return triangleBvh_;
 }

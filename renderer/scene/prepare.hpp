@@ -133,6 +133,11 @@ class PreparedScene {
     std::uint32_t id;  // global triangle index + 1
   };
   const std::vector<LeafTriangle>& leafTriangles(Stats& stats) const;
+  // One triangle's entry, by its global index.
+  LeafTriangle leafTriangle(std::uint32_t triangle) const {
+    const Triangle& corners = triangles_[triangle];
+    return {positions_[corners[0]], positions_[corners[1]], positions_[corners[2]], triangle + 1};
+  }
 
   // triangleBvh() with eight children to a node (renderer/rays/wide_bvh.hpp), for the fast
   // paths' traversals; its leaves are the same slots. Built on first use (phase "wide

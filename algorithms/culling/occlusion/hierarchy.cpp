@@ -21,8 +21,7 @@ void ObjectHierarchy::fromBvh(const Bvh& bvh) {
   for (std::size_t i = 0; i < bvh.nodes().size(); ++i) {
     const BvhNode& from = bvh.nodes()[i];
     HierarchyNode& node = nodes_[i];
-    node.box.lo = dvec3(from.bounds[0][0], from.bounds[0][1], from.bounds[0][2]);
-    node.box.hi = dvec3(from.bounds[1][0], from.bounds[1][1], from.bounds[1][2]);
+    node.box = from.box();
     if (from.leaf()) {
       node.firstObject = from.index, node.objectCount = from.count;
       continue;

@@ -124,9 +124,8 @@ TEST(Bvh, BoxTestNeverMissesABoxTheRayMeets) {
     BvhNode node{};
     for (int axis = 0; axis < 3; ++axis) node.bounds[0][axis] = float(box.lo[axis]), node.bounds[1][axis] = float(box.hi[axis]);
     // Keep the float box inside the double one: then a hit on the float box is certain.
-    const dvec3 lo(node.bounds[0][0], node.bounds[0][1], node.bounds[0][2]),
-        hi(node.bounds[1][0], node.bounds[1][1], node.bounds[1][2]);
-    const dvec3 target = lo + (hi - lo) * dvec3(unit(random), unit(random), unit(random));
+    const Aabb floatBox = node.box();
+    const dvec3 target = floatBox.lo + (floatBox.hi - floatBox.lo) * dvec3(unit(random), unit(random), unit(random));
     dvec3 origin(position(random) * 3, position(random) * 3, position(random) * 3);
     if (trial % 2) origin[trial % 3] = target[trial % 3];  // an axis-parallel ray
     const RayBoxTest test(origin, target - origin);
