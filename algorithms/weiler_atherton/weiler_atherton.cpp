@@ -92,6 +92,7 @@ using Outline = std::vector<Corner>;
 Outline clipped(const Outline& outline, const std::vector<int>& sides, const Line& cut, int keep) {
   const Line line = keep > 0 ? cut : cut.flipped();
   Outline part;
+  part.reserve(outline.size() + 1);  // a cut adds at most one corner
   for (std::size_t i = 0; i < outline.size(); ++i) {
     const Corner& from = outline[i];
     const int here = sides[i] * keep, next = sides[(i + 1) % outline.size()] * keep;
@@ -111,8 +112,8 @@ struct Box {
   bool meets(const Box& other) const { return x0 <= other.x1 && other.x0 <= x1 && y0 <= other.y1 && other.y0 <= y1; }
 };
 
-// A box around the outline, one pixel wider each way than its rounded corners: sure to
-// hold it.
+// A box around the outline, a sub-pixel unit wider each way than its rounded corners
+// (whose rounding is a few units in their last place, far less): sure to hold it.
 Box boxOf(const Outline& outline) {
   Box box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
           -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
@@ -120,7 +121,8 @@ Box boxOf(const Outline& outline) {
     const dvec2 p = approximate(corner.point);
     box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x), std::max(box.y1, p.y)};
   }
-  return {box.x0 - 1, box.y0 - 1, box.x1 + 1, box.y1 + 1};
+  constexpr double kMargin = 1.0 / kSubpixelScale;
+  return {box.x0 - kMargin, box.y0 - kMargin, box.x1 + kMargin, box.y1 + kMargin};
 }
 
 // A piece of a polygon: the part of screen triangle `polygon` within its outline, and
@@ -145,6 +147,32 @@ bool holdsCenter(const Outline& outline, int x, int y) {
   });
 }
 
+// Step 5's solve on one row: of pixels first..last of row y, those whose centers lie
+// strictly inside every line of the outline are first + lo .. first + hi (none when
+// lo > hi), found exactly, as renderer/raster/raster's coveredRun does for a triangle.
+struct RowRun {
+  std::int64_t lo, hi;
+};
+
+RowRun centersInside(const Outline& outline, int y, int first, int last) {
+  const std::int64_t py = y * kSubpixelScale + kSubpixelScale / 2, px = first * kSubpixelScale + kSubpixelScale / 2;
+  RowRun run{0, last - first};
+  for (const Corner& corner : outline) {
+    const Line& line = corner.edge;
+    const std::int64_t value = line.a * px + line.b * py + line.c, step = line.a * kSubpixelScale;
+    // value + step i > 0 bounds the i-th pixel from below (step > 0) or above (step < 0).
+    if (step > 0) {
+      if (value <= 0) run.lo = std::max(run.lo, -value / step + 1);
+    } else if (step < 0) {
+      if (value <= 0) run.hi = -1;
+      else run.hi = std::min(run.hi, (value - 1) / -step);
+    } else if (value <= 0) {
+      run.hi = -1;
+    }
+  }
+  return run;
+}
+
 // A polygon's whole outline: its triangle's three edges.
 Outline outlineOf(const ScreenTriangle& tri) {
   Outline outline;
@@ -154,43 +182,38 @@ Outline outlineOf(const ScreenTriangle& tri) {
 
 // The parts of a piece inside a clip polygon's outline and outside it. Outside is not
 // convex, so it comes in up to three convex pieces: outside the first edge; inside the
-// first and outside the second; inside both and outside the third.
+// first and outside the second; inside both and outside the third. No parts at all when
+// the outline does not cut the piece: when no part of it is inside.
 struct Split {
   std::optional<Piece> inside;
   std::vector<Piece> outside;
 };
 
-Split splitByOutline(Piece piece, const ScreenTriangle& clip) {
+Split splitByOutline(const Piece& piece, const ScreenTriangle& clip) {
   // A piece wholly outside one edge (touching it at most) is outside the outline whole:
   // the trivial case, and the common one, tested first so that a piece merely near the
   // clip polygon is not cut along its edges' lines for nothing.
-  std::array<std::vector<int>, 3> sides;
   for (int k = 0; k < 3; ++k) {
     const Line edge = insideEdge(clip, k);
-    for (const Corner& corner : piece.outline) sides[std::size_t(k)].push_back(sideOf(edge, corner.point));
-    if (std::none_of(sides[std::size_t(k)].begin(), sides[std::size_t(k)].end(), [](int s) { return s > 0; }))
-      return {std::nullopt, {std::move(piece)}};
+    if (std::none_of(piece.outline.begin(), piece.outline.end(), [&](const Corner& corner) { return sideOf(edge, corner.point) > 0; }))
+      return {};
   }
   // Otherwise it is cut edge by edge, the part outside each edge set aside.
   // BEGIN SOLUTION
   Split split;
-  Outline remaining = std::move(piece.outline);
+  Outline remaining = piece.outline;
+  std::vector<int> side;  // sideOf(edge, corner.point) for each corner of what remains
+  side.reserve(remaining.size() + 3);
   for (int k = 0; k < 3; ++k) {
     const Line edge = insideEdge(clip, k);
-    if (k > 0) {  // the first edge's sides were found above, on the same corners
-      sides[std::size_t(k)].clear();
-      for (const Corner& corner : remaining) sides[std::size_t(k)].push_back(sideOf(edge, corner.point));
-    }
-    const std::vector<int>& side = sides[std::size_t(k)];
+    side.clear();
+    for (const Corner& corner : remaining) side.push_back(sideOf(edge, corner.point));
     if (std::none_of(side.begin(), side.end(), [](int s) { return s < 0; })) continue;
-    if (std::none_of(side.begin(), side.end(), [](int s) { return s > 0; })) {  // what is left is outside this edge
-      split.outside.emplace_back(piece.polygon, std::move(remaining), std::move(piece.nearerThan));
-      return split;
-    }
+    if (std::none_of(side.begin(), side.end(), [](int s) { return s > 0; })) return {};  // what is left is outside this edge
     split.outside.emplace_back(piece.polygon, clipped(remaining, side, edge, -1), piece.nearerThan);
     remaining = clipped(remaining, side, edge, +1);
   }
-  split.inside.emplace(piece.polygon, std::move(remaining), std::move(piece.nearerThan));
+  split.inside.emplace(piece.polygon, std::move(remaining), piece.nearerThan);
   return split;
   // SKELETON
   // // Exercise 16: the piece meets the clip polygon's outline. Cut it by the outline's
@@ -198,12 +221,11 @@ Split splitByOutline(Piece piece, const ScreenTriangle& clip) {
   // // outside piece, clipped(outline, side, edge, -1), and the part inside,
   // // clipped(outline, side, edge, +1), goes on to the next edge; what is inside all
   // // three is the inside piece. `side` holds sideOf(edge, corner.point) for each corner
-  // // of the outline being cut: sides[0] above is that for the piece's own corners and
-  // // edge 0; after a cut, find them again for what remains. An outline wholly inside
-  // // an edge needs no cut there; one wholly outside it is all outside. Each piece keeps
+  // // of the outline being cut. An outline wholly inside an edge needs no cut there; one
+  // // wholly outside it is outside the whole outline: return no parts. Each piece keeps
   // // its polygon and nearerThan (Piece(polygon, outline, nearerThan)). How many outside
   // // pieces can there be, and when are there fewer?
-  // (void)clipped, (void)clip, (void)sides;
+  // (void)clipped, (void)piece;
   // return {};
   // END SOLUTION
 }
@@ -213,7 +235,7 @@ enum class Relation { behind, inFront, crossing };
 
 struct Counts {
   std::int64_t clipPolygons = 0, recursions = 0, piecesClipped = 0, piecesMade = 0, hidden = 0, cutByDepth = 0, visible = 0;
-  std::int64_t mostInside = 0, deepest = 0, claimedTwice = 0, noPixel = 0;
+  std::int64_t mostInside = 0, deepest = 0, claimedTwice = 0, noPixel = 0, cutsUndone = 0, dropped = 0;
 };
 
 class Clipper {
@@ -243,6 +265,7 @@ class Clipper {
     ++counts_.clipPolygons;
     counts_.mostInside = std::max(counts_.mostInside, static_cast<std::int64_t>(inside.size()));
     std::vector<Piece> kept;
+    kept.reserve(inside.size());
     bool anyInFront = false;
     for (Piece& piece : inside) {
       // The clip polygon's own piece is not judged against itself.
@@ -292,29 +315,62 @@ class Clipper {
       const std::uint32_t clip = first->polygon;
       const Box clipBox = boxOf(outlineOf(triangles_[clip]));
       std::vector<Piece> inside, outside;
+      outside.reserve(list.size());
       for (Piece& piece : list) {
         if (!clipBox.meets(piece.box)) {
           outside.push_back(std::move(piece));
           continue;
         }
-        Split split = splitAgainst(std::move(piece), clip);
+        Split split = splitAgainst(piece, clip);
+        if (!split.inside) {  // not cut
+          outside.push_back(std::move(piece));
+          continue;
+        }
         for (Piece& part : split.outside) outside.push_back(std::move(part));
-        if (split.inside) inside.push_back(std::move(*split.inside));
+        inside.push_back(std::move(*split.inside));
       }
       resolveInside(std::move(inside), clip, stack);
       list = std::move(outside);
     }
   }
 
-  // Step 2 for one piece: its parts inside and outside the clip polygon's outline.
-  Split splitAgainst(Piece piece, std::uint32_t clip) {
-    Split split = splitByOutline(std::move(piece), triangles_[clip]);
-    const std::size_t parts = split.outside.size() + (split.inside ? 1 : 0);
-    if (parts > 1) {
+  // Step 2 for one piece: its parts inside and outside the clip polygon's outline, of
+  // those that hold a pixel. The image is its pixel centers, and no center lies on a
+  // line: a part that holds none changes no pixel, and neither does the clip polygon
+  // there. So an outside part that holds none is dropped, and when no part inside holds
+  // one the piece is not cut at all: it stays whole, outside. (A mesh's triangles that
+  // meet at a corner overlap so, by less than a sub-pixel unit: cut, each would leave
+  // up to three slivers.) No parts: the piece stays as it is.
+  Split splitAgainst(const Piece& piece, std::uint32_t clip) {
+    Split split = splitByOutline(piece, triangles_[clip]);
+    if (!split.inside) return {};
+    if (!holdsAPixel(*split.inside)) {
+      ++counts_.cutsUndone;
+      return {};
+    }
+    counts_.dropped += static_cast<std::int64_t>(std::erase_if(split.outside, [&](const Piece& part) { return !holdsAPixel(part); }));
+    if (!split.outside.empty()) {
       ++counts_.piecesClipped;
-      counts_.piecesMade += static_cast<std::int64_t>(parts);
+      counts_.piecesMade += static_cast<std::int64_t>(split.outside.size() + 1);
     }
     return split;
+  }
+
+  // Whether the piece holds the center of a pixel its triangle may cover (and so of a
+  // pixel of the image): the rows and columns whose centers its box holds, each row
+  // solved exactly.
+  bool holdsAPixel(const Piece& piece) const {
+    const ScreenTriangle& tri = triangles_[piece.polygon];
+    const Box& box = piece.box;
+    const int top = std::max(tri.minY, static_cast<int>(std::ceil(std::max(box.y0 - 0.5, -1.0))));
+    const int bottom = std::min(tri.maxY, static_cast<int>(std::floor(std::min(box.y1 - 0.5, double(tri.maxY)))));
+    const int first = std::max(tri.minX, static_cast<int>(std::ceil(std::max(box.x0 - 0.5, -1.0))));
+    const int last = std::min(tri.maxX, static_cast<int>(std::floor(std::min(box.x1 - 0.5, double(tri.maxX)))));
+    for (int y = top; y <= bottom && first <= last; ++y) {
+      const RowRun run = centersInside(piece.outline, y, first, last);
+      if (run.lo <= run.hi) return true;
+    }
+    return false;
   }
 
   const ScreenTriangle& triangle(std::uint32_t polygon) const { return triangles_[polygon]; }
@@ -404,22 +460,8 @@ class Clipper {
     const int top = std::max(tri.minY, static_cast<int>(std::floor(box.y0))), bottom = std::min(tri.maxY, static_cast<int>(std::ceil(box.y1)));
     if (why_) [[unlikely]] witnessShown(piece, top, bottom);
     for (int y = top; y <= bottom; ++y) {
-      const std::int64_t py = y * kSubpixelScale + kSubpixelScale / 2, px = tri.minX * kSubpixelScale + kSubpixelScale / 2;
-      std::int64_t lo = 0, hi = tri.maxX - tri.minX;
-      for (const Corner& corner : piece.outline) {
-        const Line& line = corner.edge;
-        const std::int64_t value = line.a * px + line.b * py + line.c, step = line.a * kSubpixelScale;
-        // value + step i > 0 bounds the i-th pixel from below (step > 0) or above (step < 0).
-        if (step > 0) {
-          if (value <= 0) lo = std::max(lo, -value / step + 1);
-        } else if (step < 0) {
-          if (value <= 0) hi = -1;
-          else hi = std::min(hi, (value - 1) / -step);
-        } else if (value <= 0) {
-          hi = -1;
-        }
-      }
-      for (std::int64_t i = lo; i <= hi; ++i) {
+      const RowRun run = centersInside(piece.outline, y, tri.minX, tri.maxX);
+      for (std::int64_t i = run.lo; i <= run.hi; ++i) {
         const int x = tri.minX + static_cast<int>(i);
         if (!std::all_of(piece.nearerThan.begin(), piece.nearerThan.end(),
                          [&](std::uint32_t other) { return nearerAt(piece.polygon, other, x, y); }))
@@ -463,7 +505,7 @@ class Clipper {
 // by slot and the slot's generation, so that it forgets a piece taken out.
 class TiledList {
  public:
-  static constexpr int kTileSide = 16;
+  static constexpr int kTileSide = 8;
 
   // rankOf: each polygon's place in the sorted list.
   TiledList(int width, int height, std::vector<std::size_t> rankOf)
@@ -488,9 +530,9 @@ class TiledList {
 
   bool holdsPiecesOf(std::uint32_t polygon) const { return remaining_[polygon] > 0; }
 
-  // The pieces whose boxes meet the box, taken out of the list, in its order: by their
+  // The pieces whose boxes meet the box, by slot, in the list's order: by their
   // polygons' ranks (and, between pieces of one polygon, by slot).
-  std::vector<Piece> takeMeeting(const Box& box) {
+  std::vector<std::uint32_t> meeting(const Box& box) {
     ++visit_;
     std::vector<std::uint32_t> found;
     forEachTile(box, [&](std::vector<Entry>& tile) {
@@ -501,15 +543,17 @@ class TiledList {
     std::sort(found.begin(), found.end(), [&](std::uint32_t p, std::uint32_t q) {
       return std::pair(rankOf_[slots_[p]->polygon], p) < std::pair(rankOf_[slots_[q]->polygon], q);
     });
-    std::vector<Piece> taken;
-    for (const std::uint32_t slot : found) {
-      --remaining_[slots_[slot]->polygon];
-      taken.push_back(std::move(*slots_[slot]));
-      slots_[slot].reset();
-      ++generation_[slot];
-      freeSlots_.push_back(slot);
-    }
-    return taken;
+    return found;
+  }
+
+  const Piece& operator[](std::uint32_t slot) const { return *slots_[slot]; }
+
+  // Takes the piece out of the list; its slot is free for the next piece added.
+  void remove(std::uint32_t slot) {
+    --remaining_[slots_[slot]->polygon];
+    slots_[slot].reset();
+    ++generation_[slot];
+    freeSlots_.push_back(slot);
   }
 
  private:
@@ -572,7 +616,11 @@ void visibility(const VisibilityRequest& request, const Knobs&, Visibility& visi
   std::vector<std::size_t> rankOf(sorted.size());
   for (std::size_t rank = 0; rank < sorted.size(); ++rank) rankOf[sorted[rank]] = rank;
   TiledList list(frame.width, frame.height, std::move(rankOf));
-  for (const std::uint32_t polygon : sorted) list.add(Piece(polygon, outlineOf(clipper.triangle(polygon)), {}));
+  for (const std::uint32_t polygon : sorted) {
+    Piece whole(polygon, outlineOf(clipper.triangle(polygon)), {});
+    if (clipper.holdsAPixel(whole)) list.add(std::move(whole));
+    else ++counts.dropped;
+  }
 
   // Step 2, down the list: the nearest polygon still in it clips every piece its outline
   // meets; the parts outside go back into the list in their polygon's place.
@@ -583,10 +631,12 @@ void visibility(const VisibilityRequest& request, const Knobs&, Visibility& visi
     std::vector<Piece> inside;
     const std::size_t polygonsShown = visibility.polygons.size();
     const std::int64_t hiddenBefore = counts.hidden, recursionsBefore = counts.recursions;
-    for (Piece& piece : list.takeMeeting(boxOf(outlineOf(clipper.triangle(clip))))) {
-      Split split = clipper.splitAgainst(std::move(piece), clip);
+    for (const std::uint32_t slot : list.meeting(boxOf(outlineOf(clipper.triangle(clip))))) {
+      Split split = clipper.splitAgainst(list[slot], clip);
+      if (!split.inside) continue;  // not cut: it stays in its place
+      list.remove(slot);
       for (Piece& part : split.outside) list.add(std::move(part));
-      if (split.inside) inside.push_back(std::move(*split.inside));
+      inside.push_back(std::move(*split.inside));
     }
     clipper.resolveInside(std::move(inside), clip, stack);
     if (request.steps && request.steps->due(clipsSoFar++)) {
@@ -609,6 +659,8 @@ void visibility(const VisibilityRequest& request, const Knobs&, Visibility& visi
   request.stats.add("pieces made", counts.piecesMade);
   request.stats.add("pieces hidden", counts.hidden);
   request.stats.add("pieces cut by depth", counts.cutByDepth);
+  request.stats.add("cuts undone", counts.cutsUndone);
+  request.stats.add("pieces with no pixel dropped", counts.dropped);
   request.stats.add("visible pieces", counts.visible);
   request.stats.add("visible pieces with no pixel", counts.noPixel);
   request.stats.add("most pieces in an inside list", counts.mostInside);

@@ -5,6 +5,9 @@
 // counted where a scene calls for it; it refuses a scene over its budget.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "property/random_scene.hpp"
 #include "renderer/image/polygon_svg.hpp"
 #include "test_support.hpp"
@@ -146,6 +149,46 @@ TEST(WeilerAtherton, APieceFoundInFrontOfTheClipPolygonClipsInTurn) {
   EXPECT_EQ(answer.stats.counter("recursions"), 1);
   EXPECT_EQ(answer.stats.counter("deepest recursion"), 1);
   EXPECT_GT(answer.stats.counter("pieces hidden"), 0);
+}
+
+// A cone seen from its tip: eight triangles of one mesh around a vertex. Outlines lie
+// half a sub-pixel unit outside their triangles, so triangles meeting only at the tip
+// overlap there, in a sliver no pixel center is in: cutting would leave slivers that
+// show nothing. No triangle is cut; each is one visible piece.
+TEST(WeilerAtherton, TrianglesOverlappingBetweenPixelCentersAreNotCut) {
+  Mesh cone;
+  cone.positions.push_back({0.3, 0.2, 1});
+  for (int k = 0; k < 8; ++k) {
+    const double angle = (45.0 * k + 10.0) * std::numbers::pi / 180.0;
+    cone.positions.push_back({0.3 + 15 * std::cos(angle), 0.2 + 15 * std::sin(angle), 0});
+  }
+  for (std::uint32_t k = 0; k < 8; ++k) cone.triangles.push_back({0, k + 1, (k + 1) % 8 + 1});
+  const Answer answer = ofMeshes({cone});
+  EXPECT_GT(answer.stats.counter("cuts undone"), 0);
+  EXPECT_EQ(answer.stats.counter("pieces clipped"), 0);
+  EXPECT_EQ(answer.stats.counter("visible pieces"), 8);
+  EXPECT_EQ(answer.stats.counter("visible pieces with no pixel"), 0);
+}
+
+// Pixel centers are at half-integer x and y here. A sliver whose box holds the center
+// (0.5, 0.5), passing above it, is dropped before it clips anything (the geometry stage
+// keeps it: it drops only triangles whose box holds no center); a strip of the large
+// triangle between rows of centers, left outside a clip polygon, is dropped as it is
+// cut off.
+TEST(WeilerAtherton, PiecesHoldingNoPixelCenterAreDropped) {
+  const Mesh large = test::triangleMesh({{-20, -10.1, -1}, {20, -10.1, -1}, {0, 20, -1}});
+  const Answer between = ofMeshes({test::triangleMesh({{0, 0.2, 1}, {1, 1, 1}, {0.8, 1, 1}}), large});
+  EXPECT_EQ(between.stats.counter("screen triangles"), 2);
+  EXPECT_EQ(between.stats.counter("pieces with no pixel dropped"), 1);
+  EXPECT_EQ(between.stats.counter("clip polygons"), 1);
+  EXPECT_EQ(between.stats.counter("visible pieces"), 1);
+  // The clip polygon's lower edge is 0.15 above the large one's: the strip between them
+  // holds no row of centers; left and right of the clip polygon hold some.
+  const Answer strip = ofMeshes({test::triangleMesh({{-5, -9.95, 1}, {5, -9.95, 1}, {0, 5, 1}}), large});
+  EXPECT_EQ(strip.stats.counter("pieces with no pixel dropped"), 1);
+  EXPECT_EQ(strip.stats.counter("pieces hidden"), 1);
+  EXPECT_EQ(strip.stats.counter("visible pieces"), 3);  // the clip polygon, the large one left and right of it
+  EXPECT_EQ(strip.stats.counter("visible pieces with no pixel"), 0);
 }
 
 TEST(WeilerAtherton, PolygonsThroughEachOtherAreKeptWhereEachIsNearer) {
