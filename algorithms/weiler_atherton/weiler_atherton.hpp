@@ -49,7 +49,7 @@ inline const KnobTable<Knobs>& knobTable() {
   static const KnobTable<Knobs> table = KnobTable<Knobs>().number(
       "budget", &Knobs::budget, {1, 1e9, true}, {"1e5", "1e6"},
       "refuses scenes with more triangles than this (each clip polygon clips every piece its outline meets: the work grows "
-      "with the overlap on screen; about 1.5 s per 100,000 triangles of the shipped scenes on one core)");
+      "with the overlap on screen; at most about 0.5 s per 100,000 triangles of the shipped scenes on one core)");
   return table;
 }
 
