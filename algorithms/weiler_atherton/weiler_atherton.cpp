@@ -125,6 +125,22 @@ Box boxOf(const Outline& outline) {
   return {box.x0 - kMargin, box.y0 - kMargin, box.x1 + kMargin, box.y1 + kMargin};
 }
 
+// The area of an outline in square pixels, from its rounded corners (shoelace formula).
+double areaOf(const Outline& outline) {
+  double twiceArea = 0;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const dvec2 a = approximate(outline[i].point), b = approximate(outline[(i + 1) % outline.size()].point);
+    twiceArea += a.x * b.y - b.x * a.y;
+  }
+  return std::abs(twiceArea) / 2;
+}
+
+// Below this area (in square pixels) a part inside a clip polygon that holds no pixel
+// center is a sliver: the piece is left whole rather than cut around it. Only the
+// drawing sees the choice (the piece drawn over the clip polygon's outline in the
+// sliver), so it is kept far below a pixel.
+constexpr double kSliverArea = 1.0 / 64;
+
 // A piece of a polygon: the part of screen triangle `polygon` within its outline, and
 // where it passes through other polygons, only where it is nearer than each of
 // `nearerThan` (decided per pixel center).
@@ -321,13 +337,13 @@ class Clipper {
           outside.push_back(std::move(piece));
           continue;
         }
-        Split split = splitAgainst(piece, clip);
-        if (!split.inside) {  // not cut
+        std::optional<Split> split = splitAgainst(piece, clip);
+        if (!split) {  // not cut
           outside.push_back(std::move(piece));
           continue;
         }
-        for (Piece& part : split.outside) outside.push_back(std::move(part));
-        inside.push_back(std::move(*split.inside));
+        for (Piece& part : split->outside) outside.push_back(std::move(part));
+        if (split->inside) inside.push_back(std::move(*split->inside));
       }
       resolveInside(std::move(inside), clip, stack);
       list = std::move(outside);
@@ -335,23 +351,28 @@ class Clipper {
   }
 
   // Step 2 for one piece: its parts inside and outside the clip polygon's outline, of
-  // those that hold a pixel. The image is its pixel centers, and no center lies on a
-  // line: a part that holds none changes no pixel, and neither does the clip polygon
-  // there. So an outside part that holds none is dropped, and when no part inside holds
-  // one the piece is not cut at all: it stays whole, outside. (A mesh's triangles that
-  // meet at a corner overlap so, by less than a sub-pixel unit: cut, each would leave
-  // up to three slivers.) No parts: the piece stays as it is.
-  Split splitAgainst(const Piece& piece, std::uint32_t clip) {
+  // those that hold a pixel; nothing when the piece stays as it is. The image is its
+  // pixel centers, and no center lies on a line: a part that holds none changes no pixel,
+  // and neither does the clip polygon there. So such a part is dropped, inside or
+  // outside; and when the part inside holds none and is a sliver, the piece is not cut at
+  // all: it stays whole. A mesh's triangles that meet at a corner overlap so (their
+  // outlines lie half a sub-pixel unit outside them): cut, each would leave up to three
+  // slivers outside the other. Every piece in a list holds a pixel, so the clip
+  // polygon's own piece, all inside, always goes to the inside list.
+  std::optional<Split> splitAgainst(const Piece& piece, std::uint32_t clip) {
     Split split = splitByOutline(piece, triangles_[clip]);
-    if (!split.inside) return {};
-    if (!holdsAPixel(*split.inside)) {
+    if (!split.inside) return std::nullopt;
+    const bool insideHoldsAPixel = piece.polygon == clip || holdsAPixel(*split.inside);
+    if (!insideHoldsAPixel && areaOf(split.inside->outline) < kSliverArea) {
       ++counts_.cutsUndone;
-      return {};
+      return std::nullopt;
     }
+    const std::size_t parts = split.outside.size() + 1;
     counts_.dropped += static_cast<std::int64_t>(std::erase_if(split.outside, [&](const Piece& part) { return !holdsAPixel(part); }));
-    if (!split.outside.empty()) {
+    if (!insideHoldsAPixel) split.inside.reset(), ++counts_.dropped;
+    if (parts > 1) {
       ++counts_.piecesClipped;
-      counts_.piecesMade += static_cast<std::int64_t>(split.outside.size() + 1);
+      counts_.piecesMade += static_cast<std::int64_t>(split.outside.size() + (split.inside ? 1 : 0));
     }
     return split;
   }
@@ -632,11 +653,11 @@ void visibility(const VisibilityRequest& request, const Knobs&, Visibility& visi
     const std::size_t polygonsShown = visibility.polygons.size();
     const std::int64_t hiddenBefore = counts.hidden, recursionsBefore = counts.recursions;
     for (const std::uint32_t slot : list.meeting(boxOf(outlineOf(clipper.triangle(clip))))) {
-      Split split = clipper.splitAgainst(list[slot], clip);
-      if (!split.inside) continue;  // not cut: it stays in its place
+      std::optional<Split> split = clipper.splitAgainst(list[slot], clip);
+      if (!split) continue;  // not cut: it stays in its place
       list.remove(slot);
-      for (Piece& part : split.outside) list.add(std::move(part));
-      inside.push_back(std::move(*split.inside));
+      for (Piece& part : split->outside) list.add(std::move(part));
+      if (split->inside) inside.push_back(std::move(*split->inside));
     }
     clipper.resolveInside(std::move(inside), clip, stack);
     if (request.steps && request.steps->due(clipsSoFar++)) {

@@ -24,8 +24,8 @@
 //
 // The image is its pixel centers, so a part of a polygon that holds none can change no
 // pixel: such a part is dropped as it is cut off, and a piece whose part inside a clip
-// polygon holds none is not cut at all (a mesh's triangles that meet at a corner overlap
-// so, by less than a sub-pixel unit).
+// polygon holds none and is a sliver is not cut at all (a mesh's triangles that meet at
+// a corner overlap so).
 //
 // Cost grows with how much polygons overlap on screen: each clip polygon clips every
 // piece its outline meets (found through a grid of tiles), and the recursion clips the
@@ -56,13 +56,14 @@ inline const KnobTable<Knobs>& knobTable() {
 // The visibility pass: the geometry stage, then the clipping, on one thread (the same
 // bits for every thread count). Stats: "clip polygons" (outlines clipped against, the
 // recursion's included), "recursions", "pieces clipped" (pieces an outline cut), "pieces
-// made", "cuts undone" (pieces left whole: their part inside held no pixel center),
-// "pieces with no pixel dropped" (polygons and parts cut off that held none), "pieces
-// hidden" (behind a clip polygon everywhere), "pieces cut by depth" (passing through a
-// clip polygon: kept where nearer), "visible pieces", "visible pieces with no pixel"
-// (kept where nearer than a polygon they pass through, and nearer at no center: not
-// among the polygons drawn), "most pieces in an inside list", "deepest recursion",
-// "pixels claimed twice" (0 unless the visible pieces overlap, which they must not).
+// made", "cuts undone" (pieces left whole: their part inside was a sliver holding no
+// pixel center), "pieces with no pixel dropped" (polygons and parts cut off that held
+// none), "pieces hidden" (behind a clip polygon everywhere), "pieces cut by depth"
+// (passing through a clip polygon: kept where nearer), "visible pieces", "visible pieces
+// with no pixel" (kept where nearer than a polygon they pass through, and nearer at no
+// center: not among the polygons drawn), "most pieces in an inside list", "deepest
+// recursion", "pixels claimed twice" (0 unless two visible pieces hold the same pixel
+// center, which they must not).
 void visibility(const VisibilityRequest& request, const Knobs& knobs, Visibility& visibility);
 
 // The registry's entry (algorithms/algorithm.hpp).

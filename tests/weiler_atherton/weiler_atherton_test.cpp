@@ -124,7 +124,10 @@ Answer ofMeshes(const std::vector<Mesh>& meshes) {
   const Scene scene = test::sceneOf(test::pixelCamera(48), 64, 48, meshes);
   const PreparedScene prepared(scene);
   Answer answer = clipped(prepared);
-  EXPECT_EQ(answer.visibility.frame.ids, test::sampledOneByOne(prepared).ids);
+  const Frame sampled = test::sampledOneByOne(prepared);
+  EXPECT_EQ(answer.visibility.frame.ids, sampled.ids);
+  EXPECT_TRUE(test::sameDepthBits(answer.visibility.frame, sampled));
+  EXPECT_EQ(answer.stats.counter("pixels claimed twice"), 0);
   return answer;
 }
 
@@ -189,6 +192,24 @@ TEST(WeilerAtherton, PiecesHoldingNoPixelCenterAreDropped) {
   EXPECT_EQ(strip.stats.counter("pieces hidden"), 1);
   EXPECT_EQ(strip.stats.counter("visible pieces"), 3);  // the clip polygon, the large one left and right of it
   EXPECT_EQ(strip.stats.counter("visible pieces with no pixel"), 0);
+}
+
+// A part inside that holds no center but is no sliver is cut off all the same, so that
+// the drawing does not show the piece behind over the clip polygon: the triangle behind
+// overlaps the one in front in a band 0.8 pixels high and 60 long between two rows of
+// centers; its polygon is drawn below the band only (to the sub-pixel unit its corners
+// are snapped to).
+TEST(WeilerAtherton, AWidePartInsideHoldingNoPixelCenterIsCutOff) {
+  const Answer answer = ofMeshes({test::triangleMesh({{-30, -0.4, 1}, {30, -0.4, 1}, {0, 14, 1}}),
+                                  test::triangleMesh({{-30, 0.4, 0}, {0, -12, 0}, {30, 0.4, 0}})});
+  EXPECT_EQ(answer.stats.counter("cuts undone"), 0);
+  EXPECT_EQ(answer.stats.counter("pieces clipped"), 1);
+  EXPECT_EQ(answer.stats.counter("pieces with no pixel dropped"), 3);  // the band inside, and its ends beyond the sides
+  EXPECT_EQ(answer.stats.counter("visible pieces"), 2);
+  for (const VisiblePolygon& polygon : answer.visibility.polygons) {
+    if (polygon.triangle != 1) continue;
+    for (const dvec2& corner : polygon.corners) EXPECT_GT(corner.y, 24.4 - 1.0 / 256);  // world y = 24 - pixel y
+  }
 }
 
 TEST(WeilerAtherton, PolygonsThroughEachOtherAreKeptWhereEachIsNearer) {
