@@ -8,7 +8,6 @@
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <array>
 #include <string>
 
 #include "renderer/raster/plane_depth.hpp"
