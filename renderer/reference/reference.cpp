@@ -88,42 +88,52 @@ bool SurfaceReference::answerByProof(const CameraTransform& camera, int x0, int 
   return true;
 }
 
-void SurfaceReference::traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, const ReferenceHit* above,
+void SurfaceReference::traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, std::optional<std::uint32_t> candidate,
                                  ReferenceHit* hits, std::size_t stride, Counters& counters) const {
   const auto searchRows = [&](int from) {
     for (int row = from; row < height; ++row) traceRun(camera, y0 + row, x0, width, hits + std::size_t(row) * stride, counters);
   };
   if (!wideBvh_) return searchRows(0);
-  // The candidate: what the row above showed, if it showed one answer plainly; else what
-  // the tile's own first row, searched ray by ray, shows.
-  int searched = 0;
-  if (!above || !oneAnswer(above, width, above[0].id)) {
-    traceRun(camera, y0, x0, width, hits, counters);
-    searched = 1;
-    above = hits;
-    if (height == 1 || !oneAnswer(above, width, above[0].id)) return searchRows(1);
-  }
-  if (!answerByProof(camera, x0, y0 + searched, width, height - searched, above[0].id, hits + std::size_t(searched) * stride, stride, counters))
-    searchRows(searched);
+  if (candidate && answerByProof(camera, x0, y0, width, height, *candidate, hits, stride, counters)) return;
+  // Else the tile's own first row, searched ray by ray, gives the other rows their
+  // candidate, if it shows one answer plainly and not the one just disproved.
+  traceRun(camera, y0, x0, width, hits, counters);
+  if (height == 1 || !oneAnswer(hits, width, hits[0].id) || (candidate && hits[0].id == *candidate) ||
+      !answerByProof(camera, x0, y0 + 1, width, height - 1, hits[0].id, hits + stride, stride, counters))
+    searchRows(1);
 }
 
 void SurfaceReference::traceTileRow(const CameraTransform& camera, int y0, int height, const ReferenceHit* above, ReferenceHit* hits,
                                     std::size_t stride, Counters& counters) const {
-  const int width = camera.width();
-  for (int x0 = 0; x0 < width;) {
-    // Tiles whose row above shows one answer, the same along them all, are proved as one
-    // run first (a single proof for a stretch of floor or sky), and tile by tile where
-    // that fails.
-    int end = std::min(x0 + kTileSize, width);
-    if (above && wideBvh_ && oneAnswer(above + x0, end - x0, above[x0].id))
-      while (end < width && end - x0 < kRunTiles * kTileSize && oneAnswer(above + end, std::min(kTileSize, width - end), above[x0].id))
-        end = std::min(end + kTileSize, width);
-    if (end - x0 > kTileSize && answerByProof(camera, x0, y0, end - x0, height, above[x0].id, hits + x0, stride, counters)) {
-      x0 = end;
+  const int width = camera.width(), tiles = (width + kTileSize - 1) / kTileSize;
+  const auto tileWidth = [&](int tile) { return std::min(kTileSize, width - tile * kTileSize); };
+  // Each tile's candidate: what the row above shows along it, if it shows one answer
+  // plainly; with no row above (a band's first tile row), what one ray through the
+  // tile's middle shows, plainly.
+  std::vector<std::optional<std::uint32_t>> candidates(static_cast<std::size_t>(tiles));
+  for (int tile = 0; tile < tiles && wideBvh_; ++tile) {
+    const int x0 = tile * kTileSize;
+    if (above) {
+      if (oneAnswer(above + x0, tileWidth(tile), above[x0].id)) candidates[std::size_t(tile)] = above[x0].id;
       continue;
     }
-    for (; x0 < end; x0 += kTileSize)
-      traceTile(camera, x0, y0, std::min(kTileSize, width - x0), height, above ? above + x0 : nullptr, hits + x0, stride, counters);
+    ReferenceHit sample;
+    traceRun(camera, y0 + height / 2, x0 + tileWidth(tile) / 2, 1, &sample, counters);
+    if (oneAnswer(&sample, 1, sample.id)) candidates[std::size_t(tile)] = sample.id;
+  }
+  for (int tile = 0; tile < tiles;) {
+    // Neighbouring tiles with the same candidate are proved as one run first (a single
+    // proof for a stretch of floor or sky), and tile by tile where that fails.
+    const std::optional<std::uint32_t> candidate = candidates[std::size_t(tile)];
+    int last = tile + 1;
+    while (candidate && last < tiles && last - tile < kRunTiles && candidates[std::size_t(last)] == candidate) ++last;
+    const int x0 = tile * kTileSize, runWidth = std::min(last * kTileSize, width) - x0;
+    if (last - tile > 1 && answerByProof(camera, x0, y0, runWidth, height, *candidate, hits + x0, stride, counters)) {
+      tile = last;
+      continue;
+    }
+    for (; tile < last; ++tile)
+      traceTile(camera, tile * kTileSize, y0, tileWidth(tile), height, candidates[std::size_t(tile)], hits + tile * kTileSize, stride, counters);
   }
 }
 
@@ -293,12 +303,17 @@ void traceReference(const PreparedScene& scene, int threads, Stats& stats, Refer
       ReferenceHit* tileRow = &hits[std::size_t(top) * width];
       reference.traceTileRow(camera, y0 + top, std::min(kTile, rows - top), top > 0 ? tileRow - width : nullptr, tileRow, width, bandCounters);
     }
+    // Through pointers taken once: stored through a vector, a byte could alias the
+    // vectors' own pointers, which were then read again for every pixel.
+    const std::size_t at = std::size_t(y0) * width;
+    std::uint32_t* ids = image.frame.ids.data() + at;
+    float* depth = image.frame.depth.data() + at;
+    std::uint8_t* ambiguous = image.ambiguous.data() + at;
     for (std::size_t pixel = 0; pixel < std::size_t(rows) * width; ++pixel) {
       const ReferenceHit& hit = hits[pixel];
-      const std::size_t at = std::size_t(y0) * width + pixel;
-      image.frame.ids[at] = hit.id;
-      image.frame.depth[at] = static_cast<float>(hit.distance);
-      image.ambiguous[at] = hit.ambiguous;
+      ids[pixel] = hit.id;
+      depth[pixel] = static_cast<float>(hit.distance);
+      ambiguous[pixel] = hit.ambiguous;
       bandExact += hit.usedExact;
       bandAmbiguous += hit.ambiguous;
     }

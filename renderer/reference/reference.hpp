@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "renderer/geometry/camera.hpp"
@@ -69,11 +70,11 @@ class SurfaceReference {
   void traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const;
   // traceRun() for a row of tiles of pixels: rows y0 .. y0 + height - 1 (height at most
   // kTileSize) of the whole image width, into hits[row * stride + x]; the same answers.
-  // With packets, where the row above (`above`, answered already; or null) or else a
-  // tile's own first row shows one triangle whole, or nothing, the tile's other rows are
-  // proved to show it if they do (renderer/reference/tile_proof.hpp), and their rays are
-  // then not searched; up to kRunTiles neighbouring tiles whose row above shows the same
-  // are proved at once.
+  // With packets, each tile takes a candidate: what the row above (`above`, answered
+  // already; or null) shows along it, if it shows one answer plainly, or with no row
+  // above, what one ray through the tile's middle shows. The tile is proved to show it
+  // (renderer/reference/tile_proof.hpp) if it does, and its rays are then not searched;
+  // up to kRunTiles neighbouring tiles with the same candidate are proved at once.
   static constexpr int kTileSize = 8, kRunTiles = 8;
   void traceTileRow(const CameraTransform& camera, int y0, int height, const ReferenceHit* above, ReferenceHit* hits, std::size_t stride,
                     Counters& counters) const;
@@ -103,11 +104,14 @@ class SurfaceReference {
   // Up to eight rays of a row as one packet, when they can travel together
   // (RayPacket::travelTogether); false when they cannot.
   bool tracePacket(const CameraTransform& camera, int y, int x, int count, ReferenceHit* hits, Counters& counters) const;
-  // traceTileRow's tile at x0 .. x0 + width - 1, and its proof: the pixels of the rectangle
-  // x0 .. x0 + width - 1, y0 .. y0 + height - 1 answered by a proof that they show triangle
-  // `id` (0: nothing), or false when it fails and nothing was written.
-  void traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, const ReferenceHit* above, ReferenceHit* hits,
-                 std::size_t stride, Counters& counters) const;
+  // traceTileRow's tile at x0 .. x0 + width - 1: proved to show its candidate (a triangle's
+  // id, or 0 for nothing) where it can; else its first row is searched, and the other
+  // rows proved to show what that row shows, if it shows one answer plainly, or searched.
+  void traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, std::optional<std::uint32_t> candidate,
+                 ReferenceHit* hits, std::size_t stride, Counters& counters) const;
+  // The pixels of the rectangle x0 .. x0 + width - 1, y0 .. y0 + height - 1 answered by a
+  // proof that they show triangle `id` (0: nothing), or false when it fails and nothing
+  // was written.
   bool answerByProof(const CameraTransform& camera, int x0, int y0, int width, int height, std::uint32_t id, ReferenceHit* hits,
                      std::size_t stride, Counters& counters) const;
   // Up to eight rays of a row where a tile's proof showed that no triangle but
