@@ -38,11 +38,13 @@ SurfaceReference::SurfaceReference(const PreparedScene& scene, Stats& stats, Ref
 
 void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, int count, ReferenceHit* hits, Counters& counters) const {
   // Eight rays at a time; where they cannot travel together (they straddle a plane of
-  // the view where a direction's component changes sign), four and four; and where four
-  // cannot, one by one.
+  // the view where a direction's component changes sign, or where its largest component
+  // changes axis), four and four; and where four cannot, one by one, each still through
+  // the wide tree unless a component of its direction is zero.
   const auto traceOneByOne = [&](int x, int rays) {
     for (int i = 0; i < rays; ++i)
-      hits[x - x0 + i] = trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x + i), conventions::pixelCenter(y)), counters);
+      if (!wideBvh_ || !tracePacket(camera, y, x + i, 1, hits + (x - x0 + i), counters))
+        hits[x - x0 + i] = trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x + i), conventions::pixelCenter(y)), counters);
   };
   for (int x = x0; x < x0 + count; x += RayPacket::kRays) {
     const int rays = std::min(RayPacket::kRays, x0 + count - x);
