@@ -42,9 +42,11 @@ void SurfaceReference::traceRun(const CameraTransform& camera, int y, int x0, in
   // changes axis), four and four; and where four cannot, one by one, each still through
   // the wide tree unless a component of its direction is zero.
   const auto traceOneByOne = [&](int x, int rays) {
-    for (int i = 0; i < rays; ++i)
-      if (!wideBvh_ || !tracePacket(camera, y, x + i, 1, hits + (x - x0 + i), counters))
-        hits[x - x0 + i] = trace(camera, camera.rayThroughPixel(conventions::pixelCenter(x + i), conventions::pixelCenter(y)), counters);
+    for (int i = 0; i < rays; ++i) {
+      const Ray ray = camera.rayThroughPixel(conventions::pixelCenter(x + i), conventions::pixelCenter(y));
+      const bool travels = ray.direction.x != 0 && ray.direction.y != 0 && ray.direction.z != 0;  // as a packet of one
+      if (!wideBvh_ || !travels || !tracePacket(camera, y, x + i, 1, hits + (x - x0 + i), counters)) hits[x - x0 + i] = trace(camera, ray, counters);
+    }
   };
   for (int x = x0; x < x0 + count; x += RayPacket::kRays) {
     const int rays = std::min(RayPacket::kRays, x0 + count - x);
@@ -90,17 +92,18 @@ bool SurfaceReference::answerByProof(const CameraTransform& camera, int x0, int 
   return true;
 }
 
-void SurfaceReference::traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, std::optional<std::uint32_t> candidate,
+void SurfaceReference::traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, std::optional<std::uint32_t> candidateId,
                                  ReferenceHit* hits, std::size_t stride, Counters& counters) const {
   const auto searchRows = [&](int from) {
     for (int row = from; row < height; ++row) traceRun(camera, y0 + row, x0, width, hits + std::size_t(row) * stride, counters);
   };
   if (!wideBvh_) return searchRows(0);
-  if (candidate && answerByProof(camera, x0, y0, width, height, *candidate, hits, stride, counters)) return;
+  if (candidateId && answerByProof(camera, x0, y0, width, height, *candidateId, hits, stride, counters)) return;
   // Else the tile's own first row, searched ray by ray, gives the other rows their
-  // candidate, if it shows one answer plainly and not the one just disproved.
+  // candidate, if it shows one answer plainly (the same one may now be proved for the
+  // smaller region of the rows below it).
   traceRun(camera, y0, x0, width, hits, counters);
-  if (height == 1 || !oneAnswer(hits, width, hits[0].id) || (candidate && hits[0].id == *candidate) ||
+  if (height == 1 || !oneAnswer(hits, width, hits[0].id) ||
       !answerByProof(camera, x0, y0 + 1, width, height - 1, hits[0].id, hits + stride, stride, counters))
     searchRows(1);
 }
@@ -111,31 +114,34 @@ void SurfaceReference::traceTileRow(const CameraTransform& camera, int y0, int h
   const auto tileWidth = [&](int tile) { return std::min(kTileSize, width - tile * kTileSize); };
   // Each tile's candidate: what the row above shows along it, if it shows one answer
   // plainly; with no row above (a band's first tile row), what one ray through the
-  // tile's middle shows, plainly.
-  std::vector<std::optional<std::uint32_t>> candidates(static_cast<std::size_t>(tiles));
-  for (int tile = 0; tile < tiles && wideBvh_; ++tile) {
-    const int x0 = tile * kTileSize;
-    if (above) {
-      if (oneAnswer(above + x0, tileWidth(tile), above[x0].id)) candidates[std::size_t(tile)] = above[x0].id;
-      continue;
+  // tile's middle shows, if plainly. (That ray's work is counted with the rest; its
+  // pixel is answered again, by the proof or by the search.)
+  std::vector<std::optional<std::uint32_t>> candidateIds(static_cast<std::size_t>(tiles));
+  if (wideBvh_)
+    for (int tile = 0; tile < tiles; ++tile) {
+      const int x0 = tile * kTileSize;
+      if (above) {
+        if (oneAnswer(above + x0, tileWidth(tile), above[x0].id)) candidateIds[std::size_t(tile)] = above[x0].id;
+        continue;
+      }
+      ReferenceHit sample;
+      traceRun(camera, y0 + height / 2, x0 + tileWidth(tile) / 2, 1, &sample, counters);
+      if (oneAnswer(&sample, 1, sample.id)) candidateIds[std::size_t(tile)] = sample.id;
     }
-    ReferenceHit sample;
-    traceRun(camera, y0 + height / 2, x0 + tileWidth(tile) / 2, 1, &sample, counters);
-    if (oneAnswer(&sample, 1, sample.id)) candidates[std::size_t(tile)] = sample.id;
-  }
   for (int tile = 0; tile < tiles;) {
     // Neighbouring tiles with the same candidate are proved as one run first (a single
     // proof for a stretch of floor or sky), and tile by tile where that fails.
-    const std::optional<std::uint32_t> candidate = candidates[std::size_t(tile)];
+    const std::optional<std::uint32_t> candidateId = candidateIds[std::size_t(tile)];
     int last = tile + 1;
-    while (candidate && last < tiles && last - tile < kRunTiles && candidates[std::size_t(last)] == candidate) ++last;
+    while (candidateId && last < tiles && last - tile < kRunTiles && candidateIds[std::size_t(last)] == candidateId) ++last;
     const int x0 = tile * kTileSize, runWidth = std::min(last * kTileSize, width) - x0;
-    if (last - tile > 1 && answerByProof(camera, x0, y0, runWidth, height, *candidate, hits + x0, stride, counters)) {
+    if (last - tile > 1 && answerByProof(camera, x0, y0, runWidth, height, *candidateId, hits + x0, stride, counters)) {
       tile = last;
       continue;
     }
     for (; tile < last; ++tile)
-      traceTile(camera, tile * kTileSize, y0, tileWidth(tile), height, candidates[std::size_t(tile)], hits + tile * kTileSize, stride, counters);
+      traceTile(camera, tile * kTileSize, y0, tileWidth(tile), height, candidateIds[std::size_t(tile)], hits + tile * kTileSize, stride,
+                counters);
   }
 }
 

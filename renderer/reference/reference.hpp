@@ -71,8 +71,8 @@ class SurfaceReference {
   // traceRun() for a row of tiles of pixels: rows y0 .. y0 + height - 1 (height at most
   // kTileSize) of the whole image width, into hits[row * stride + x]; the same answers.
   // With packets, each tile takes a candidate: what the row above (`above`, answered
-  // already; or null) shows along it, if it shows one answer plainly, or with no row
-  // above, what one ray through the tile's middle shows. The tile is proved to show it
+  // already; or null) shows along it, or with no row above, what one ray through the
+  // tile's middle shows, if it shows one answer plainly. The tile is proved to show it
   // (renderer/reference/tile_proof.hpp) if it does, and its rays are then not searched;
   // up to kRunTiles neighbouring tiles with the same candidate are proved at once.
   static constexpr int kTileSize = 8, kRunTiles = 8;
@@ -107,7 +107,7 @@ class SurfaceReference {
   // traceTileRow's tile at x0 .. x0 + width - 1: proved to show its candidate (a triangle's
   // id, or 0 for nothing) where it can; else its first row is searched, and the other
   // rows proved to show what that row shows, if it shows one answer plainly, or searched.
-  void traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, std::optional<std::uint32_t> candidate,
+  void traceTile(const CameraTransform& camera, int x0, int y0, int width, int height, std::optional<std::uint32_t> candidateId,
                  ReferenceHit* hits, std::size_t stride, Counters& counters) const;
   // The pixels of the rectangle x0 .. x0 + width - 1, y0 .. y0 + height - 1 answered by a
   // proof that they show triangle `id` (0: nothing), or false when it fails and nothing

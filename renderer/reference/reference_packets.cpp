@@ -5,10 +5,10 @@
 // horizon (renderer/reference/nearest_hit.hpp). A ray sees every leaf its own traversal would
 // reach, in about the same nearest-first order, and offers each triangle with its own
 // horizon at the time: so the ids, depths and ambiguous pixels come out the textbook
-// traversal's, and so, nearly always, do the rays that needed exact work; where the
-// order of candidates differs, a ray may need it in one traversal and not the other
-// (tests/renderer/reference/reference_test.cpp compares them on every shipped scene and on random
-// ones).
+// traversal's, and so do the rays that needed exact work, since a triangle the bounds
+// leave open is decided only at the end of a ray's search, whatever the order it was met
+// in (tests/renderer/reference/reference_test.cpp compares them on every shipped scene
+// and on random ones).
 #include <bit>
 #include <optional>
 

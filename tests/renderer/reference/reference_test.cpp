@@ -233,8 +233,9 @@ TEST(Reference, PacketsGiveTheTextbookTraversalsAnswerOnRandomScenes) {
   }
 }
 
-// A tile whose row above, or first row, shows one triangle whole (or nothing) is proved to
-// show it throughout (renderer/reference/tile_proof.hpp), and its rays are not searched. A
+// A tile whose row above, sampled middle ray or first row shows one triangle whole (or
+// nothing) is proved to show it throughout (renderer/reference/tile_proof.hpp), and its
+// rays are not searched. A
 // small triangle in front of a wall that fills the view, at gaps down to none at all,
 // must neither be lost nor change a bit of the answer: under both projections, and 2^23
 // units from the origin, where a gap of 1e-12 rounds away and the two are coplanar (a
