@@ -91,11 +91,18 @@ std::optional<TileRegion> TileRegion::of(const CameraTransform& camera, const Aa
   // planes keep their order inside the frustum too).
   for (int i = 0; i < 4; ++i) {
     const Ray& ray = corners[std::size_t(i)];
-    const auto crossing = [&](const Halfspace& plane) { return (plane.offset - glm::dot(plane.normal, ray.origin - plane.anchor)) / glm::dot(plane.normal, ray.direction); };
-    const double nearT = crossing(nearPlane), backT = crossing(back);
-    if (!(std::isfinite(nearT) && std::isfinite(backT) && nearT < backT)) return std::nullopt;
-    region.corners_[std::size_t(i)] = ray.origin + nearT * ray.direction;
-    region.corners_[std::size_t(i) + 4] = ray.origin + backT * ray.direction;
+    // Where the ray crosses a plane: none where it runs along it, or so nearly that the
+    // parameter would pass 1e200 (no region then; and no division by zero, nor overflow).
+    const auto crossing = [&](const Halfspace& plane) -> std::optional<double> {
+      const double toPlane = plane.offset - glm::dot(plane.normal, ray.origin - plane.anchor);
+      const double along = glm::dot(plane.normal, ray.direction);
+      if (!(std::abs(along) > std::abs(toPlane) * 1e-200)) return std::nullopt;
+      return toPlane / along;
+    };
+    const std::optional<double> nearT = crossing(nearPlane), backT = crossing(back);
+    if (!nearT || !backT || !(*nearT < *backT)) return std::nullopt;
+    region.corners_[std::size_t(i)] = ray.origin + *nearT * ray.direction;
+    region.corners_[std::size_t(i) + 4] = ray.origin + *backT * ray.direction;
   }
   // What the planes of apart() are tested over: every triangle, and these corners.
   region.reach_ = scene;
