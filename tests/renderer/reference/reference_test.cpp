@@ -235,16 +235,15 @@ TEST(Reference, PacketsGiveTheTextbookTraversalsAnswerOnRandomScenes) {
 
 // A tile whose row above, sampled middle ray or first row shows one triangle whole (or
 // nothing) is proved to show it throughout (renderer/reference/tile_proof.hpp), and its
-// rays are not searched. A
-// small triangle in front of a wall that fills the view, at gaps down to none at all,
-// must neither be lost nor change a bit of the answer: under both projections, and 2^23
-// units from the origin, where a gap of 1e-12 rounds away and the two are coplanar (a
-// tie). Without the wall, the tiles around it show nothing, and are proved to. The same
-// scene shrunk a thousand times: 2^23 out, the rounding of the proof's corners is then
-// more than a margin over differences alone (a review found a tie that such a margin
-// proved a plain hit; this scene does not reproduce it, and passes either way). Every
-// corner is a dyadic fraction, so that the wall and the small triangle are exactly
-// coplanar at a gap of 0 wherever they are.
+// rays are not searched. A small triangle in front of a wall that fills the view, at gaps
+// down to none at all, must neither be lost nor change a bit of the answer: under both
+// projections, and 2^23 units from the origin, where a gap of 1e-12 rounds away and the
+// two are coplanar (a tie). Without the wall, the tiles around it show nothing, and are
+// proved to. The same scene shrunk a thousand times: 2^23 out, the rounding of the
+// proof's corners is then more than a margin over differences alone (a review found a tie
+// that such a margin proved a plain hit; this scene does not reproduce it, and passes
+// either way). Every corner is a dyadic fraction, so that the wall and the small triangle
+// are exactly coplanar at a gap of 0 wherever they are.
 TEST(Reference, TilesProvedWholeMissNothingInFrontOfTheirTriangle) {
   if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the reference traces one ray at a time here";
   for (const bool perspective : {false, true})
