@@ -351,11 +351,17 @@ TEST(Occlusion, ThePreviousFrameShowsAnObjectComingIntoViewOneFrameLate) {
   EXPECT_GE(late, 1) << "a box behind the wall's end comes into view";
   EXPECT_EQ(second.counter("occlusion: occluders rasterized"), 0) << "the previous-frame method draws no occluders";
   EXPECT_GT(second.counter("occlusion: occludees culled"), late) << "it still culls the boxes that stay hidden";
+  // The first frame's pass left its distances undecoded; this frame's map decoded them, and counted it.
+  EXPECT_EQ(second.counter(kDistancesDecodedCounter), std::int64_t(frame1.pixelCount()));
   // Frame 3, the eye still: the late boxes are back, a frame late and no later.
   const Frame frame2 = renderKept(prepared, kept2);
   const culling::PreviousFrame previous2{camera, &frame2};
   Stats third;
   EXPECT_EQ(judged.objectsFalselyCulled(culling::runPipeline(prepared, pipeline, 1, third, &previous2)), 0);
+  // Read again, the same frame's distances are not decoded again.
+  Stats fourth;
+  culling::runPipeline(prepared, pipeline, 1, fourth, &previous2);
+  EXPECT_EQ(fourth.counter(kDistancesDecodedCounter), 0);
   // The same frame with occluders drawn for it culls nothing visible.
   EXPECT_EQ(judged.objectsFalselyCulled(cull(prepared, "occlusion")), 0);
 }

@@ -192,9 +192,9 @@ DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const
   return map;
 }
 
-DepthMap depthMapOfFrame(const MapView& view, const Frame& frame) {
+DepthMap depthMapOfFrame(const MapView& view, const Frame& frame, Stats& stats) {
   DepthMap map(view.width, view.height);
-  const PixelBuffer<float>& distance = frame.distances();
+  const PixelBuffer<float>& distance = frame.distances(&stats);
   // Texel x spans view pixels [x / scale, (x + 1) / scale): the pixels it overlaps.
   const auto pixels = [](int texel, double scale, int size) {
     const int first = static_cast<int>(std::floor(texel / scale));
@@ -272,7 +272,7 @@ VisibleSet cull(const PreparedScene& scene, const CameraTransform& camera, const
     previousCamera.emplace(previous->camera, previous->frame->width, previous->frame->height);
   }
   const MapView view(previousCamera ? *previousCamera : camera, knobs.mapWidth, knobs.mapHeight);
-  const DepthMap map = previousCamera ? depthMapOfFrame(view, *previous->frame)
+  const DepthMap map = previousCamera ? depthMapOfFrame(view, *previous->frame, stats)
                                       : occluderDepthMap(scene, view, knobs, chooseOccluders(scene, camera, knobs, in), stats);
   std::optional<Pyramid> pyramid;
   if (knobs.pyramid) pyramid.emplace(map);

@@ -159,9 +159,10 @@ std::vector<std::uint32_t> chooseOccluders(const PreparedScene& scene, const Cam
 DepthMap occluderDepthMap(const PreparedScene& scene, const MapView& view, const Knobs& knobs,
                           const std::vector<std::uint32_t>& occluders, Stats& stats);
 
-// A depth image (Frame::depth, distances) reduced to a map: each texel the farthest depth
+// A frame's view distances (Frame::distances(), decoded here if its pass left them
+// undecoded, and counted in `stats` then) reduced to a map: each texel the farthest depth
 // of the pixels it overlaps.
-DepthMap depthMapOfFrame(const MapView& view, const Frame& frame);
+DepthMap depthMapOfFrame(const MapView& view, const Frame& frame, Stats& stats);
 
 // The stage: the triangles of the objects in `in` not proven hidden. Counts
 // "occlusion: occludees tested", "occlusion: occludees culled", "occlusion: texels read",
