@@ -192,7 +192,7 @@ cp "$study/occlusion_walkthrough.png" images/figures/culling/occlusion_walkthrou
 cp "$study/hzb_resolution.png" images/figures/culling/hzb_resolution.png
 ./build/hsr study occluder-fraction --threads 1 --out "$study" > /dev/null
 cp "$study/occluder_fraction.png" images/figures/culling/occluder_fraction.png
-# Occlusion queries: the survey's walkthrough, 2,000 positions (about 3.5 minutes).
+# Occlusion queries: the survey's walkthrough, 2,000 positions (about 3 minutes).
 ./build/hsr study occlusion-queries --out "$study" > /dev/null
 cp "$study/occlusion_queries.png" images/figures/culling/occlusion_queries.png
 cp "$study/occlusion_queries_frames.png" images/figures/culling/occlusion_queries_frames.png

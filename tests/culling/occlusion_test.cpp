@@ -345,6 +345,7 @@ TEST(Occlusion, ThePreviousFrameShowsAnObjectComingIntoViewOneFrameLate) {
   camera.eye = dvec3(glm::rotate(dmat4(1), glm::radians(35.0), dvec3(0, 1, 0)) * dvec4(camera.eye, 1));
   judged.retrace();
   const culling::PreviousFrame previous1{before, &frame1};
+  ASSERT_FALSE(frame1.decoded()) << "the fast path leaves the distances for a reader to decode";
   Stats second;
   const VisibleSet kept2 = culling::runPipeline(prepared, pipeline, 1, second, &previous1);
   const std::int64_t late = judged.objectsFalselyCulled(kept2);
@@ -358,6 +359,7 @@ TEST(Occlusion, ThePreviousFrameShowsAnObjectComingIntoViewOneFrameLate) {
   const culling::PreviousFrame previous2{camera, &frame2};
   Stats third;
   EXPECT_EQ(judged.objectsFalselyCulled(culling::runPipeline(prepared, pipeline, 1, third, &previous2)), 0);
+  EXPECT_EQ(third.counter(kDistancesDecodedCounter), std::int64_t(frame2.pixelCount()));
   // Read again, the same frame's distances are not decoded again.
   Stats fourth;
   culling::runPipeline(prepared, pipeline, 1, fourth, &previous2);
