@@ -157,6 +157,10 @@ double ExactPredicates::orient3dDeterminant(const dvec3& a, const dvec3& b, cons
                              std::abs(u.z) * (std::abs(m4) + std::abs(m5));
     if (kOrient3dBound * permanent < relativeBound * std::abs(det)) return det;
   }
+  return orient3dExactly(a, b, c, d, dIsPoint, safe);
+}
+
+double ExactPredicates::orient3dExactly(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d, bool dIsPoint, bool safe) {
   dvec3 eu(0), ev(0), ew = d;
   bool exact = safe;
   for (int i = 0; i < 3 && exact; ++i) {
